@@ -1,0 +1,5 @@
+"""``python -m factask`` runs the command line."""
+
+from factask.cli import app
+
+app()

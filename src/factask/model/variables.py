@@ -1,0 +1,154 @@
+"""State variables: the named, typed things in a scene."""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from factask.model.kinds import AssetKind, default_mass, kind_spec, yaw_symmetry_deg
+from factask.model.names import Name, instance_names
+from factask.model.palette import normalize_color
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+
+PositiveLength = Annotated[float, Field(gt=0, le=2.0, allow_inf_nan=False)]
+
+
+class OnTable(BaseModel):
+    """Start at a random free spot of the workspace (the default)."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["table"] = "table"
+
+
+class InRegion(BaseModel):
+    """Start at a random free spot inside an x/y box of the table (metres)."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["region"] = "region"
+    x: tuple[float, float] = Field(WORKSPACE_X)
+    y: tuple[float, float] = Field(WORKSPACE_Y)
+
+    @model_validator(mode="after")
+    def _ordered(self) -> InRegion:
+        for axis, (lo, hi), (wlo, whi) in (("x", self.x, WORKSPACE_X), ("y", self.y, WORKSPACE_Y)):
+            if not lo < hi:
+                raise ValueError(f"region {axis} range must have low < high, got {(lo, hi)}")
+            if lo < wlo - 1e-9 or hi > whi + 1e-9:
+                raise ValueError(
+                    f"region {axis} range {(lo, hi)} leaves the workspace {(wlo, whi)}"
+                )
+        return self
+
+
+class StartOn(BaseModel):
+    """Start resting on top of another variable (e.g. disks stacked on a stand)."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["on"] = "on"
+    support: Name
+
+
+class StartInside(BaseModel):
+    """Start inside a receptacle variable (a container or bowl)."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["inside"] = "inside"
+    container: Name
+
+
+class AtFixedPose(BaseModel):
+    """Start at a given x, y (metres) and yaw (degrees), resting on the table."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["pose"] = "pose"
+    x: Annotated[float, Field(ge=WORKSPACE_X[0], le=WORKSPACE_X[1], allow_inf_nan=False)]
+    y: Annotated[float, Field(ge=WORKSPACE_Y[0], le=WORKSPACE_Y[1], allow_inf_nan=False)]
+    yaw_deg: Annotated[float, Field(allow_inf_nan=False)] = 0.0
+
+
+Placement = Annotated[
+    OnTable | InRegion | StartOn | StartInside | AtFixedPose, Field(discriminator="type")
+]
+
+
+class StateVariable(BaseModel):
+    """A named thing (or group of identical things) in the scene.
+
+    Attributes:
+        name: snake_case identifier, unique in the graph.
+        description: What the variable means in the task.
+        kind: Asset kind (see :data:`factask.model.kinds.ASSET_KINDS`).
+        size: Full extents (x, y, z) in metres (the one size convention, see
+            :mod:`factask.model.kinds`); defaults to the kind's size.
+        color: Palette colour name (see :data:`factask.model.palette.COLORS`).
+        count: Number of identical objects the variable stands for.
+        mass: Mass of one object in kg; defaults from the kind's density.
+        fixed: Fixed to the table; defaults to the kind's default.
+        symmetry_deg: Yaw symmetry override in degrees (0: yaw never matters);
+            defaults from the kind and footprint.
+        initial: Where the object(s) start; default a free table spot.
+    """
+
+    model_config = ConfigDict(extra="forbid")
+
+    name: Name
+    description: str = ""
+    kind: AssetKind
+    size: tuple[PositiveLength, PositiveLength, PositiveLength] | None = None
+    color: str = "gray"
+    count: int = Field(1, ge=1, le=64)
+    mass: Annotated[float, Field(gt=0, le=50, allow_inf_nan=False)] | None = None
+    fixed: bool | None = None
+    symmetry_deg: Annotated[float, Field(ge=0, le=360, allow_inf_nan=False)] | None = None
+    initial: Placement = Field(default_factory=OnTable)
+
+    @field_validator("color")
+    @classmethod
+    def _known_color(cls, value: str) -> str:
+        return normalize_color(value)
+
+    @model_validator(mode="after")
+    def _fill_defaults(self) -> StateVariable:
+        spec = kind_spec(self.kind)
+        if self.size is None:
+            self.size = spec.default_size
+        if self.fixed is None:
+            self.fixed = not spec.movable
+        return self
+
+    @property
+    def extents(self) -> tuple[float, float, float]:
+        """Full extents (never None after validation)."""
+        assert self.size is not None
+        return self.size
+
+    @property
+    def is_fixed(self) -> bool:
+        """True if the variable's objects are fixed to the table."""
+        return bool(self.fixed)
+
+    @property
+    def symmetry(self) -> float:
+        """Yaw symmetry in degrees (0: any yaw is equivalent)."""
+        if self.symmetry_deg is not None:
+            return self.symmetry_deg
+        return yaw_symmetry_deg(self.kind, self.extents)
+
+    @property
+    def object_mass(self) -> float:
+        """Mass of one object, kg."""
+        return self.mass if self.mass is not None else default_mass(self.kind, self.extents)
+
+    @property
+    def instances(self) -> list[str]:
+        """Names of the objects this variable stands for."""
+        return instance_names(self.name, self.count)
+
+    def references(self) -> list[str]:
+        """Other variables this variable's initial placement depends on."""
+        if isinstance(self.initial, StartOn):
+            return [self.initial.support]
+        if isinstance(self.initial, StartInside):
+            return [self.initial.container]
+        return []
