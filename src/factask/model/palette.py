@@ -83,4 +83,4 @@ def nearest_color(rgb: tuple[float, float, float] | list[float]) -> str:
     vals = [float(c) for c in list(rgb)[:3]]
     if any(c > 1.0 for c in vals):
         vals = [c / 255.0 for c in vals]
-    return min(_RGB, key=lambda n: sum((a - b) ** 2 for a, b in zip(_RGB[n], vals)))
+    return min(_RGB, key=lambda n: sum((a - b) ** 2 for a, b in zip(_RGB[n], vals, strict=True)))

@@ -112,7 +112,7 @@ def compose(
     if shares is None:
         shares = [len(g.factors) / n_total if n_total else 0.0 for g in inputs]
     else:
-        total_share = sum(s for g, s in zip(inputs, shares) if g.factors)
+        total_share = sum(s for g, s in zip(inputs, shares, strict=True) if g.factors)
         if total_share <= 0:
             raise CompositionError("shares of the inputs with factors must add up to > 0")
         shares = [s / total_share for s in shares]
@@ -121,7 +121,7 @@ def compose(
     origin: dict[str, str] = {}
     factors: list[SubtaskFactor] = []
     factor_origin: dict[str, str] = {}
-    for g, share in zip(inputs, shares):
+    for g, share in zip(inputs, shares, strict=True):
         for v in g.variables:
             if v.name in variables and variables[v.name] != v:
                 a, b = variables[v.name], v
@@ -135,6 +135,9 @@ def compose(
                 variables[v.name] = v
                 origin[v.name] = g.name
         g_total = sum(f.weight for f in g.factors) or 1.0
+        scale = share / g_total
+        if abs(scale - 1.0) < 1e-9:
+            scale = 1.0  # keep weights bit-identical when the share does not change
         for f in g.factors:
             if f.name in factor_origin:
                 raise CompositionError(
@@ -142,14 +145,22 @@ def compose(
                     "rename one of them (renames=...)"
                 )
             factor_origin[f.name] = g.name
-            factors.append(f.model_copy(update={"weight": f.weight / g_total * share}))
-    max_actions = [g.limits.max_actions for g in inputs if g.factors]
-    limits = Limits(
-        max_actions=None if not max_actions or None in max_actions else sum(max_actions),  # type: ignore[arg-type]
-        max_sim_seconds_per_action=max(g.limits.max_sim_seconds_per_action for g in inputs),
-    )
+            factors.append(f if scale == 1.0 else f.model_copy(update={"weight": f.weight * scale}))
+    # Inputs with nothing in them (the empty graph) do not affect name or limits.
+    substantial = [g for g in inputs if g.factors or g.variables] or inputs
+    with_factors = [g for g in substantial if g.factors] or substantial
+    budgets = [g.limits.max_actions for g in with_factors]
+    if len(with_factors) == 1:
+        limits = with_factors[0].limits
+    else:
+        limits = Limits(
+            max_actions=None if None in budgets else sum(b for b in budgets if b is not None),
+            max_sim_seconds_per_action=max(
+                g.limits.max_sim_seconds_per_action for g in with_factors
+            ),
+        )
     return TaskGraph(
-        name=name or inputs[0].name,
+        name=name or substantial[0].name,
         description=description
         if description is not None
         else " ".join(g.description for g in inputs if g.description),
