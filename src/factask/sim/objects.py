@@ -40,6 +40,8 @@ from factask.model.world import TABLE_Z
 GEOMETRY_EPS = 1e-9
 #: Kinds of receptacle that have a floor (objects inside rest on it, not on the table).
 FLOORED_RECEPTACLES = ("container", "bowl")
+#: Kinds whose shape is a sphere: rotation changes neither footprint nor height.
+SPHERE_KINDS = ("ball",)
 #: Line marker whose default width the corner marker's arms share (one definition).
 _LINE_KIND = "line"
 
@@ -159,12 +161,17 @@ def box_corners_3d(obj: SceneObject, pose: Pose) -> np.ndarray:
 
 
 def top_z(obj: SceneObject, pose: Pose) -> float:
-    """Height of the highest point of the object's box at ``pose``."""
+    """Height of the highest point of the object at ``pose`` (its box, tilt included;
+    a ball's top whatever its rotation)."""
+    if obj.kind in SPHERE_KINDS:
+        return float(pose.pos[2] + obj.half[2])
     return float(box_corners_3d(obj, pose)[:, 2].max())
 
 
 def bottom_z(obj: SceneObject, pose: Pose) -> float:
-    """Height of the lowest point of the object's box at ``pose``."""
+    """Height of the lowest point of the object at ``pose`` (see :func:`top_z`)."""
+    if obj.kind in SPHERE_KINDS:
+        return float(pose.pos[2] - obj.half[2])
     return float(box_corners_3d(obj, pose)[:, 2].min())
 
 
@@ -191,10 +198,12 @@ def footprint_corners(obj: SceneObject, pose: Pose, margin: float = 0.0) -> np.n
 
 def footprint_points(obj: SceneObject, pose: Pose, per_axis: int = 3) -> np.ndarray:
     """XY sample points (k, 2) of the object's box: a ``per_axis`` grid on its top
-    and bottom faces, projected onto the table (so a tilted object is honest)."""
+    and bottom faces, projected onto the table (so a tilted object is honest; a
+    ball is sampled upright whatever its rotation)."""
     t = np.linspace(-1.0, 1.0, per_axis)
     grid = np.array([[a, b, c] for a in t for b in t for c in (-1.0, 1.0)])
-    pts = pose.pos + (grid * obj.half) @ rotation_matrix(pose.quat).T
+    quat = np.array([1.0, 0.0, 0.0, 0.0]) if obj.kind in SPHERE_KINDS else pose.quat
+    pts = pose.pos + (grid * obj.half) @ rotation_matrix(quat).T
     return pts[:, :2]
 
 
@@ -338,3 +347,43 @@ def corner_vertex(obj: SceneObject, pose: Pose) -> np.ndarray:
     w = corner_arm_width(obj.size) if obj.kind == "corner" else 0.0
     local = -obj.half_xy + w
     return pose.pos[:2] + yaw_rotation_2d(pose.yaw) @ local
+
+
+def group_area(objects: list[SceneObject], poses: list[Pose]) -> Area:
+    """The rectangle covering a group of objects (e.g. two pillars a bar bridges).
+
+    Its axis is the group's principal axis (the line through the centres for
+    two), its extent covers every footprint corner; a single object gives its
+    own :func:`placement_area`.
+
+    Args:
+        objects: The group (at least one).
+        poses: Their current poses, in the same order.
+
+    Returns:
+        The covering :class:`Area`.
+    """
+    if len(objects) == 1:
+        return placement_area(objects[0], poses[0])
+    centres = np.array([p.pos[:2] for p in poses])
+    yaw = principal_yaw(centres)
+    corners = np.concatenate([footprint_corners(o, p) for o, p in zip(objects, poses, strict=True)])
+    local = (corners - centres.mean(axis=0)) @ yaw_rotation_2d(yaw)
+    lo, hi = local.min(axis=0), local.max(axis=0)
+    centre = centres.mean(axis=0) + yaw_rotation_2d(yaw) @ ((lo + hi) / 2.0)
+    return Area(centre, yaw, (hi - lo) / 2.0)
+
+
+def principal_yaw(points: np.ndarray) -> float:
+    """Yaw (radians, in (-pi/2, pi/2]) of the principal axis of XY ``points`` (n >= 2).
+
+    The sign is fixed so the axis points towards +x (or +y when it is along y):
+    a row laid along it runs from its -x end to its +x end.
+    """
+    pts = np.asarray(points, dtype=float)
+    centred = pts - pts.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    d = vt[0]
+    if d[0] < -GEOMETRY_EPS or (abs(d[0]) <= GEOMETRY_EPS and d[1] < 0):
+        d = -d
+    return float(math.atan2(d[1], d[0]))
