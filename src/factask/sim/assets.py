@@ -56,6 +56,9 @@ BOWL_SEGMENTS = 16
 MARKER_GROUP = 2
 #: Geom group of object geoms.
 OBJECT_GROUP = 0
+#: MJCF default classes of colliding object geoms and of visual-only geoms.
+OBJECT_CLASS = "object"
+VISUAL_CLASS = "visual"
 #: Table top: x and y range (m) and thickness; its top face is the plane z = 0.
 TABLE_X = (-0.30, 1.20)
 TABLE_Y = (-0.70, 0.70)
@@ -425,6 +428,7 @@ def build_object(
     """
     spec = _spec_or_error(name, kind)
     parts = kind_parts(kind, size, name=name, hollow=hollow)
+    ensure_default_classes(parent.root)
     try:
         color_rgba = rgba(color, alpha)
     except UnknownColorError as exc:
@@ -461,18 +465,28 @@ def build_object(
         }
         if part.yaw:
             geom["quat"] = _yaw_quat(part.yaw)
-        if collides:
-            geom.update(
-                friction=list(OBJECT_FRICTION), condim=OBJECT_CONDIM,
-                solref=list(OBJECT_SOLREF), solimp=list(OBJECT_SOLIMP),
-            )
-        else:
-            geom.update(contype=0, conaffinity=0)
+        geom["dclass"] = OBJECT_CLASS if collides else VISUAL_CLASS
         if not mocap:
             # Share the object's mass by volume so its centre of mass is right.
             geom["mass"] = round(total_mass * part.volume / volume, 12)
         body.add("geom", **geom)
     return body
+
+
+def ensure_default_classes(root: Any) -> None:
+    """Add the geom default classes objects use (contact parameters; no collision
+    for visual-only geoms) to ``root`` unless it has them.
+
+    Args:
+        root: The MJCF root element.
+    """
+    if root.find("default", OBJECT_CLASS) is not None:
+        return
+    obj = root.default.add("default", dclass=OBJECT_CLASS)
+    obj.geom.set_attributes(friction=list(OBJECT_FRICTION), condim=OBJECT_CONDIM,
+                            solref=list(OBJECT_SOLREF), solimp=list(OBJECT_SOLIMP))
+    vis = root.default.add("default", dclass=VISUAL_CLASS)
+    vis.geom.set_attributes(contype=0, conaffinity=0)
 
 
 def build_object_like(parent: Any, obj: Any, **kwargs: Any) -> Any:
@@ -541,13 +555,12 @@ def build_table(worldbody: Any) -> Any:
     """
     cx = (TABLE_X[0] + TABLE_X[1]) / 2
     cy = (TABLE_Y[0] + TABLE_Y[1]) / 2
+    ensure_default_classes(worldbody.root)
     table = worldbody.add(
-        "geom", name="table", type="box",
+        "geom", name="table", type="box", dclass=OBJECT_CLASS,
         size=_fmt([(TABLE_X[1] - TABLE_X[0]) / 2, (TABLE_Y[1] - TABLE_Y[0]) / 2,
                    TABLE_THICKNESS / 2]),
         pos=_fmt([cx, cy, -TABLE_THICKNESS / 2]), rgba=list(TABLE_RGBA),
-        friction=list(OBJECT_FRICTION), condim=OBJECT_CONDIM,
-        solref=list(OBJECT_SOLREF), solimp=list(OBJECT_SOLIMP),
     )
     worldbody.add("geom", name="floor", type="plane", size=[3.0, 3.0, 0.1],
                   pos=[0.0, 0.0, -TABLE_HEIGHT], rgba=list(FLOOR_RGBA))

@@ -1,0 +1,402 @@
+"""Compile a task graph into a MuJoCo scene: graph -> MJCF -> ``mujoco.MjModel``.
+
+The scene holds the table, one body per object instance (free objects have a
+free joint; fixed ones are mocap bodies so they can be moved at every reset
+without recompiling), one translucent goal marker per moved object instance per
+factor (a collision-free mocap look-alike in geom group
+:data:`~factask.sim.assets.MARKER_GROUP`) and, optionally, the robot.
+
+The same graph always gives byte-identical XML: every element is named, numbers
+are rounded, and nothing global is cached.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from factask.geometry import Pose
+from factask.model.errors import FactaskError
+from factask.model.graph import TaskGraph
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.sim.assets import (
+    GEOM_SEPARATOR,
+    MARKER_GROUP,
+    TABLE_HEIGHT,
+    AssetError,
+    HollowShape,
+    build_object,
+    build_table,
+    new_root,
+)
+from factask.sim.objects import SceneObject, scene_objects
+
+#: Robot kinds :func:`compile_graph` accepts (None: no robot).
+ROBOT_KINDS = ("floating", "arm")
+#: Largest timestep (s) that keeps the contacts of small objects stable.
+MAX_TIMESTEP = 0.01
+#: Earth's gravity (m/s^2), straight down.
+GRAVITY = (0.0, 0.0, -9.81)
+#: Ratio of frictional to normal constraint impedance: > 1 makes friction hard,
+#: which keeps stacks and suction-held objects from creeping (MuJoCo docs).
+IMPRATIO = 10.0
+#: Opacity of goal markers.
+MARKER_ALPHA = 0.3
+#: Significant digits of numbers in the XML.
+XML_PRECISION = 10
+#: Gap (m) between objects in the default (pre-reset) grid layout.
+GRID_GAP = 0.02
+#: Prefix of goal marker bodies: ``goal:<factor>:<slot>`` (``:`` never occurs in names).
+MARKER_PREFIX = "goal"
+
+
+class CompileError(FactaskError):
+    """A graph cannot be compiled into a MuJoCo scene.
+
+    Attributes:
+        variable: The variable (or "" for the scene as a whole) at fault.
+    """
+
+    def __init__(self, variable: str, message: str, fix: str = "") -> None:
+        self.variable = variable
+        text = f"{variable}: {message}" if variable else message
+        if fix:
+            text += f" (fix: {fix})"
+        super().__init__(text)
+
+
+@dataclass(frozen=True)
+class ObjectHandle:
+    """Where one object instance lives in a compiled model.
+
+    Attributes:
+        name: Instance name (also the body's name).
+        variable: The variable the instance belongs to.
+        kind: Asset kind.
+        size: Full extents (x, y, z), metres.
+        body_id: MuJoCo body id.
+        geom_ids: Ids of the object's geoms.
+        qpos_adr: Address of its free joint in ``qpos`` (7 numbers), or None if fixed.
+        qvel_adr: Address of its free joint in ``qvel`` (6 numbers), or None if fixed.
+        mocap_id: Index into ``mocap_pos``/``mocap_quat`` if fixed, else None.
+    """
+
+    name: str
+    variable: str
+    kind: str
+    size: tuple[float, float, float]
+    body_id: int
+    geom_ids: tuple[int, ...]
+    qpos_adr: int | None
+    qvel_adr: int | None
+    mocap_id: int | None
+
+    @property
+    def fixed(self) -> bool:
+        """True for a mocap (fixed) object."""
+        return self.mocap_id is not None
+
+
+@dataclass
+class CompiledScene:
+    """A compiled scene and the maps from graph names to MuJoCo ids.
+
+    Attributes:
+        graph: The graph it was compiled from.
+        xml: The MJCF text (deterministic for a given graph and robot).
+        model: The MuJoCo model.
+        objects: Instance name -> :class:`ObjectHandle`, in graph order.
+        markers: (factor name, slot index) -> mocap id of the goal marker of the
+            factor's slot-th moved object instance.
+        marker_objects: (factor name, slot index) -> the instance it stands for.
+        robot: Robot kind, or None.
+        geom_object: Geom id -> index into ``list(objects)``, -1 for other geoms.
+    """
+
+    graph: TaskGraph
+    xml: str
+    model: mujoco.MjModel
+    objects: dict[str, ObjectHandle]
+    markers: dict[tuple[str, int], int]
+    marker_objects: dict[tuple[str, int], str]
+    robot: str | None
+    geom_object: np.ndarray = field(repr=False)
+
+    @property
+    def object_names(self) -> list[str]:
+        """Instance names in the order :attr:`geom_object` indexes them."""
+        return list(self.objects)
+
+    def make_data(self) -> mujoco.MjData:
+        """A fresh ``MjData`` with positions computed (``mj_forward``)."""
+        data = mujoco.MjData(self.model)
+        mujoco.mj_forward(self.model, data)
+        return data
+
+
+# ----------------------------------------------------------------- helpers
+def _check_args(graph: TaskGraph, robot: str | None, timestep: float) -> None:
+    graph.validate()
+    if not graph.factors:
+        raise CompileError("", f"graph {graph.name!r} has no factors",
+                           "add at least one subtask factor")
+    if robot is not None and robot not in ROBOT_KINDS:
+        raise CompileError("", f"unknown robot {robot!r}",
+                           f"use one of {', '.join(ROBOT_KINDS)} or None")
+    if not (isinstance(timestep, (int, float)) and math.isfinite(timestep)
+            and 0 < timestep <= MAX_TIMESTEP):
+        raise CompileError("", f"timestep {timestep!r} must be in (0, {MAX_TIMESTEP}] s",
+                           "use 0.002")
+
+
+def fixture_hollows(graph: TaskGraph) -> dict[str, HollowShape]:
+    """Hollow shape of each fixture variable: "ell" if any factor puts an ell into
+    it (or aligns one with it) or nothing names it, else "square".
+
+    Args:
+        graph: The task graph.
+
+    Returns:
+        Fixture variable name -> hollow shape.
+    """
+    kinds = {v.name: v.kind for v in graph.variables}
+    out: dict[str, HollowShape] = {}
+    for f in graph.factors:
+        for anchor in f.anchors():
+            if kinds.get(anchor) != "fixture":
+                continue
+            has_ell = any(kinds.get(o) == "ell" for o in f.goal.objects)
+            if has_ell or out.get(anchor) == "ell":
+                out[anchor] = "ell"
+            else:
+                out[anchor] = "square"
+    for name, kind in kinds.items():
+        if kind == "fixture":
+            out.setdefault(name, "ell")
+    return out
+
+
+def grid_positions(objects: list[SceneObject]) -> list[tuple[float, float, float]]:
+    """Default resting positions before any reset: a row-major grid over the
+    workspace (continuing beyond it if needed), one cell per object.
+
+    Args:
+        objects: The scene's objects.
+
+    Returns:
+        One (x, y, z) per object, z = half its height (resting on the table).
+    """
+    if not objects:
+        return []
+    cell = max(max(o.size[0], o.size[1]) for o in objects) + GRID_GAP
+    per_row = max(1, int((WORKSPACE_Y[1] - WORKSPACE_Y[0]) // cell))
+    out = []
+    for i, o in enumerate(objects):
+        row, col = divmod(i, per_row)
+        x = WORKSPACE_X[0] + cell / 2 + row * cell
+        y = WORKSPACE_Y[0] + cell / 2 + col * cell
+        out.append((round(x, 9), round(y, 9), o.size[2] / 2))
+    return out
+
+
+def _marker_slots(graph: TaskGraph) -> list[tuple[str, int, str]]:
+    """(factor, slot index, moved instance) for every moved instance of every factor."""
+    instances = {v.name: v.instances for v in graph.variables}
+    slots = []
+    for f in graph.factors:
+        k = 0
+        for var in f.goal.objects:
+            for inst in instances.get(var, []):
+                slots.append((f.name, k, inst))
+                k += 1
+    return slots
+
+
+def _attach_robot(root: Any, robot: str) -> None:
+    try:
+        module = importlib.import_module("factask.sim.robot")
+    except ImportError as exc:
+        raise CompileError("", f"robot {robot!r} is not available ({exc})",
+                           "compile with robot=None") from None
+    module.attach_robot(root, robot)
+
+
+_NAME_IN_ERROR = re.compile(r"name '([^']+)'")
+
+
+def _variable_of_error(message: str, objects: list[SceneObject]) -> str:
+    """The variable a MuJoCo compiler message is about, or "" if it names none."""
+    owner = {o.name: o.variable for o in objects}
+    for name in _NAME_IN_ERROR.findall(message):
+        inst = name.split(GEOM_SEPARATOR)[0]
+        if inst in owner:
+            return owner[inst]
+    return ""
+
+
+# ------------------------------------------------------------------ compile
+def build_mjcf(graph: TaskGraph, robot: str | None = "floating",
+               timestep: float = 0.002) -> tuple[Any, list[SceneObject]]:
+    """Build the MJCF root of a graph's scene (no MuJoCo compilation).
+
+    Args:
+        graph: A task graph; it is validated first.
+        robot: "floating", "arm" or None.
+        timestep: Physics timestep in seconds.
+
+    Returns:
+        The ``dm_control.mjcf`` root and the scene objects in body order.
+
+    Raises:
+        GraphValidationError: the graph is not valid.
+        CompileError: no factors, a bad robot or timestep, or an object that cannot
+            be built (names the variable).
+    """
+    _check_args(graph, robot, timestep)
+    objects = scene_objects(graph)
+    root = new_root(graph.name)
+    root.option.timestep = timestep
+    root.option.gravity = list(GRAVITY)
+    root.option.integrator = "implicitfast"
+    root.option.cone = "elliptic"
+    root.option.impratio = IMPRATIO
+    build_table(root.worldbody)
+    hollows = fixture_hollows(graph)
+    positions = grid_positions(objects)
+    by_name = {o.name: o for o in objects}
+    for obj, pos in zip(objects, positions, strict=True):
+        try:
+            build_object(root.worldbody, obj.name, obj.kind, obj.size, obj.color, obj.mass,
+                         obj.fixed, hollow=hollows.get(obj.variable, "ell"), pos=pos)
+        except AssetError as exc:
+            raise CompileError(obj.variable, str(exc)) from None
+    for factor, slot, inst in _marker_slots(graph):
+        obj = by_name[inst]
+        pos = positions[objects.index(obj)]
+        # Hidden under the table top until the environment moves it to the target.
+        build_object(root.worldbody, f"{MARKER_PREFIX}:{factor}:{slot}", obj.kind, obj.size,
+                     obj.color, hollow=hollows.get(obj.variable, "ell"),
+                     pos=(pos[0], pos[1], -TABLE_HEIGHT / 2), visual_only=True,
+                     alpha=MARKER_ALPHA, group=MARKER_GROUP)
+    if robot is not None:
+        _attach_robot(root, robot)
+    return root, objects
+
+
+def compile_graph(graph: TaskGraph, robot: str | None = "floating",
+                  timestep: float = 0.002) -> CompiledScene:
+    """Compile a task graph into a MuJoCo model.
+
+    Args:
+        graph: A task graph with at least one factor; validated first.
+        robot: "floating" (mocap suction cup), "arm" (suction arm) or None.
+        timestep: Physics timestep in seconds, in (0, 0.01].
+
+    Returns:
+        The :class:`CompiledScene`.
+
+    Raises:
+        GraphValidationError: the graph is not valid (every problem listed).
+        CompileError: no factors, a bad robot or timestep, an object that cannot be
+            built, or MuJoCo rejected the model (the variable is named when known).
+    """
+    root, objects = build_mjcf(graph, robot, timestep)
+    xml = root.to_xml_string(precision=XML_PRECISION)
+    try:
+        model = mujoco.MjModel.from_xml_string(xml)
+    except ValueError as exc:
+        raise CompileError(_variable_of_error(str(exc), objects),
+                           f"MuJoCo rejected the scene: {exc}") from None
+    handles: dict[str, ObjectHandle] = {}
+    geom_object = np.full(model.ngeom, -1, dtype=np.int64)
+    for index, obj in enumerate(objects):
+        body = model.body(obj.name).id
+        geoms = tuple(int(g) for g in np.flatnonzero(model.geom_bodyid == body))
+        geom_object[list(geoms)] = index
+        mocap = int(model.body_mocapid[body])
+        qpos_adr = qvel_adr = None
+        if mocap < 0:
+            joint = model.body_jntadr[body]
+            qpos_adr = int(model.jnt_qposadr[joint])
+            qvel_adr = int(model.jnt_dofadr[joint])
+        handles[obj.name] = ObjectHandle(
+            name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size, body_id=body,
+            geom_ids=geoms, qpos_adr=qpos_adr, qvel_adr=qvel_adr,
+            mocap_id=mocap if mocap >= 0 else None,
+        )
+    markers: dict[tuple[str, int], int] = {}
+    marker_objects: dict[tuple[str, int], str] = {}
+    for factor, slot, inst in _marker_slots(graph):
+        body = model.body(f"{MARKER_PREFIX}:{factor}:{slot}").id
+        markers[(factor, slot)] = int(model.body_mocapid[body])
+        marker_objects[(factor, slot)] = inst
+    return CompiledScene(graph=graph, xml=xml, model=model, objects=handles, markers=markers,
+                         marker_objects=marker_objects, robot=robot, geom_object=geom_object)
+
+
+# -------------------------------------------------------------------- poses
+def set_object_pose(model: mujoco.MjModel, data: mujoco.MjData, handle: ObjectHandle,
+                    pose: Pose) -> None:
+    """Put an object at ``pose`` (its bounding-box centre) and stop it.
+
+    Free objects: writes the free joint's qpos and zeroes its qvel. Fixed objects:
+    writes the mocap pose. Call ``mujoco.mj_forward`` afterwards to update derived
+    quantities.
+
+    Args:
+        model: The compiled model (checked against the handle).
+        data: Its data.
+        handle: The object.
+        pose: World pose.
+
+    Raises:
+        CompileError: the handle does not belong to ``model``.
+    """
+    if handle.body_id >= model.nbody:
+        raise CompileError(handle.variable, f"object {handle.name!r} is not in this model",
+                           "use a handle from the CompiledScene of this model")
+    if handle.mocap_id is not None:
+        data.mocap_pos[handle.mocap_id] = pose.pos
+        data.mocap_quat[handle.mocap_id] = pose.quat
+        return
+    assert handle.qpos_adr is not None and handle.qvel_adr is not None
+    data.qpos[handle.qpos_adr:handle.qpos_adr + 3] = pose.pos
+    data.qpos[handle.qpos_adr + 3:handle.qpos_adr + 7] = pose.quat
+    data.qvel[handle.qvel_adr:handle.qvel_adr + 6] = 0.0
+
+
+def get_object_pose(data: mujoco.MjData, handle: ObjectHandle) -> Pose:
+    """Current pose of an object (from qpos or the mocap pose: no mj_forward needed).
+
+    Args:
+        data: The model's data.
+        handle: The object.
+
+    Returns:
+        Its world pose (bounding-box centre and orientation).
+    """
+    if handle.mocap_id is not None:
+        return Pose(data.mocap_pos[handle.mocap_id].copy(),
+                    data.mocap_quat[handle.mocap_id].copy())
+    assert handle.qpos_adr is not None
+    q = data.qpos[handle.qpos_adr:handle.qpos_adr + 7]
+    return Pose(q[:3].copy(), q[3:7].copy())
+
+
+def set_marker(data: mujoco.MjData, mocap_id: int, pose: Pose) -> None:
+    """Move a goal marker (see :attr:`CompiledScene.markers`) to ``pose``.
+
+    Args:
+        data: The model's data.
+        mocap_id: The marker's mocap id.
+        pose: World pose of the marked object's bounding-box centre.
+    """
+    data.mocap_pos[mocap_id] = pose.pos
+    data.mocap_quat[mocap_id] = pose.quat
+
