@@ -1,0 +1,87 @@
+"""A tiny vocabulary for writing library tasks as data.
+
+A task builder declares its variables with :func:`var`, instantiates library
+templates with :func:`use` (or :func:`factask.library.templates.match_pairs`) and
+joins the fragments with :func:`assemble`. Nothing here is task specific: every
+task goes through the same three steps, so tasks stay data built from templates.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
+
+from factask.library.templates import get_template
+from factask.model import AtFixedPose, InRegion, StartInside, StartOn, StateVariable, TaskGraph
+from factask.model import compose as _compose
+
+#: Task name -> builder (filled by :func:`register`, read by ``factask.library.tasks``).
+BUILDERS: dict[str, Callable[[], TaskGraph]] = {}
+
+
+def register(name: str) -> Callable[[Callable[[], TaskGraph]], Callable[[], TaskGraph]]:
+    """Decorator: record ``builder`` as the library task ``name`` (kebab-case)."""
+
+    def deco(builder: Callable[[], TaskGraph]) -> Callable[[], TaskGraph]:
+        if name in BUILDERS:
+            raise ValueError(f"library task {name!r} is registered twice")
+        BUILDERS[name] = builder
+        return builder
+
+    return deco
+
+
+def var(name: str, kind: str, color: str = "gray", size: Sequence[float] | None = None,
+        count: int = 1, description: str = "", **extra: Any) -> StateVariable:
+    """A state variable; ``description`` defaults to "<count> <colour> <kind>(s)"."""
+    if not description:
+        plural = "s" if count > 1 else ""
+        description = f"{count} {color} {kind}{plural}" if count > 1 else f"the {color} {kind}"
+    return StateVariable(name=name, kind=kind, color=color, count=count,  # type: ignore[arg-type]
+                         size=tuple(size) if size is not None else None,  # type: ignore[arg-type]
+                         description=description, **extra)
+
+
+def at(x: float, y: float, yaw_deg: float = 0.0) -> AtFixedPose:
+    """Initial placement at a fixed table spot."""
+    return AtFixedPose(x=x, y=y, yaw_deg=yaw_deg)
+
+
+def region(x: tuple[float, float], y: tuple[float, float]) -> InRegion:
+    """Initial placement somewhere inside an x/y box of the table."""
+    return InRegion(x=x, y=y)
+
+
+def start_on(support: StateVariable) -> StartOn:
+    """Initial placement on top of another variable."""
+    return StartOn(support=support.name)
+
+
+def start_inside(container: StateVariable) -> StartInside:
+    """Initial placement inside a receptacle variable."""
+    return StartInside(container=container.name)
+
+
+def use(template: str, *, prefix: str | None = None, after: Iterable[TaskGraph | str] = (),
+        **bindings: StateVariable | Sequence[StateVariable]) -> TaskGraph:
+    """Instantiate library template ``template`` with ``bindings``.
+
+    ``after`` takes fragments (all their factors) or factor names that this
+    instance must come after: an explicit order beyond what anchoring implies.
+    """
+    names: list[str] = []
+    for item in after:
+        names.extend(item.factor_names() if isinstance(item, TaskGraph) else [item])
+    return get_template(template).instantiate(prefix=prefix, after=names, **bindings)
+
+
+def assemble(name: str, description: str, *fragments: TaskGraph | Sequence[TaskGraph],
+             extra: Sequence[StateVariable] = ()) -> TaskGraph:
+    """Compose fragments (and distractor/fixed variables in ``extra``) into a
+    validated task graph."""
+    flat: list[TaskGraph] = []
+    for f in fragments:
+        flat.extend([f] if isinstance(f, TaskGraph) else list(f))
+    if extra:
+        flat.append(TaskGraph(name=name, variables=list(extra)))
+    return _compose(*flat, name=name, description=description).validate()

@@ -1,0 +1,106 @@
+"""The registry of top-level library tasks.
+
+Every task is a builder that declares variables, instantiates templates from
+:mod:`factask.library.templates` and composes them (see
+:mod:`factask.library.builders`). Names follow GenSim's task list where a task
+matches one of its entries.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+# Importing the catalogue modules registers their builders.
+from factask.library import (  # noqa: F401
+    catalog_arranging,
+    catalog_placing,
+    catalog_stacking,
+    catalog_structures,
+)
+from factask.library.builders import BUILDERS
+from factask.model import FactaskError, TaskGraph
+
+#: Task name -> builder returning a fresh, validated graph.
+TASKS: dict[str, Callable[[], TaskGraph]] = dict(sorted(BUILDERS.items()))
+
+
+class UnknownTaskError(FactaskError, KeyError):
+    """A task name that the library does not have."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.suggestions = close_task_names(name)
+        hint = f"; did you mean {', '.join(self.suggestions)}?" if self.suggestions else ""
+        super().__init__(f"unknown library task {name!r}{hint} (see `factask list`)")
+
+    def __str__(self) -> str:  # KeyError would quote the message
+        return str(self.args[0])
+
+
+@dataclass(frozen=True)
+class TaskInfo:
+    """Summary of one library task (for listings)."""
+
+    name: str
+    description: str
+    n_variables: int
+    n_factors: int
+    templates: tuple[str, ...] = field(default_factory=tuple)
+    n_movable: int = 0
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "name": self.name,
+            "description": self.description,
+            "n_variables": self.n_variables,
+            "n_factors": self.n_factors,
+            "n_movable": self.n_movable,
+            "templates": list(self.templates),
+        }
+
+
+def task_names() -> list[str]:
+    """Names of every library task, sorted."""
+    return list(TASKS)
+
+
+def close_task_names(name: str, n: int = 5) -> list[str]:
+    """Library task names close to ``name`` (for "did you mean")."""
+    return difflib.get_close_matches(name, TASKS, n=n, cutoff=0.5)
+
+
+def get_task(name: str) -> TaskGraph:
+    """A fresh, validated graph of library task ``name``.
+
+    Raises:
+        UnknownTaskError: no such task (the message suggests close names).
+    """
+    try:
+        builder = TASKS[name]
+    except KeyError:
+        raise UnknownTaskError(name) from None
+    return builder().validate()
+
+
+def templates_used(graph: TaskGraph) -> tuple[str, ...]:
+    """Templates the graph's factors came from, in first-use order."""
+    return tuple(dict.fromkeys(f.template for f in graph.factors if f.template))
+
+
+def task_info(graph: TaskGraph) -> TaskInfo:
+    """The :class:`TaskInfo` of a graph."""
+    return TaskInfo(
+        name=graph.name,
+        description=graph.description,
+        n_variables=len(graph.variables),
+        n_factors=len(graph.factors),
+        templates=templates_used(graph),
+        n_movable=graph.movable_object_count(),
+    )
+
+
+def list_tasks() -> list[TaskInfo]:
+    """A :class:`TaskInfo` for every library task, sorted by name."""
+    return [task_info(get_task(n)) for n in TASKS]

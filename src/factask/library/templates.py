@@ -1,0 +1,297 @@
+"""The library of reusable subtask templates.
+
+Each template is a small, checkable subtask over *slots* (placeholders for task
+variables). Top-level tasks bind the slots to their own variables with
+``TEMPLATES[name].instantiate(...)`` and join the fragments with
+:func:`factask.model.compose`. Factor descriptions use ``{slot}`` placeholders,
+so an instance reads as a language goal ("put the red block in the green bowl").
+
+Templates never compute target poses: every goal is a relation that the solver
+turns into poses at reset.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from factask.model import (
+    Aligned,
+    Circle,
+    CompositionError,
+    Inside,
+    InZone,
+    On,
+    Row,
+    Stack,
+    StateVariable,
+    SubtaskFactor,
+    SubtaskTemplate,
+    TaskGraph,
+    TemplateSlot,
+)
+
+# Kinds a suction gripper can pick and that stay where they are put.
+PICKABLE = ["block", "box", "cylinder", "ball", "ell"]
+# Kinds that can carry something on their flat top (columns, layers, decks).
+STACKABLE = ["block", "box", "cylinder"]
+# Kinds usable as the footprint of an ``in_zone`` goal.
+REGIONS = ["zone", "pallet", "kit", "stand", "line", "bowl", "container", "fixture"]
+# Kinds one can put things inside.
+RECEPTACLES = ["container", "bowl", "fixture"]
+# Kinds a column may stand on (``stack`` base: support or region).
+BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinder"]
+# Kinds objects may rest on (``on`` support: support or receptacle).
+SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "bowl"]
+
+#: Centre distance of a bridge's two pillars (m): with 4 cm pillars the gap is
+#: 4 cm, so a deck at least 12 cm long spans it with 2 cm resting on each pillar.
+BRIDGE_PILLAR_SPACING = 0.08
+
+
+def _slot(name: str, description: str, kinds: list[str] | None = None, *,
+          many: bool = False, movable: bool | None = None) -> TemplateSlot:
+    return TemplateSlot(name=name, description=description, kinds=kinds,  # type: ignore[arg-type]
+                        many=many, movable=movable)
+
+
+def _objects(description: str = "the objects to move", kinds: list[str] | None = None,
+             name: str = "objects") -> TemplateSlot:
+    return _slot(name, description, kinds or PICKABLE, many=True, movable=True)
+
+
+_TEMPLATE_LIST: list[SubtaskTemplate] = [
+    SubtaskTemplate(
+        name="place_in_zone",
+        description="Place the {objects} inside the {zone}.",
+        slots=[_objects(), _slot("zone", "the target region", REGIONS)],
+        factors=[SubtaskFactor(
+            name="in_zone",
+            description="place the {objects} inside the {zone}",
+            goal=InZone(objects=["objects"], zone="zone"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="put_in_container",
+        description="Put the {objects} into the {container}.",
+        slots=[_objects(), _slot("container", "the receptacle", RECEPTACLES)],
+        factors=[SubtaskFactor(
+            name="put_in",
+            description="put the {objects} into the {container}",
+            goal=Inside(objects=["objects"], container="container"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="stack_column",
+        description="Stack the {layers} into one column on the table, first at the bottom.",
+        slots=[_objects("the column's layers, bottom first", STACKABLE, "layers")],
+        factors=[SubtaskFactor(
+            name="stack",
+            description="stack the {layers} into a column on the table, bottom to top",
+            goal=Stack(objects=["layers"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="stack_on_base",
+        description="Stack the {layers} into one column on the {base}, first at the bottom.",
+        slots=[_objects("the column's layers, bottom first", STACKABLE, "layers"),
+               _slot("base", "what the column stands on", BASES)],
+        factors=[SubtaskFactor(
+            name="stack_on",
+            description="stack the {layers} on the {base}, bottom to top",
+            goal=Stack(objects=["layers"], base="base"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="build_row",
+        description="Place the {objects} side by side in a straight row on the table.",
+        slots=[_objects("the row's objects, in order")],
+        factors=[SubtaskFactor(
+            name="row",
+            description="line up the {objects} side by side in a straight row",
+            goal=Row(objects=["objects"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="place_on_top",
+        description="Put the {objects} on top of the {support}.",
+        slots=[_objects(), _slot("support", "what the objects rest on", SUPPORTS)],
+        factors=[SubtaskFactor(
+            name="on_top",
+            description="put the {objects} on top of the {support}",
+            goal=On(objects=["objects"], support="support"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="bridge",
+        description="Build a bridge: two {pillars} apart, the {deck} resting across both.",
+        slots=[_slot("pillars", "one variable with two instances: the bridge's pillars",
+                     STACKABLE, movable=True),
+               _slot("deck", "the bar laid across the pillars (>= 12 cm long)",
+                     ["box", "block"], movable=True)],
+        factors=[
+            SubtaskFactor(
+                name="pillars",
+                description="stand the two {pillars} upright in a row with a gap between them",
+                goal=Row(objects=["pillars"], spacing=BRIDGE_PILLAR_SPACING),
+            ),
+            SubtaskFactor(
+                name="deck",
+                description="lay the {deck} across the two {pillars}",
+                goal=On(objects=["deck"], support="pillars"),
+                initial_setup="the two {pillars} stand in a row with a gap between them",
+            ),
+        ],
+    ),
+    SubtaskTemplate(
+        name="pyramid_layer",
+        description="Lay the {layer} as a row on the {below}, each bridging two neighbours.",
+        slots=[_objects("the layer's objects (one fewer than below)", STACKABLE, "layer"),
+               _slot("below", "the layer underneath: one variable, a row", STACKABLE)],
+        factors=[SubtaskFactor(
+            name="pyramid_layer",
+            description="lay the {layer} on the {below}, each bridging two neighbours",
+            goal=Row(objects=["layer"], on="below"),
+            initial_setup="the {below} stand side by side in a row",
+        )],
+    ),
+    SubtaskTemplate(
+        name="layer_on_row",
+        description="Lay the {layer} on the {below}, one on each (a wall or pallet layer).",
+        slots=[_objects("the layer's objects (as many as below)", STACKABLE, "layer"),
+               _slot("below", "the layer underneath: one variable, a row", STACKABLE)],
+        factors=[SubtaskFactor(
+            name="layer_on",
+            description="lay the {layer} on the {below}, one on each",
+            goal=Row(objects=["layer"], on="below"),
+            initial_setup="the {below} stand side by side in a row",
+        )],
+    ),
+    SubtaskTemplate(
+        name="insert_into_fixture",
+        description="Insert the {objects} into the {fixture}, matching its position and yaw.",
+        slots=[_objects("the piece to insert", ["ell", "block", "box", "cylinder"]),
+               _slot("fixture", "the fixture whose hollow matches the piece", ["fixture"])],
+        factors=[SubtaskFactor(
+            name="insert",
+            description="insert the {objects} into the {fixture}",
+            goal=Aligned(objects=["objects"], reference="fixture", mode="center"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="align_to_corner",
+        description="Align a corner of the {objects} with the {corner} marker.",
+        slots=[_objects("the object to align", ["box", "block", "cylinder"]),
+               _slot("corner", "the L-shaped corner marker", ["corner"])],
+        factors=[SubtaskFactor(
+            name="corner",
+            description="align a corner of the {objects} with the {corner}",
+            goal=Aligned(objects=["objects"], reference="corner", mode="corner"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="palletize_layer",
+        description="Set the {objects} side by side on the {pallet}.",
+        slots=[_objects("the objects of the layer", STACKABLE),
+               _slot("pallet", "the pallet", ["pallet"])],
+        factors=[SubtaskFactor(
+            name="palletize",
+            description="set the {objects} side by side on the {pallet}",
+            goal=On(objects=["objects"], support="pallet"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="arrange_circle",
+        description="Arrange the {objects} evenly on a circle on the table.",
+        slots=[_objects()],
+        factors=[SubtaskFactor(
+            name="circle",
+            description="arrange the {objects} evenly on a circle",
+            goal=Circle(objects=["objects"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="arrange_circle_around",
+        description="Arrange the {objects} evenly on a circle around the {center}.",
+        slots=[_objects(),
+               _slot("center", "what the circle goes around",
+                     ["zone", "pallet", "kit", "stand", "bowl", "container", "block", "box",
+                      "cylinder"])],
+        factors=[SubtaskFactor(
+            name="circle_around",
+            description="arrange the {objects} evenly on a circle around the {center}",
+            goal=Circle(objects=["objects"], center="center"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="align_along_line",
+        description="Line up the {objects} in a row lying on the {line}.",
+        slots=[_objects("the row's objects, in order"),
+               _slot("line", "the line (or zone) the row lies on", ["line", "zone"])],
+        factors=[SubtaskFactor(
+            name="along",
+            description="line up the {objects} in a row along the {line}",
+            goal=Row(objects=["objects"], along="line"),
+        )],
+    ),
+]
+
+#: Template name -> template. Every template here is used by >= 2 library tasks.
+TEMPLATES: dict[str, SubtaskTemplate] = {t.name: t for t in _TEMPLATE_LIST}
+
+
+def template_names() -> list[str]:
+    """Names of the library's templates, in registry order."""
+    return list(TEMPLATES)
+
+
+def get_template(name: str) -> SubtaskTemplate:
+    """The template called ``name``.
+
+    Raises:
+        CompositionError: no such template; the message lists the valid names.
+    """
+    try:
+        return TEMPLATES[name]
+    except KeyError:
+        raise CompositionError(
+            f"unknown subtask template {name!r}; templates: {', '.join(TEMPLATES)}"
+        ) from None
+
+
+def match_pairs(
+    template: str | SubtaskTemplate,
+    pairs: Sequence[tuple[StateVariable, StateVariable]],
+    *,
+    object_slot: str = "objects",
+    target_slot: str | None = None,
+    sequential: bool = False,
+) -> list[TaskGraph]:
+    """Instantiate a two-slot template once per (objects, target) pair.
+
+    This is how sorting by colour is written: ``put_in_container`` for the red
+    block and the red bowl, again for the blue pair, and so on.
+
+    Args:
+        template: The template (or its name); it must have exactly two slots.
+        pairs: (variable bound to ``object_slot``, variable bound to the other slot).
+        object_slot: The slot that receives the moved variable.
+        target_slot: The other slot (default: the template's remaining slot).
+        sequential: Order the instances: each comes after the previous one.
+
+    Returns:
+        One fragment per pair, ready for :func:`factask.model.compose`.
+    """
+    tpl = get_template(template) if isinstance(template, str) else template
+    others = [s.name for s in tpl.slots if s.name != object_slot]
+    if target_slot is None:
+        if len(others) != 1:
+            raise CompositionError(
+                f"template {tpl.name!r} has slots {[s.name for s in tpl.slots]}; "
+                "match_pairs needs exactly two (or pass target_slot)"
+            )
+        target_slot = others[0]
+    fragments: list[TaskGraph] = []
+    for obj, target in pairs:
+        after = fragments[-1].factor_names() if sequential and fragments else []
+        fragments.append(tpl.instantiate(after=after, **{object_slot: obj, target_slot: target}))
+    return fragments
