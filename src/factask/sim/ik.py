@@ -1,0 +1,164 @@
+"""Top-down inverse kinematics of the suction arm with mink.
+
+IK runs on a private arm-only model (the same MJCF the scene got, compiled
+alone), so free objects in the scene never enter the IK problem and the solve
+stays ~6x6. Its joint order is ``robot_arm.JOINT_NAMES``; the caller maps it to
+the scene's joints by name.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import mink
+import mujoco
+import numpy as np
+from dm_control import mjcf
+
+from factask.geometry import Pose, quat_from_yaw
+from factask.sim.robot_arm import DEFAULT_ARM, HOME_QPOS, DHArm, build_arm
+from factask.sim.suction import TIP_SITE
+
+#: QP solver bundled with mink's dependencies.
+QP_SOLVER = "daqp"
+#: Weight of the tip-pose task versus the posture regulariser.
+POSITION_COST = 1.0
+ORIENTATION_COST = 1.0
+POSTURE_COST = 1e-3
+#: Levenberg-Marquardt damping: keeps steps bounded near singular poses.
+LM_DAMPING = 1e-4
+#: Nominal differential-IK step (s); with task gain 1 one iteration closes the
+#: whole linearised error, so the value only scales the returned velocity.
+IK_DT = 0.01
+#: Convergence thresholds of :meth:`TopDownIK.solve`.
+POS_TOL = 1e-3
+#: Largest target move per iteration when :meth:`TopDownIK.solve` walks a path (m).
+MAX_TARGET_STEP = 0.02
+ROT_TOL = 1e-2
+
+
+def top_down_pose(pos: Sequence[float], yaw: float) -> Pose:
+    """Tip pose with the tool straight down and yaw ``yaw`` (tip frame z is up)."""
+    return Pose(np.asarray(pos, dtype=float), quat_from_yaw(yaw))
+
+
+class TopDownIK:
+    """Differential IK (mink) for the ``suction_tip`` site of the arm.
+
+    Args:
+        arm: DH parameters; must match the arm in the scene.
+        home: Posture target and initial configuration (6 joint angles).
+    """
+
+    def __init__(self, arm: DHArm = DEFAULT_ARM, home: Sequence[float] = HOME_QPOS) -> None:
+        root = mjcf.RootElement(model="ik_arm")
+        build_arm(root, arm)
+        self.model = mujoco.MjModel.from_xml_string(root.to_xml_string())
+        self.home = np.asarray(home, dtype=float)
+        self.configuration = mink.Configuration(self.model, self.home.copy())
+        self.frame_task = mink.FrameTask(
+            frame_name=TIP_SITE, frame_type="site",
+            position_cost=POSITION_COST, orientation_cost=ORIENTATION_COST,
+            lm_damping=LM_DAMPING,
+        )
+        self.posture_task = mink.PostureTask(self.model, cost=POSTURE_COST)
+        self.posture_task.set_target(self.home)
+        self.limits = [mink.ConfigurationLimit(self.model)]
+        self.solve_calls = 0
+
+    @property
+    def q(self) -> np.ndarray:
+        """Current IK joint solution (copy)."""
+        return self.configuration.q.copy()
+
+    def set_q(self, q: Sequence[float]) -> None:
+        """Restart the IK from joint angles ``q``."""
+        self.configuration.update(np.asarray(q, dtype=float))
+
+    def tip_pose(self) -> Pose:
+        """Tip pose of the current IK solution (forward kinematics)."""
+        t = self.configuration.get_transform_frame_to_world(TIP_SITE, "site")
+        wxyz_xyz = t.wxyz_xyz
+        return Pose(wxyz_xyz[4:], wxyz_xyz[:4])
+
+    def error(self, target: Pose) -> tuple[float, float]:
+        """Position (m) and orientation (rad) error of the current solution to ``target``."""
+        cur = self.tip_pose()
+        pos_err = float(np.linalg.norm(cur.pos - target.pos))
+        dot = abs(float(np.dot(cur.quat, target.quat)))
+        rot_err = 2.0 * float(np.arccos(min(1.0, dot)))
+        return pos_err, rot_err
+
+    def step(self, target: Pose, iterations: int = 1) -> np.ndarray:
+        """Take ``iterations`` differential-IK steps toward ``target``.
+
+        Args:
+            target: Desired tip pose.
+            iterations: QP solves to run.
+
+        Returns:
+            The joint solution after the steps (copy).
+        """
+        self.frame_task.set_target(
+            mink.SE3.from_rotation_and_translation(mink.SO3(target.quat), target.pos)
+        )
+        tasks = [self.frame_task, self.posture_task]
+        for _ in range(iterations):
+            vel = mink.solve_ik(
+                self.configuration, tasks, IK_DT, QP_SOLVER, damping=LM_DAMPING,
+                limits=self.limits,
+            )
+            self.configuration.integrate_inplace(vel, IK_DT)
+            self.solve_calls += 1
+        return self.q
+
+    def solve(
+        self, target: Pose, max_iterations: int = 300, max_step: float = MAX_TARGET_STEP,
+    ) -> tuple[np.ndarray, float, float]:
+        """Converge on ``target`` from the current solution along a straight path.
+
+        The intermediate targets move at most ``max_step`` metres per iteration
+        from the current tip toward ``target``, as the arm would follow a path;
+        jumping straight to a far target can land differential IK in a local
+        minimum (a folded wrist).
+
+        Args:
+            target: Desired tip pose.
+            max_iterations: Upper bound on QP solves.
+            max_step: Largest target displacement per iteration (m).
+
+        Returns:
+            (joint solution, position error m, orientation error rad).
+        """
+        start = self.tip_pose()
+        dist = float(np.linalg.norm(target.pos - start.pos))
+        n_path = max(1, math.ceil(dist / max_step))
+        iterations = 0
+        for k in range(1, n_path + 1):
+            s = k / n_path
+            waypoint = Pose(
+                start.pos + s * (target.pos - start.pos), slerp(start.quat, target.quat, s)
+            )
+            self.step(waypoint)
+            iterations += 1
+        pos_err, rot_err = self.error(target)
+        while iterations < max_iterations and not (pos_err < POS_TOL and rot_err < ROT_TOL):
+            self.step(target)
+            iterations += 1
+            pos_err, rot_err = self.error(target)
+        return self.q, pos_err, rot_err
+
+
+def slerp(q0: np.ndarray, q1: np.ndarray, s: float) -> np.ndarray:
+    """Spherical interpolation of unit quaternions (w, x, y, z), shortest way."""
+    q0 = np.asarray(q0, dtype=float)
+    q1 = np.asarray(q1, dtype=float)
+    dot = float(np.dot(q0, q1))
+    if dot < 0.0:
+        q1, dot = -q1, -dot
+    if dot > 0.9995:
+        q = q0 + s * (q1 - q0)
+        return q / np.linalg.norm(q)
+    theta = math.acos(dot)
+    return (math.sin((1 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)

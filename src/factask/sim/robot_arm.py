@@ -1,0 +1,156 @@
+"""MJCF of the UR-like 6-DoF suction arm, built from published DH kinematics.
+
+No mesh and no download: each link is a body placed by the standard DH transform
+``Rz(q_i) Tz(d_i) Tx(a_i) Rx(alpha_i)`` with a capsule collision shape along the
+link. Joint ``i`` rotates about the z axis of body ``i`` (DH frame ``i-1``).
+Every link has ``gravcomp=1`` (gravity compensated, as a real arm's controller
+does) and a high-gain position actuator with velocity damping.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from dm_control import mjcf
+
+from factask.sim.suction import ROBOT_CONAFFINITY, ROBOT_CONTYPE, add_suction_weld, add_tool
+
+
+@dataclass(frozen=True)
+class DHArm:
+    """Standard DH parameters of a 6-DoF UR-type arm (metres, radians).
+
+    Attributes:
+        name: Label used in docs and reports.
+        d: Link offsets d1..d6.
+        a: Link lengths a1..a6.
+        alpha: Link twists alpha1..alpha6.
+        radii: Capsule radius of each of the 6 links.
+    """
+
+    name: str
+    d: tuple[float, ...]
+    a: tuple[float, ...]
+    alpha: tuple[float, ...]
+    radii: tuple[float, ...]
+
+
+_HALF_PI = math.pi / 2
+
+#: UR5e, from Universal Robots' published DH table.
+UR5E = DHArm(
+    name="ur5e",
+    d=(0.1625, 0.0, 0.0, 0.1333, 0.0997, 0.0996),
+    a=(0.0, -0.425, -0.3922, 0.0, 0.0, 0.0),
+    alpha=(_HALF_PI, 0.0, 0.0, _HALF_PI, -_HALF_PI, 0.0),
+    radii=(0.06, 0.054, 0.045, 0.04, 0.04, 0.035),
+)
+
+#: UR10e, from Universal Robots' published DH table (the arm that reaches the whole
+#: Ravens workspace top-down from the origin; see docs/robot.md).
+UR10E = DHArm(
+    name="ur10e",
+    d=(0.1807, 0.0, 0.0, 0.17415, 0.11985, 0.11655),
+    a=(0.0, -0.6127, -0.57155, 0.0, 0.0, 0.0),
+    alpha=(_HALF_PI, 0.0, 0.0, _HALF_PI, -_HALF_PI, 0.0),
+    radii=(0.075, 0.065, 0.055, 0.045, 0.045, 0.04),
+)
+
+#: The arm ``attach_robot(root, "arm")`` builds.
+DEFAULT_ARM = UR10E
+
+#: Joint names, base to wrist.
+JOINT_NAMES = (
+    "shoulder_pan", "shoulder_lift", "elbow", "wrist_1", "wrist_2", "wrist_3",
+)
+#: Joint ranges (radians): +-2 pi like the real arm, elbow +-pi (it cannot fold through itself).
+JOINT_RANGES = ((-2 * math.pi, 2 * math.pi),) * 2 + ((-math.pi, math.pi),) + (
+    (-2 * math.pi, 2 * math.pi),) * 3
+#: Home configuration: elbow up, tool straight down, over the workspace near x = 0.4.
+HOME_QPOS = (0.0, -1.9, 1.9, -1.5708, -1.5708, -1.5708)
+#: Position servo gains (N m / rad) and damping (N m s / rad) per joint: stiff
+#: enough that a held 0.1 kg block moves the tip well under 1 mm.
+KP = (4000.0, 4000.0, 3000.0, 1000.0, 1000.0, 1000.0)
+KV = (400.0, 400.0, 300.0, 100.0, 100.0, 100.0)
+#: Joint torque limits (N m) of the actuators.
+FORCE_LIMIT = (330.0, 330.0, 150.0, 56.0, 56.0, 56.0)
+#: Rotor inertia added to each joint: keeps the stiff servos stable at dt = 2 ms.
+ARMATURE = 0.1
+#: Link masses (kg), base to wrist.
+LINK_MASS = (3.7, 8.4, 2.3, 1.2, 1.2, 0.25)
+#: Height of the fixed base pedestal geom (m).
+BASE_HEIGHT = 0.09
+#: Orientation of the base (w, x, y, z): half a turn about z.
+BASE_QUAT = (0.0, 0.0, 0.0, 1.0)
+#: Name of the flange body that carries the suction tool.
+FLANGE_BODY = "flange"
+#: Body name of link i (1..6).
+LINK_BODY = "link{}"
+
+
+def _rx_quat(angle: float) -> list[float]:
+    """Quaternion (w, x, y, z) of a rotation about x."""
+    return [math.cos(angle / 2), math.sin(angle / 2), 0.0, 0.0]
+
+
+def build_arm(root: mjcf.RootElement, arm: DHArm = DEFAULT_ARM) -> mjcf.Element:
+    """Add the arm (base at the origin), its tool, actuators and suction weld.
+
+    Args:
+        root: MJCF root to add to.
+        arm: DH parameters of the arm.
+
+    Returns:
+        The flange body (carrying the suction tool).
+    """
+    # The DH base frame has the arm reaching along -x at q = 0; turning the base
+    # by pi about z puts the home pose over the Ravens workspace (+x).
+    base = root.worldbody.add("body", name="arm_base", pos=[0, 0, 0], quat=BASE_QUAT)
+    base.add(
+        "geom", name="arm_base_geom", type="cylinder", size=[arm.radii[0], BASE_HEIGHT / 2],
+        pos=[0, 0, BASE_HEIGHT / 2], rgba=[0.6, 0.6, 0.65, 1],
+        contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
+    )
+    parent = base
+    child_pos: list[float] = [0.0, 0.0, 0.0]
+    child_quat: list[float] = [1.0, 0.0, 0.0, 0.0]
+    # Joint ranges follow the root's compiler angle unit (MJCF's default is degrees).
+    unit = 1.0 if root.compiler.angle == "radian" else math.degrees(1.0)
+    for i in range(6):
+        lo, hi = JOINT_RANGES[i]
+        body = parent.add(
+            "body", name=LINK_BODY.format(i + 1), pos=child_pos, quat=child_quat, gravcomp=1,
+        )
+        joint = body.add(
+            "joint", name=JOINT_NAMES[i], type="hinge", axis=[0, 0, 1],
+            range=[lo * unit, hi * unit], armature=ARMATURE, damping=1.0,
+        )
+        # Next DH frame, expressed in this body's (rotated) frame.
+        child_pos = [arm.a[i], 0.0, arm.d[i]]
+        child_quat = _rx_quat(arm.alpha[i])
+        start = np.zeros(3)
+        if i == 0:
+            # Keep the shoulder capsule above the pedestal (and the table).
+            start = np.array([0.0, 0.0, BASE_HEIGHT + arm.radii[0]])
+        end = np.array(child_pos)
+        if np.linalg.norm(end - start) < 1e-6:
+            end = start + np.array([0.0, 0.0, 0.02])
+        body.add(
+            "geom", name=f"link{i + 1}_geom", type="capsule", size=[arm.radii[i]],
+            fromto=[*start, *end], mass=LINK_MASS[i], rgba=[0.55, 0.6, 0.7, 1],
+            contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
+        )
+        root.actuator.add(
+            "position", name=f"{JOINT_NAMES[i]}_servo", joint=joint,
+            # No ctrlrange: the controller clamps targets to JOINT_RANGES itself,
+            # which keeps radians whatever the root's angle unit is.
+            kp=KP[i], kv=KV[i],
+            forcerange=[-FORCE_LIMIT[i], FORCE_LIMIT[i]],
+        )
+        parent = body
+    flange = parent.add("body", name=FLANGE_BODY, pos=child_pos, quat=child_quat, gravcomp=1)
+    add_tool(flange, down=True)
+    add_suction_weld(root, flange)
+    return flange

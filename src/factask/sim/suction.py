@@ -1,0 +1,255 @@
+"""Suction cup: its MJCF (tool geometry, tip site, weld) and the runtime gripper.
+
+Suction is ONE weld equality constraint named ``suction`` whose ``body1`` is the
+cup body. It is compiled with ``body2`` = the world and inactive. When suction
+switches on, the gripper rewrites ``model.eq_obj2id`` to the touched object's
+root body and writes the *current* cup-to-object relative pose into
+``model.eq_data`` before activating it, so the object does not snap. Editing
+``eq_obj2id`` at runtime was checked on mujoco 3.17 (the constraint rows are
+rebuilt from the model at every step); it means the scene compiler does not have
+to know about suction and needs no weld per object.
+
+Weld ``eq_data`` layout (mujoco 3.x): ``[0:3]`` anchor in body2's frame,
+``[3:6]`` body2's position in body1's frame, ``[6:10]`` body2's orientation in
+body1's frame (w, x, y, z), ``[10]`` torque scale.
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+from dm_control import mjcf
+
+from factask.model.errors import FactaskError
+
+#: Name of the site at the cup's contact face (z axis points up the tool, x = tool yaw).
+TIP_SITE = "suction_tip"
+#: Name of the weld equality constraint used for suction.
+SUCTION_WELD = "suction"
+#: Name of the cup's collision geom (the only geom that can grasp).
+CUP_GEOM = "suction_cup"
+#: Cup radius and height (m): a 3 cm wide, 1 cm tall pad.
+CUP_RADIUS = 0.015
+CUP_HALF_HEIGHT = 0.005
+#: Stem between the flange (or mocap handle) and the cup (m).
+STEM_RADIUS = 0.01
+STEM_LENGTH = 0.09
+#: Flange-to-tip distance of the tool (stem + cup), metres.
+TOOL_LENGTH = STEM_LENGTH + 2 * CUP_HALF_HEIGHT
+#: A contact counts as "touching" when its signed distance is below this (m).
+TOUCH_DISTANCE = 0.002
+#: Weld stiffness: time constant 5 ms (>= 2 x the 2 ms timestep, MuJoCo's safe
+#: minimum) so a held block sags under 1 mm; damping ratio 1 (no oscillation).
+WELD_SOLREF = (0.005, 1.0)
+WELD_SOLIMP = (0.95, 0.99, 0.001, 0.5, 2.0)
+#: Collision bits of robot geoms: they collide with ordinary geoms (bit 0) but
+#: not with each other (no self-collision among the simplified link shapes).
+ROBOT_CONTYPE = 2
+ROBOT_CONAFFINITY = 1
+
+
+class RobotError(FactaskError):
+    """A robot cannot be built or bound (unknown kind, missing element in a model)."""
+
+
+def add_tool(body: mjcf.Element, down: bool) -> None:
+    """Add the suction tool (stem, cup geom, ``suction_tip`` site) to ``body``.
+
+    Args:
+        body: The body that carries the tool (arm flange or floating cup body).
+        down: True when ``body``'s z axis points out of the tool (arm flange: the
+            tip lies at +z); False when the body frame IS the tip frame with z up
+            (floating cup: the stem lies at +z above the tip).
+    """
+    sign = 1.0 if down else -1.0
+    tip = TOOL_LENGTH if down else 0.0
+    # Stem from the tool's base to the back of the cup.
+    stem_c = tip - sign * (2 * CUP_HALF_HEIGHT + STEM_LENGTH / 2)
+    body.add(
+        "geom", name="suction_stem", type="cylinder", size=[STEM_RADIUS, STEM_LENGTH / 2],
+        pos=[0, 0, stem_c], rgba=[0.3, 0.3, 0.3, 1], mass=0.05,
+        contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
+    )
+    body.add(
+        "geom", name=CUP_GEOM, type="cylinder", size=[CUP_RADIUS, CUP_HALF_HEIGHT],
+        pos=[0, 0, tip - sign * CUP_HALF_HEIGHT], rgba=[0.1, 0.1, 0.1, 1], mass=0.02,
+        contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY, friction=[1.0, 0.01, 0.001],
+    )
+    # Tip frame: z up the tool, so a top-down tool at yaw y has quat = quat_from_yaw(y).
+    body.add(
+        "site", name=TIP_SITE, pos=[0, 0, tip], quat=[0, 1, 0, 0] if down else [1, 0, 0, 0],
+        size=[0.004], rgba=[1, 0, 0, 1], group=4,
+    )
+
+
+def add_suction_weld(root: mjcf.RootElement, cup_body: mjcf.Element) -> None:
+    """Add the inactive ``suction`` weld between ``cup_body`` and the world.
+
+    Args:
+        root: MJCF root to add the equality to.
+        cup_body: The body carrying the cup geom.
+    """
+    root.equality.add(
+        "weld", name=SUCTION_WELD, body1=cup_body, active=False,
+        solref=list(WELD_SOLREF), solimp=list(WELD_SOLIMP),
+    )
+
+
+def find_id(model: mujoco.MjModel, objtype: mujoco.mjtObj, name: str) -> int:
+    """Id of a named element, also when a parent MJCF prefixed it (``robot/name``).
+
+    Args:
+        model: Compiled model.
+        objtype: Element type (``mujoco.mjtObj.mjOBJ_BODY`` ...).
+        name: Element name as the robot builder wrote it.
+
+    Returns:
+        The element id.
+
+    Raises:
+        RobotError: No element of that name (or ``*/name``) exists.
+    """
+    i = mujoco.mj_name2id(model, objtype, name)
+    if i >= 0:
+        return i
+    count = {
+        mujoco.mjtObj.mjOBJ_BODY: model.nbody, mujoco.mjtObj.mjOBJ_GEOM: model.ngeom,
+        mujoco.mjtObj.mjOBJ_SITE: model.nsite, mujoco.mjtObj.mjOBJ_JOINT: model.njnt,
+        mujoco.mjtObj.mjOBJ_EQUALITY: model.neq, mujoco.mjtObj.mjOBJ_ACTUATOR: model.nu,
+    }.get(objtype, 0)
+    for j in range(count):
+        full = mujoco.mj_id2name(model, objtype, j) or ""
+        if full.endswith("/" + name):
+            return j
+    raise RobotError(
+        f"model has no {objtype.name.removeprefix('mjOBJ_').lower()} named {name!r} "
+        "(fix: build the scene with factask.sim.robot.attach_robot before compiling)"
+    )
+
+
+def _is_free_root(model: mujoco.MjModel, body: int) -> bool:
+    """True when ``body`` is a root body moved by a free joint (a loose object)."""
+    if model.body_jntnum[body] < 1:
+        return False
+    return int(model.jnt_type[model.body_jntadr[body]]) == int(mujoco.mjtJoint.mjJNT_FREE)
+
+
+class SuctionGripper:
+    """Runtime suction on a compiled model: contact tests, grasp and release.
+
+    Args:
+        model: Compiled model containing the tool and the ``suction`` weld.
+        data: Its data.
+
+    Raises:
+        RobotError: The tool or the weld is missing.
+    """
+
+    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        self.model = model
+        self.data = data
+        self.cup_geom = find_id(model, mujoco.mjtObj.mjOBJ_GEOM, CUP_GEOM)
+        self.cup_body = int(model.geom_bodyid[self.cup_geom])
+        self.weld = find_id(model, mujoco.mjtObj.mjOBJ_EQUALITY, SUCTION_WELD)
+        if int(model.eq_type[self.weld]) != int(mujoco.mjtEq.mjEQ_WELD):
+            raise RobotError(f"equality {SUCTION_WELD!r} is not a weld")
+        # Every body of the robot's own tree: never a grasp candidate or obstacle.
+        root = int(model.body_rootid[self.cup_body])
+        self.robot_bodies = frozenset(
+            b for b in range(model.nbody) if int(model.body_rootid[b]) == root and b != 0
+        )
+        self._held: int | None = None
+
+    @property
+    def held(self) -> int | None:
+        """Root body id of the object held, or None."""
+        return self._held
+
+    def touched_objects(self) -> list[int]:
+        """Free root bodies whose geoms touch the cup geom now (closest first).
+
+        Returns:
+            Body ids (roots moved by a free joint), without duplicates.
+        """
+        found: list[tuple[float, int]] = []
+        d = self.data
+        for k in range(d.ncon):
+            c = d.contact[k]
+            if c.dist > TOUCH_DISTANCE:
+                continue
+            if c.geom1 == self.cup_geom:
+                other = int(c.geom2)
+            elif c.geom2 == self.cup_geom:
+                other = int(c.geom1)
+            else:
+                continue
+            root = int(self.model.body_rootid[self.model.geom_bodyid[other]])
+            if _is_free_root(self.model, root) and root not in self.robot_bodies:
+                found.append((float(c.dist), root))
+        found.sort()
+        out: list[int] = []
+        for _, b in found:
+            if b not in out:
+                out.append(b)
+        return out
+
+    def cup_in_contact(self) -> bool:
+        """True when the cup geom touches anything (object, table, fixture)."""
+        d = self.data
+        for k in range(d.ncon):
+            c = d.contact[k]
+            if c.dist <= TOUCH_DISTANCE and self.cup_geom in (c.geom1, c.geom2):
+                return True
+        return False
+
+    def held_in_contact(self) -> bool:
+        """True when the held object touches something other than the robot."""
+        if self._held is None:
+            return False
+        m, d = self.model, self.data
+        for k in range(d.ncon):
+            c = d.contact[k]
+            if c.dist > TOUCH_DISTANCE:
+                continue
+            r1 = int(m.body_rootid[m.geom_bodyid[c.geom1]])
+            r2 = int(m.body_rootid[m.geom_bodyid[c.geom2]])
+            if self._held in (r1, r2):
+                other = r2 if r1 == self._held else r1
+                if other != self._held and other not in self.robot_bodies:
+                    return True
+        return False
+
+    def grasp(self) -> bool:
+        """Switch suction on: weld the closest touching free object where it is.
+
+        Returns:
+            True when an object is held after the call.
+        """
+        if self._held is not None:
+            return True
+        touched = self.touched_objects()
+        if not touched:
+            return False
+        obj = touched[0]
+        m, d = self.model, self.data
+        # Relative pose of the object in the cup frame, from the current state.
+        q_cup_inv = np.zeros(4)
+        mujoco.mju_negQuat(q_cup_inv, d.xquat[self.cup_body])
+        rel_pos = np.zeros(3)
+        mujoco.mju_rotVecQuat(rel_pos, d.xpos[obj] - d.xpos[self.cup_body], q_cup_inv)
+        rel_quat = np.zeros(4)
+        mujoco.mju_mulQuat(rel_quat, q_cup_inv, d.xquat[obj])
+        m.eq_obj2id[self.weld] = obj
+        m.eq_data[self.weld, 0:3] = 0.0
+        m.eq_data[self.weld, 3:6] = rel_pos
+        m.eq_data[self.weld, 6:10] = rel_quat
+        m.eq_data[self.weld, 10] = 1.0
+        d.eq_active[self.weld] = 1
+        self._held = obj
+        return True
+
+    def release(self) -> None:
+        """Switch suction off (the weld goes inactive and points back at the world)."""
+        self.data.eq_active[self.weld] = 0
+        self.model.eq_obj2id[self.weld] = 0
+        self._held = None
