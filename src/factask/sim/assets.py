@@ -83,6 +83,8 @@ CAMERA_FOVY = 45.0
 SHADOW_SIZE = 1024
 #: Offscreen framebuffer size: the largest image a renderer of the scene can make.
 OFFSCREEN_SIZE = (1280, 960)
+#: Significant digits of numbers in MJCF text.
+XML_PRECISION = 10
 #: Relative tolerance of "this footprint is round" (size x == size y).
 _ROUND_RTOL = 1e-6
 
@@ -591,3 +593,29 @@ def new_root(model: str) -> Any:
     root = mjcf.RootElement(model=model)
     configure_visual(root)
     return root
+
+
+def asset_xml(kind: str, color: str = "gray") -> str:
+    """MJCF text of one asset of ``kind`` at its default size, alone (no table).
+
+    Args:
+        kind: Asset kind.
+        color: Palette colour.
+
+    Returns:
+        Deterministic XML text (what ``mjcf_assets/<kind>.xml`` holds).
+
+    Raises:
+        AssetError: unknown kind or colour.
+    """
+    spec = _spec_or_error(kind, kind)
+    root = new_root(f"asset_{kind}")
+    build_object(root.worldbody, kind, kind, spec.default_size, color)
+    return str(root.to_xml_string(precision=XML_PRECISION))
+
+
+def table_xml() -> str:
+    """MJCF text of the table, floor, lights and cameras (``mjcf_assets/table.xml``)."""
+    root = new_root("table")
+    build_table(root.worldbody)
+    return str(root.to_xml_string(precision=XML_PRECISION))

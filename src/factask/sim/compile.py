@@ -29,6 +29,7 @@ from factask.sim.assets import (
     GEOM_SEPARATOR,
     MARKER_GROUP,
     TABLE_HEIGHT,
+    XML_PRECISION,
     AssetError,
     HollowShape,
     build_object,
@@ -48,8 +49,6 @@ GRAVITY = (0.0, 0.0, -9.81)
 IMPRATIO = 10.0
 #: Opacity of goal markers.
 MARKER_ALPHA = 0.3
-#: Significant digits of numbers in the XML.
-XML_PRECISION = 10
 #: Gap (m) between objects in the default (pre-reset) grid layout.
 GRID_GAP = 0.02
 #: Prefix of goal marker bodies: ``goal:<factor>:<slot>`` (``:`` never occurs in names).
