@@ -138,7 +138,8 @@ def color_coordinated_block_insertion() -> TaskGraph:
         "color-coordinated-block-insertion",
         "Insert four coloured blocks into the fixtures of matching colour in the sequence "
         "red, blue, green, yellow.",
-        match_pairs("insert_into_fixture", list(zip(blocks, fixtures, strict=True)), sequential=True),
+        match_pairs("insert_into_fixture", list(zip(blocks, fixtures, strict=True)),
+                    sequential=True),
     )
 
 
