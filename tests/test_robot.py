@@ -1,0 +1,251 @@
+"""Suction robots: suction weld, pick-and-place primitive, failures, arm reach."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import mujoco
+import numpy as np
+import pytest
+from dm_control import mjcf
+
+from factask.geometry import Pose, tilt_deg, yaw_error_deg, yaw_of
+from factask.model.errors import FactaskError
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.sim.ik import TopDownIK, top_down_pose
+from factask.sim.robot import ROBOT_KINDS, RobotError, attach_robot, make_robot
+from factask.sim.robot_arm import UR5E, UR10E
+
+BLOCK = 0.04  # full extent of the test block (m)
+TIMESTEP = 0.002
+
+
+def build_scene(kind: str, blocks: tuple[tuple[float, float], ...] = ((0.5, 0.1),)):
+    """Table (top at z = 0), free 4 cm blocks at the given XY, and the robot."""
+    root = mjcf.RootElement(model="robot_test")
+    root.option.timestep = TIMESTEP
+    table = root.worldbody.add("body", name="table")
+    table.add("geom", name="table_top", type="box", size=[0.6, 0.7, 0.02], pos=[0.5, 0, -0.02])
+    for i, (x, y) in enumerate(blocks):
+        body = root.worldbody.add("body", name=f"block{i}", pos=[x, y, BLOCK / 2])
+        body.add("freejoint")
+        body.add("geom", type="box", size=[BLOCK / 2] * 3, mass=0.1)
+    attach_robot(root, kind)
+    model = mujoco.MjModel.from_xml_string(root.to_xml_string())
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    robot = make_robot(kind, model, data)
+    for _ in range(50):  # let the blocks settle on the table
+        mujoco.mj_step(model, data)
+    return model, data, robot
+
+
+def block_pose(model, data, i: int = 0) -> Pose:
+    b = model.body(f"block{i}").id
+    return Pose(data.xpos[b].copy(), data.xquat[b].copy())
+
+
+def touch_block_with_cup(model, data, robot) -> None:
+    """Lower the floating cup onto block0's top until the cup touches it."""
+    top = block_pose(model, data).pos + np.array([0, 0, BLOCK / 2])
+    z = top[2] + 0.01
+    for _ in range(400):
+        data.mocap_pos[robot.mocap] = [top[0], top[1], z]
+        mujoco.mj_step(model, data)
+        if robot.gripper.cup_in_contact():
+            return
+        z -= 0.0001
+    raise AssertionError("cup never touched the block")
+
+
+def test_unknown_kind_lists_kinds():
+    with pytest.raises(RobotError) as err:
+        attach_robot(mjcf.RootElement(), "gripper")
+    assert isinstance(err.value, FactaskError)
+    for kind in ROBOT_KINDS:
+        assert kind in str(err.value)
+    with pytest.raises(RobotError):
+        make_robot("gripper", mujoco.MjModel.from_xml_string("<mujoco/>"), None)
+
+
+def test_make_robot_on_model_without_robot_raises():
+    model = mujoco.MjModel.from_xml_string("<mujoco><worldbody/></mujoco>")
+    with pytest.raises(RobotError, match="suction_cup"):
+        make_robot("floating", model, mujoco.MjData(model))
+
+
+@pytest.mark.parametrize("kind", ROBOT_KINDS)
+def test_both_robots_have_tip_site_and_inactive_weld(kind):
+    model, data, robot = build_scene(kind)
+    assert model.site("suction_tip").id >= 0
+    weld = model.equality("suction").id
+    assert model.eq_type[weld] == mujoco.mjtEq.mjEQ_WELD
+    assert data.eq_active[weld] == 0
+    assert robot.grasped() is None
+    # Home: tool straight down.
+    assert tilt_deg(robot.ee_pose().quat) < 0.5
+
+
+def test_suction_activation_does_not_move_block():
+    model, data, robot = build_scene("floating")
+    touch_block_with_cup(model, data, robot)
+    before = block_pose(model, data).pos
+    assert robot.suction_on() is True
+    assert robot.grasped() == model.body("block0").id
+    for _ in range(200):
+        mujoco.mj_step(model, data)
+    moved = np.linalg.norm(block_pose(model, data).pos - before)
+    assert moved < 1e-3
+
+
+def test_suction_held_block_follows_cup_and_release_drops_it():
+    model, data, robot = build_scene("floating")
+    touch_block_with_cup(model, data, robot)
+    assert robot.suction_on()
+    for _ in range(500):
+        data.mocap_pos[robot.mocap] += [0, 0, 0.0002]
+        mujoco.mj_step(model, data)
+    lifted = block_pose(model, data).pos[2]
+    assert lifted > 0.1
+    robot.suction_off()
+    assert robot.grasped() is None
+    for _ in range(500):
+        mujoco.mj_step(model, data)
+    assert block_pose(model, data).pos[2] < lifted - 0.05
+
+
+def test_suction_does_not_grasp_without_contact():
+    model, data, robot = build_scene("floating")
+    top = block_pose(model, data).pos + np.array([0, 0, BLOCK / 2])
+    data.mocap_pos[robot.mocap] = top + np.array([0, 0, 0.05])
+    mujoco.mj_forward(model, data)
+    assert robot.suction_on() is False
+    assert robot.grasped() is None
+    assert data.eq_active[model.equality("suction").id] == 0
+
+
+def _check_pick_and_place(kind: str, xy_tol: float) -> None:
+    model, data, robot = build_scene(kind)
+    start = block_pose(model, data)
+    pick = Pose.from_xyz_yaw(start.pos[0], start.pos[1], BLOCK, 0.2)
+    place = Pose.from_xyz_yaw(0.62, -0.25, BLOCK, 0.2 + math.radians(40))
+    frames = []
+    result = robot.pick_and_place(pick, place, on_step=lambda: frames.append(data.time))
+    assert result.ok, result.reason
+    assert result.reason is None
+    assert result.grasped_body == model.body("block0").id
+    assert robot.grasped() is None
+    assert frames and result.sim_steps > 0
+    for _ in range(250):
+        mujoco.mj_step(model, data)
+    end = block_pose(model, data)
+    assert np.linalg.norm(end.pos[:2] - place.pos[:2]) < xy_tol
+    # Resting on the table, upright, turned with the tool.
+    assert abs(end.pos[2] - BLOCK / 2) < 0.002
+    assert tilt_deg(end.quat) < 2.0
+    assert yaw_error_deg(yaw_of(end.quat), math.radians(40), 90.0) < 3.0
+    qvel = data.qvel[model.jnt_dofadr[model.body("block0").jntadr[0]]:][:6]
+    assert np.abs(qvel).max() < 0.01
+
+
+def test_floating_pick_and_place_moves_block():
+    _check_pick_and_place("floating", xy_tol=0.005)
+
+
+def test_arm_pick_and_place_moves_block():
+    _check_pick_and_place("arm", xy_tol=0.01)
+
+
+def test_arm_ur5e_pick_and_place_moves_block():
+    _check_pick_and_place("arm_ur5e", xy_tol=0.01)
+
+
+@pytest.mark.parametrize("kind", ["floating", "arm"])
+def test_empty_pick_pose_fails_without_exception(kind):
+    model, data, robot = build_scene(kind)
+    result = robot.pick_and_place(
+        Pose.from_xyz_yaw(0.3, -0.3, BLOCK), Pose.from_xyz_yaw(0.6, 0.2, BLOCK)
+    )
+    assert not result.ok
+    assert result.reason == "nothing to grasp at pick pose"
+    assert result.grasped_body is None
+    assert robot.grasped() is None
+    # The block elsewhere was not disturbed.
+    assert np.linalg.norm(block_pose(model, data).pos[:2] - [0.5, 0.1]) < 1e-3
+
+
+def test_nan_in_qvel_before_primitive_fails_with_reason():
+    _, data, robot = build_scene("floating")
+    data.qvel[0] = np.nan
+    result = robot.pick_and_place(
+        Pose.from_xyz_yaw(0.5, 0.1, BLOCK), Pose.from_xyz_yaw(0.6, -0.2, BLOCK)
+    )
+    assert not result.ok
+    assert "physics failure" in result.reason
+
+
+@pytest.mark.parametrize("kind", ["floating", "arm"])
+def test_nan_in_qvel_during_primitive_fails_with_reason(kind):
+    _, data, robot = build_scene(kind)
+    calls = []
+
+    def inject() -> None:
+        calls.append(1)
+        if len(calls) == 30:
+            data.qvel[:] = np.nan
+
+    result = robot.pick_and_place(
+        Pose.from_xyz_yaw(0.5, 0.1, BLOCK), Pose.from_xyz_yaw(0.6, -0.2, BLOCK), on_step=inject,
+    )
+    assert not result.ok
+    assert "physics failure" in result.reason
+    assert robot.grasped() is None
+
+
+def test_step_limit_ends_primitive():
+    _, _, robot = build_scene("floating")
+    result = robot.pick_and_place(
+        Pose.from_xyz_yaw(0.5, 0.1, BLOCK), Pose.from_xyz_yaw(0.6, -0.2, BLOCK), max_steps=300,
+    )
+    assert not result.ok
+    assert "step limit" in result.reason
+    assert result.sim_steps == 300
+
+
+def test_arm_out_of_reach_fails_with_reason():
+    _, _, robot = build_scene("arm")
+    result = robot.pick_and_place(
+        Pose.from_xyz_yaw(2.0, 0.0, BLOCK), Pose.from_xyz_yaw(0.6, -0.2, BLOCK)
+    )
+    assert not result.ok
+    assert "out of reach" in result.reason
+
+
+def _workspace_points():
+    xs = (WORKSPACE_X[0], sum(WORKSPACE_X) / 2, WORKSPACE_X[1])
+    ys = (WORKSPACE_Y[0], sum(WORKSPACE_Y) / 2, WORKSPACE_Y[1])
+    return list(itertools.product(xs, ys, (0.0, 0.15, 0.3)))
+
+
+def test_arm_reaches_whole_workspace_top_down():
+    ik = TopDownIK(UR10E)
+    for (x, y, z), yaw in itertools.product(_workspace_points(), (0.0, 1.2)):
+        ik.set_q(ik.home)
+        target = top_down_pose([x, y, z], yaw)
+        _, pos_err, rot_err = ik.solve(target, max_iterations=400)
+        assert pos_err < 0.002, (x, y, z, yaw, pos_err)
+        assert rot_err < math.radians(1.0), (x, y, z, yaw, rot_err)
+
+
+def test_ur5e_reach_matches_documented_limits():
+    """The real UR5e reaches the table everywhere but not the far corners at 0.3 m."""
+    ik = TopDownIK(UR5E)
+    for x, y, z in _workspace_points():
+        ik.set_q(ik.home)
+        _, pos_err, _ = ik.solve(top_down_pose([x, y, z], 0.0), max_iterations=400)
+        far_corner_high = x == WORKSPACE_X[1] and abs(y) == WORKSPACE_Y[1] and z >= 0.3
+        if far_corner_high:
+            assert pos_err > 0.02
+        else:
+            assert pos_err < 0.002, (x, y, z, pos_err)
