@@ -18,8 +18,8 @@ def _blocks(colors: tuple[str, ...], suffix: str = "block", size=BLOCK) -> list:
 
 @register("towers-of-hanoi")
 def towers_of_hanoi() -> TaskGraph:
-    stand_a = var("stand_a", "stand", "gray", SQUARE_STAND, description="the start peg's stand")
-    stand_b = var("stand_b", "stand", "brown", SQUARE_STAND, description="the goal stand")
+    stand_a = var("start_stand", "stand", "gray", SQUARE_STAND, description="the start peg's stand")
+    stand_b = var("goal_stand", "stand", "brown", SQUARE_STAND, description="the goal stand")
     large = var("large_disk", "cylinder", "red", (0.07, 0.07, 0.02), initial=start_on(stand_a),
                 description="the largest disk, at the bottom of the start stack")
     medium = var("medium_disk", "cylinder", "green", (0.055, 0.055, 0.02),

@@ -62,7 +62,8 @@ def build_car() -> TaskGraph:
 
 @register("build-house")
 def build_house() -> TaskGraph:
-    base = var("red_base", "block", "red", BLOCK, count=2, description="the house's base blocks")
+    base = var("red_base_blocks", "block", "red", BLOCK, count=2,
+               description="the house's base blocks")
     walls = var("blue_walls", "block", "blue", BLOCK, count=2,
                 description="wall blocks, one on each base block")
     roof = var("yellow_roof", "box", "yellow", (0.12, 0.05, 0.02),

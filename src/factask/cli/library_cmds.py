@@ -1,0 +1,129 @@
+"""Commands on the task library: ``list`` and ``show``.
+
+Kept light: the library and the graph model only (matplotlib is imported only
+when ``show --png`` draws; MuJoCo never).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from factask.cli.app import app
+from factask.library import UnknownTaskError, get_task, list_tasks
+from factask.model import SubtaskFactor, TaskGraph
+
+console = Console()
+err_console = Console(stderr=True, soft_wrap=True)
+
+
+@app.command("list")
+def list_cmd(
+    as_json: bool = typer.Option(False, "--json", help="Print a JSON list instead of a table."),
+) -> None:
+    """List the library's tasks with their sizes and the templates they use."""
+    infos = list_tasks()
+    if as_json:
+        typer.echo(json.dumps([i.to_dict() for i in infos], indent=2))
+        return
+    table = Table(title=f"factask library: {len(infos)} tasks")
+    table.add_column("task", style="bold")
+    table.add_column("vars", justify="right")
+    table.add_column("factors", justify="right")
+    table.add_column("movable", justify="right")
+    table.add_column("templates")
+    for i in infos:
+        table.add_row(i.name, str(i.n_variables), str(i.n_factors), str(i.n_movable),
+                      ", ".join(i.templates))
+    console.print(table)
+
+
+def _goal_text(f: SubtaskFactor) -> str:
+    """One-line summary of a factor's goal relation, e.g. ``on(objects=[a], support=b)``."""
+    data = f.goal.model_dump(mode="json", exclude_none=True, exclude_defaults=True)
+    data.pop("type", None)
+    parts = [f"objects={f.goal.objects}"]
+    parts += [f"{k}={v}" for k, v in data.items() if k != "objects"]
+    return f"{f.goal.type}({', '.join(parts)})"
+
+
+def _start_text(graph: TaskGraph, name: str) -> str:
+    """Where a variable starts, in a few words."""
+    init = graph.variable(name).initial
+    data = init.model_dump(mode="json")
+    if init.type == "table":
+        return "free spot"
+    if init.type == "on":
+        return f"on {data['support']}"
+    if init.type == "inside":
+        return f"inside {data['container']}"
+    if init.type == "pose":
+        return f"at ({data['x']:g}, {data['y']:g}), yaw {data['yaw_deg']:g}"
+    return f"region x{tuple(data['x'])} y{tuple(data['y'])}"
+
+
+def _print_graph(graph: TaskGraph) -> None:
+    """Pretty print: description, variables table, factors in order with goals."""
+    console.print(f"[bold]{graph.name}[/bold]", highlight=False)
+    if graph.description:
+        console.print(graph.description, highlight=False)
+    vt = Table(title="state variables", title_justify="left", show_lines=False)
+    vt.add_column("name", style="bold", no_wrap=True)
+    vt.add_column("kind", no_wrap=True)
+    vt.add_column("size (m)", no_wrap=True)
+    vt.add_column("colour", no_wrap=True)
+    vt.add_column("starts", overflow="fold")
+    for v in graph.variables:
+        kind = v.kind + (f" x{v.count}" if v.count > 1 else "") + (" (fixed)" if v.is_fixed
+                                                                    else "")
+        vt.add_row(v.name, kind, "x".join(f"{s:g}" for s in v.extents), v.color,
+                   _start_text(graph, v.name))
+    console.print(vt)
+    order = graph.factor_order()
+    dep = graph.dependency_graph()
+    console.print("[bold]subtask factors, in order[/bold]")
+    for i, name in enumerate(order, 1):
+        f = graph.factor(name)
+        before = [str(order.index(p) + 1) for p in sorted(dep.predecessors(name),
+                                                          key=order.index)]
+        after = f", after {', '.join(before)}" if before else ""
+        tpl = f", template {f.template}" if f.template else ""
+        console.print(f"  {i}. [bold]{name}[/bold] (weight {f.weight:.3f}{after}{tpl})",
+                      highlight=False)
+        console.print(f"     goal: {_goal_text(f)}", highlight=False, markup=False)
+        console.print(f"     \"{f.description}\"", highlight=False, markup=False)
+        if f.initial_setup:
+            console.print(f"     needs: {f.initial_setup}", highlight=False, markup=False)
+    console.print(f"order: {' -> '.join(order)}", highlight=False)
+
+
+@app.command()
+def show(
+    task: str = typer.Argument(..., help="Library task name (see `factask list`)."),
+    as_json: bool = typer.Option(False, "--json",
+                                 help="Print the graph JSON (what `factask validate` reads)."),
+    png: Path | None = typer.Option(None, "--png", help="Also draw the graph to this PNG."),
+) -> None:
+    """Show a library task: variables, factors, their order and language goals."""
+    try:
+        graph = get_task(task)
+    except UnknownTaskError as exc:
+        err_console.print(f"[red]unknown task {task!r}[/red]", highlight=False)
+        if exc.suggestions:
+            err_console.print("did you mean: " + ", ".join(exc.suggestions), highlight=False)
+        err_console.print("see `factask list` for every task", highlight=False)
+        raise typer.Exit(2) from None
+    if as_json:
+        typer.echo(graph.to_json())
+    else:
+        _print_graph(graph)
+    if png is not None:
+        from factask.viz import draw_graph  # matplotlib only when asked for
+
+        out = draw_graph(graph, png)
+        # Keep stdout pure JSON with --json: report the picture on stderr then.
+        (err_console if as_json else console).print(f"wrote {out}", highlight=False)
