@@ -63,8 +63,8 @@ FLOATING_BODY = "suction_cup_body"
 #: Floating cup home: above the robot base, out of the workspace (m).
 FLOATING_HOME = (0.1, 0.0, 0.45)
 
-#: Transit speed of the tip (m/s) and tool yaw rate (rad/s) on free moves.
-TRANSIT_SPEED = 0.5
+#: Peak tip speed (m/s) and tool yaw rate (rad/s) on free moves.
+TRANSIT_SPEED = 1.0
 YAW_RATE = 2.0
 #: Speed of guarded moves (descents until contact), m/s: 0.1 mm per 2 ms step,
 #: so first contact is detected at sub-millimetre penetration.
