@@ -169,3 +169,18 @@ def color_coordinated_block_corner_alignment() -> TaskGraph:
         "corners run red, green, blue, yellow from top left to bottom right.",
         match_pairs("align_to_corner", list(zip(blocks, corners, strict=True))),
     )
+
+
+@register("packing-boxes")
+def packing_boxes() -> TaskGraph:
+    sizes = {"red": (0.07, 0.06, 0.05), "blue": (0.06, 0.07, 0.04),
+             "green": (0.07, 0.07, 0.04), "yellow": (0.05, 0.07, 0.05)}
+    boxes = [var(f"{c}_box", "box", c, s) for c, s in sizes.items()]
+    # 18 cm inside the walls: the four boxes fit two by two with room to spare.
+    container = var("brown_container", "container", "brown", (0.20, 0.20, 0.06),
+                    description="the open container to pack")
+    return assemble(
+        "packing-boxes",
+        "Pick up four boxes of different sizes and pack them all into the container.",
+        use("put_in_container", objects=boxes, container=container),
+    )

@@ -1,0 +1,297 @@
+"""The task library: templates, tasks, and the `list` / `show` commands."""
+
+from __future__ import annotations
+
+import difflib
+import json
+from itertools import pairwise
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from factask.cli.app import app
+from factask.library import (
+    TASKS,
+    TEMPLATES,
+    UnknownTaskError,
+    get_task,
+    get_template,
+    list_tasks,
+    match_pairs,
+    task_names,
+)
+from factask.library.builders import var
+from factask.model import (
+    CompositionError,
+    Stack,
+    StartOn,
+    TaskGraph,
+    compose,
+    kind_spec,
+    parse_graph,
+)
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+
+GENSIM = Path(__file__).resolve().parents[1] / "shared" / "data" / "gensim_tasks.json"
+if not GENSIM.exists():  # the shared folder may sit beside the checkout
+    GENSIM = Path("/work/shared/data/gensim_tasks.json")
+
+REQUIRED = [
+    "place-red-in-green", "stack-block-pyramid", "stack-block-pyramid-seq", "towers-of-hanoi",
+    "align-box-corner", "block-insertion", "palletizing-boxes", "packing-boxes",
+    "put-block-in-bowl", "build-bridge", "build-car", "build-house",
+    "stack-blocks-in-container", "color-coordinated-cylinder-tower",
+    "color-sorted-container-stack", "multi-level-block-construction",
+    "sort-and-assemble-block-castle", "align-pair-colored-blocks-along-line",
+    "insertion-in-color-sequenced-zones", "stack-boxes-column", "place-box-in-pallet",
+]
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def graphs() -> dict[str, TaskGraph]:
+    return {name: get_task(name) for name in task_names()}
+
+
+@pytest.fixture(scope="module")
+def gensim_names() -> set[str]:
+    if not GENSIM.exists():
+        pytest.skip("gensim_tasks.json not available")
+    return {t["name"] for t in json.loads(GENSIM.read_text())}
+
+
+# --------------------------------------------------------------------- registry
+def test_at_least_30_tasks_and_the_required_ones() -> None:
+    assert len(TASKS) >= 30
+    missing = [n for n in REQUIRED if n not in TASKS]
+    assert not missing
+
+
+def test_task_names_sorted_and_match_registry() -> None:
+    assert task_names() == sorted(TASKS)
+
+
+def test_required_names_are_spelled_as_in_gensim(gensim_names: set[str]) -> None:
+    # Every required name except the library's own stack-boxes-column is a GenSim task.
+    assert [n for n in REQUIRED if n not in gensim_names] == ["stack-boxes-column"]
+
+
+def test_no_task_name_is_a_misspelled_gensim_name(gensim_names: set[str]) -> None:
+    for name in TASKS:
+        if name in gensim_names:
+            continue
+        near = difflib.get_close_matches(name, gensim_names, n=1, cutoff=0.9)
+        assert not near, f"{name!r} looks like GenSim's {near[0]!r}; spell it exactly"
+
+
+def test_unknown_task_suggests_close_names() -> None:
+    with pytest.raises(UnknownTaskError) as info:
+        get_task("tower-of-hanoi")
+    assert "towers-of-hanoi" in info.value.suggestions
+    assert "towers-of-hanoi" in str(info.value)
+
+
+def test_list_tasks_summaries(graphs: dict[str, TaskGraph]) -> None:
+    infos = {i.name: i for i in list_tasks()}
+    assert set(infos) == set(TASKS)
+    g = graphs["build-house"]
+    info = infos["build-house"]
+    assert (info.n_variables, info.n_factors) == (len(g.variables), len(g.factors))
+    assert info.templates == ("build_row", "layer_on_row", "place_on_top")
+    assert info.to_dict()["templates"] == list(info.templates)
+
+
+# ------------------------------------------------------------------------ tasks
+def test_every_task_validates_and_round_trips(graphs: dict[str, TaskGraph]) -> None:
+    for name, g in graphs.items():
+        assert g.name == name
+        assert g.problems() == []
+        again = parse_graph(g.to_json())
+        assert again == g, name
+        assert again.to_json() == g.to_json()
+
+
+def test_descriptions_are_filled_in(graphs: dict[str, TaskGraph]) -> None:
+    for name, g in graphs.items():
+        assert g.description.strip(), name
+        for f in g.factors:
+            assert f.description.strip(), (name, f.name)
+            assert "{" not in f.description and "{" not in f.initial_setup, (name, f.name)
+        for v in g.variables:
+            assert v.description.strip(), (name, v.name)
+
+
+def test_tasks_are_built_from_templates(graphs: dict[str, TaskGraph]) -> None:
+    for name, g in graphs.items():
+        assert g.factors, name
+        for f in g.factors:
+            assert f.template in TEMPLATES, (name, f.name)
+
+
+def test_tasks_fit_the_workspace_and_the_oracle(graphs: dict[str, TaskGraph]) -> None:
+    area = (WORKSPACE_X[1] - WORKSPACE_X[0]) * (WORKSPACE_Y[1] - WORKSPACE_Y[0])
+    for name, g in graphs.items():
+        assert g.movable_object_count() <= 10, name
+        footprint = 0.0
+        for v in g.variables:
+            sx, sy, sz = v.extents
+            assert sx <= 0.35 and sy <= 0.35 and sz <= 0.3, (name, v.name)
+            if not v.is_fixed:
+                assert max(sx, sy) <= 0.15, (name, v.name)  # a suction cup can carry it
+            if kind_spec(v.kind).collides:
+                footprint += sx * sy * v.count
+        # Leave most of the table free so initial layouts can be sampled.
+        assert footprint < 0.35 * area, (name, footprint)
+
+
+def test_every_template_used_by_two_tasks_with_different_bindings(
+    graphs: dict[str, TaskGraph],
+) -> None:
+    bindings: dict[str, dict[str, frozenset]] = {t: {} for t in TEMPLATES}
+    for name, g in graphs.items():
+        for f in g.factors:
+            sig = (tuple(f.scope_names), tuple(g.variable(v).kind for v in f.scope_names))
+            bindings[f.template].setdefault(name, frozenset())
+            bindings[f.template][name] |= {sig}
+    for template, per_task in bindings.items():
+        assert len(per_task) >= 2, f"template {template} used by {sorted(per_task)}"
+        assert len(set(per_task.values())) >= 2, f"template {template}: same bindings"
+
+
+def test_towers_of_hanoi_starts_stacked_and_restacks_in_order(
+    graphs: dict[str, TaskGraph],
+) -> None:
+    g = graphs["towers-of-hanoi"]
+    disks = [v for v in g.variables if v.kind == "cylinder"]
+    assert len(disks) == 3
+    diam = [d.extents[0] for d in disks]
+    assert diam == sorted(diam, reverse=True) and len(set(diam)) == 3
+    assert all(0.015 <= d.extents[2] <= 0.02 for d in disks)
+    # Largest on a stand, each smaller one on the previous.
+    assert isinstance(disks[0].initial, StartOn)
+    start = g.variable(disks[0].initial.support)
+    assert start.kind == "stand"
+    for lower, upper in pairwise(disks):
+        assert isinstance(upper.initial, StartOn) and upper.initial.support == lower.name
+    (f,) = g.factors
+    assert isinstance(f.goal, Stack) and f.goal.ordered
+    assert f.goal.objects == [d.name for d in disks]
+    goal_stand = g.variable(f.goal.base)
+    assert goal_stand.kind == "stand" and goal_stand.name != start.name
+
+
+def test_pyramid_seq_has_explicit_order_the_plain_one_not(
+    graphs: dict[str, TaskGraph],
+) -> None:
+    seq = graphs["stack-block-pyramid-seq"]
+    assert [len(f.after) for f in seq.factors] == [0, 1, 1]
+    assert all(not f.after for f in graphs["stack-block-pyramid"].factors)
+    # Both pyramids are 3-2-1 rows resting on the layer below.
+    for g in (seq, graphs["stack-block-pyramid"]):
+        counts = [g.variable(f.goal.objects[0]).count for f in g.factors]
+        assert counts == [3, 2, 1]
+        assert [f.goal.type for f in g.factors] == ["row", "row", "row"]
+
+
+def test_stack_boxes_column(graphs: dict[str, TaskGraph]) -> None:
+    g = graphs["stack-boxes-column"]
+    (f,) = g.factors
+    assert f.goal.type == "stack" and f.goal.base is None
+    assert sum(g.variable(o).count for o in f.goal.objects) == 3
+    assert all(g.variable(o).extents == (0.07, 0.07, 0.07) for o in f.goal.objects)
+
+
+def test_bridge_decks_rest_on_two_pillars(graphs: dict[str, TaskGraph]) -> None:
+    for name in ("build-bridge", "construct-colorful-arch", "build-car"):
+        g = graphs[name]
+        deck = next(f for f in g.factors if f.name.startswith("deck_"))
+        pillars = g.variable(deck.goal.support)
+        assert pillars.count == 2
+        # The deck must span the pillar gap with room to rest on both.
+        span = deck.goal.objects[0]
+        assert g.variable(span).extents[0] >= 0.12, name
+        assert deck.name in g.factor_order()[1:]
+
+
+def test_sequenced_tasks_chain_their_factors(graphs: dict[str, TaskGraph]) -> None:
+    for name in ("insertion-in-color-sequenced-zones", "color-coordinated-insertion"):
+        g = graphs[name]
+        for prev, f in pairwise(g.factors):
+            assert f.after == [prev.name], name
+        assert "red" in g.factor_order()[0]
+
+
+# -------------------------------------------------------------------- templates
+def test_at_least_12_templates_and_lookup() -> None:
+    assert len(TEMPLATES) >= 12
+    assert get_template("bridge") is TEMPLATES["bridge"]
+    with pytest.raises(CompositionError) as info:
+        get_template("brigde")
+    assert "bridge" in str(info.value)
+
+
+def test_template_descriptions_read_as_goals() -> None:
+    red = var("red_block", "block", "red", (0.04, 0.04, 0.04))
+    bowl = var("green_bowl", "bowl", "green", (0.12, 0.12, 0.05))
+    frag = TEMPLATES["put_in_container"].instantiate(objects=red, container=bowl)
+    assert frag.factors[0].description == "put the red block into the green bowl"
+    with pytest.raises(CompositionError):  # a bowl cannot be moved into a block
+        TEMPLATES["put_in_container"].instantiate(objects=bowl, container=red)
+
+
+def test_match_pairs_sequential_chain_composes() -> None:
+    blocks = [var(f"{c}_block", "block", c, (0.04, 0.04, 0.04)) for c in ("red", "blue")]
+    zones = [var(f"{c}_zone", "zone", c, (0.12, 0.12, 0.001)) for c in ("red", "blue")]
+    frags = match_pairs("place_in_zone", list(zip(blocks, zones, strict=True)),
+                        sequential=True)
+    g = compose(*frags, name="sort-two").validate()
+    assert g.factor_order() == ["in_zone_red_block", "in_zone_blue_block"]
+    assert g.factors[1].after == ["in_zone_red_block"]
+    assert sum(f.weight for f in g.factors) == pytest.approx(1.0)
+
+
+# -------------------------------------------------------------------------- CLI
+def test_cli_list_json() -> None:
+    result = runner.invoke(app, ["list", "--json"])
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert [d["name"] for d in data] == task_names()
+    assert all(d["n_factors"] >= 1 and d["templates"] for d in data)
+
+
+def test_cli_list_table() -> None:
+    result = runner.invoke(app, ["list"], env={"COLUMNS": "200"})
+    assert result.exit_code == 0, result.output
+    assert "towers-of-hanoi" in result.stdout and "stack_on_base" in result.stdout
+
+
+def test_cli_show_json_is_accepted_by_validate() -> None:
+    shown = runner.invoke(app, ["show", "build-bridge", "--json"])
+    assert shown.exit_code == 0, shown.output
+    assert shown.stdout.strip() == get_task("build-bridge").to_json()
+    checked = runner.invoke(app, ["validate", "-"], input=shown.stdout)
+    assert checked.exit_code == 0, checked.output
+    assert "valid" in checked.stdout
+
+
+def test_cli_show_pretty_lists_goals_in_order() -> None:
+    result = runner.invoke(app, ["show", "build-house"], env={"COLUMNS": "200"})
+    assert result.exit_code == 0, result.output
+    out = result.stdout
+    assert "put the green chimney on top of the yellow roof" in out
+    assert out.index("row_red_base_blocks") < out.index("on_top_green_chimney")
+
+
+def test_cli_show_png(tmp_path: Path) -> None:
+    png = tmp_path / "g.png"
+    result = runner.invoke(app, ["show", "towers-of-hanoi", "--png", str(png)])
+    assert result.exit_code == 0, result.output
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_cli_show_unknown_task_exits_2_with_suggestions() -> None:
+    result = runner.invoke(app, ["show", "build-brige"])
+    assert result.exit_code == 2
+    assert "build-bridge" in result.output
