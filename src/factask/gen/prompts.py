@@ -90,11 +90,11 @@ def placeholders(template: str) -> set[str]:
     return set(_PLACEHOLDER_RE.findall(template))
 
 
-def render(step: str, **values: Any) -> str:
+def render(step: str, /, **values: Any) -> str:
     """Fill ``prompts/<step>.md``.
 
     Args:
-        step: Template name.
+        step: Template name (positional: ``step`` is also a placeholder name).
         **values: One value per placeholder (converted with ``str``). The shared
             vocabulary (``asset_kinds``, ``colors``, ``relations``, ``placements``,
             ``world``) is filled in automatically.

@@ -1,0 +1,105 @@
+"""What a generation returns: the graph (or not), the level reached, every step.
+
+:class:`GenerationResult` is JSON-serialisable both ways; a benchmark's
+``results.jsonl`` line is one of these (plus the benchmark's own fields).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from factask.gen.llm import Usage
+from factask.gen.verify import Level, at_least
+from factask.model.graph import TaskGraph
+
+Approach = Literal["one-shot", "variables-first", "subtasks-first"]
+#: The three strategies: the baseline and the research's approaches 1 and 2.
+APPROACHES: tuple[Approach, ...] = ("one-shot", "variables-first", "subtasks-first")
+
+
+@dataclass
+class StepRecord:
+    """One attempt at one step.
+
+    Attributes:
+        step: Step name (``one_shot``, ``variables``, ``subtask_goal:<name>``, ...).
+        attempt: 0 for the first answer, then 1, 2, ... for repairs.
+        ok: The attempt reached the step's target level.
+        level: Level the attempt's artefact reached (``none`` if it did not parse).
+        feedback: The message sent back to the model (None if ok).
+        cached: The answer came from the disk cache.
+    """
+
+    step: str
+    attempt: int
+    ok: bool
+    level: Level = "none"
+    feedback: str | None = None
+    cached: bool = False
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"step": self.step, "attempt": self.attempt, "ok": self.ok, "level": self.level,
+                "feedback": self.feedback, "cached": self.cached}
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> StepRecord:
+        return cls(step=data["step"], attempt=int(data["attempt"]), ok=bool(data["ok"]),
+                   level=data.get("level", "none"), feedback=data.get("feedback"),
+                   cached=bool(data.get("cached", False)))
+
+
+@dataclass
+class GenerationResult:
+    """The outcome of one generation.
+
+    Attributes:
+        approach: The strategy used.
+        proposal: The proposal text as given.
+        task: The task name used.
+        graph: The final graph (the best one reached), or None.
+        level_reached: Highest ladder level the final whole-task graph passed.
+        steps: Every attempt of every step, in order.
+        usage: Tokens and cost of this generation's calls.
+        failure: Why completion was not reached (None if it was).
+    """
+
+    approach: str
+    proposal: str
+    task: str
+    graph: TaskGraph | None = None
+    level_reached: Level = "none"
+    steps: list[StepRecord] = field(default_factory=list)
+    usage: Usage = field(default_factory=Usage)
+    failure: str | None = None
+
+    @property
+    def completed(self) -> bool:
+        """True if the final graph passed the completion check."""
+        return at_least(self.level_reached, "completion")
+
+    @property
+    def repairs(self) -> int:
+        """Number of repair attempts (answers after feedback)."""
+        return sum(1 for s in self.steps if s.attempt > 0)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "approach": self.approach, "proposal": self.proposal, "task": self.task,
+            "level_reached": self.level_reached, "failure": self.failure,
+            "graph": self.graph.to_dict() if self.graph is not None else None,
+            "steps": [s.to_dict() for s in self.steps], "usage": self.usage.to_dict(),
+        }
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> GenerationResult:
+        graph = data.get("graph")
+        return cls(
+            approach=data["approach"], proposal=data.get("proposal", ""),
+            task=data.get("task", ""),
+            graph=TaskGraph.model_validate(graph) if graph else None,
+            level_reached=data.get("level_reached", "none"),
+            steps=[StepRecord.from_dict(s) for s in data.get("steps", [])],
+            usage=Usage.from_dict(data.get("usage", {})), failure=data.get("failure"),
+        )
