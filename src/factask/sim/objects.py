@@ -196,12 +196,29 @@ def footprint_corners(obj: SceneObject, pose: Pose, margin: float = 0.0) -> np.n
     return rect_corners(pose.pos[:2], pose.yaw, obj.half_xy + margin)
 
 
+#: Points sampled on the rim of a round object's footprint.
+ROUND_SAMPLES = 8
+
+
+def footprint_radius(obj: SceneObject) -> float:
+    """Radius of the disk around the centre that covers the footprint."""
+    if obj.is_round:
+        return float(obj.half_xy.max())
+    return float(np.linalg.norm(obj.half_xy))
+
+
 def footprint_points(obj: SceneObject, pose: Pose, per_axis: int = 3) -> np.ndarray:
-    """XY sample points (k, 2) of the object's box: a ``per_axis`` grid on its top
-    and bottom faces, projected onto the table (so a tilted object is honest; a
-    ball is sampled upright whatever its rotation)."""
-    t = np.linspace(-1.0, 1.0, per_axis)
-    grid = np.array([[a, b, c] for a in t for b in t for c in (-1.0, 1.0)])
+    """XY sample points (k, 2) of the object's shape on its top and bottom faces,
+    projected onto the table (so a tilted object is honest; a ball is sampled
+    upright whatever its rotation). A box gives a ``per_axis`` grid per face, a
+    round kind its centre and :data:`ROUND_SAMPLES` points on its rim."""
+    if obj.is_round:
+        ang = np.linspace(0.0, 2 * math.pi, ROUND_SAMPLES, endpoint=False)
+        disk = np.concatenate([[[0.0, 0.0]], np.stack([np.cos(ang), np.sin(ang)], 1)])
+        grid = np.array([[x, y, c] for x, y in disk for c in (-1.0, 1.0)])
+    else:
+        t = np.linspace(-1.0, 1.0, per_axis)
+        grid = np.array([[a, b, c] for a in t for b in t for c in (-1.0, 1.0)])
     quat = np.array([1.0, 0.0, 0.0, 0.0]) if obj.kind in SPHERE_KINDS else pose.quat
     pts = pose.pos + (grid * obj.half) @ rotation_matrix(quat).T
     return pts[:, :2]
