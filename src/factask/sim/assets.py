@@ -65,7 +65,7 @@ TABLE_Y = (-0.70, 0.70)
 TABLE_THICKNESS = 0.05
 #: Height of the table top above the floor (m).
 TABLE_HEIGHT = 0.70
-TABLE_RGBA = (0.82, 0.80, 0.76, 1.0)
+TABLE_RGBA = (0.62, 0.60, 0.57, 1.0)
 FLOOR_RGBA = (0.35, 0.37, 0.40, 1.0)
 #: Names of the fixed cameras.
 TOP_CAMERA = "top"
@@ -538,8 +538,10 @@ def configure_visual(root: Any, shadow_size: int = SHADOW_SIZE) -> None:
     root.visual.quality.shadowsize = shadow_size
     root.visual.get_children("global").offwidth = OFFSCREEN_SIZE[0]
     root.visual.get_children("global").offheight = OFFSCREEN_SIZE[1]
-    root.visual.headlight.ambient = [0.35, 0.35, 0.35]
-    root.visual.headlight.diffuse = [0.4, 0.4, 0.4]
+    # A dim headlight: the scene's own lights give shape; bright ones wash out the table.
+    root.visual.headlight.ambient = [0.25, 0.25, 0.25]
+    root.visual.headlight.diffuse = [0.2, 0.2, 0.2]
+    root.visual.headlight.specular = [0.0, 0.0, 0.0]
 
 
 def build_table(worldbody: Any) -> Any:
@@ -568,10 +570,10 @@ def build_table(worldbody: Any) -> Any:
                   pos=[0.0, 0.0, -TABLE_HEIGHT], rgba=list(FLOOR_RGBA))
     worldbody.add("light", name="key", directional="true", castshadow="true",
                   pos=[0.5, 0.3, 2.0], dir=_fmt([0.0, -0.15, -1.0]),
-                  diffuse=[0.6, 0.6, 0.6], specular=[0.1, 0.1, 0.1])
+                  diffuse=[0.45, 0.45, 0.45], specular=[0.05, 0.05, 0.05])
     worldbody.add("light", name="fill", directional="true", castshadow="false",
                   pos=[1.5, 0.0, 1.5], dir=_fmt([-0.7, 0.0, -0.7]),
-                  diffuse=[0.25, 0.25, 0.25], specular=[0.0, 0.0, 0.0])
+                  diffuse=[0.15, 0.15, 0.15], specular=[0.0, 0.0, 0.0])
     top_pos = (WORKSPACE_CENTER[0], WORKSPACE_CENTER[1], TOP_CAMERA_HEIGHT)
     # Image right = world -y, image up = world +x: the robot is at the bottom.
     worldbody.add("camera", name=TOP_CAMERA, pos=_fmt(top_pos), xyaxes=[0, -1, 0, 1, 0, 0],

@@ -1,0 +1,302 @@
+"""Headless rendering: RGB, depth and object segmentation images, and videos.
+
+Backend: MuJoCo reads ``MUJOCO_GL`` once, when ``mujoco`` is first imported.
+Importing :mod:`factask.sim` sets it (EGL, else OSMesa) unless the user did;
+if MuJoCo was imported earlier without it, :func:`ensure_headless_gl` swaps the
+GLFW context (which needs an X display) for EGL or OSMesa before the first
+renderer is made. Software rendering speed is dominated by the shadow map size,
+which the compiled scenes keep at 1024 (:data:`factask.sim.assets.SHADOW_SIZE`).
+
+Renderers hold an OpenGL context: use :class:`SceneRenderer` as a context
+manager (or call ``close``) so contexts are freed deterministically.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import os
+import warnings
+from pathlib import Path
+from types import TracebackType
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from factask.model.errors import FactaskError
+from factask.sim.assets import MARKER_GROUP, OFFSCREEN_SIZE, TOP_CAMERA
+
+#: Default image size (width, height) in pixels.
+DEFAULT_SIZE = (320, 240)
+#: Segmentation value of pixels that show no object (table, robot, background).
+BACKGROUND_ID = -1
+#: Default frames per second of videos.
+DEFAULT_FPS = 20
+#: Headless backends in order of preference.
+HEADLESS_BACKENDS = ("egl", "osmesa")
+
+Camera = str | int
+
+
+class RenderError(FactaskError):
+    """Rendering is impossible or was asked for wrongly (no GL, bad camera, size)."""
+
+
+# ------------------------------------------------------------------ backend
+def active_gl_backend() -> str:
+    """Name of the GL context MuJoCo's renderer will use: "egl", "osmesa", "glfw",
+    or "none" (rendering disabled)."""
+    from mujoco.rendering.classic import gl_context
+
+    ctx = getattr(gl_context, "GLContext", None)
+    if ctx is None:
+        return "none"
+    module = ctx.__module__
+    for name in ("egl", "osmesa", "glfw", "cgl", "wgl"):
+        if f".{name}" in module or module.endswith(name):
+            return name
+    return module
+
+
+def ensure_headless_gl() -> str:
+    """Make sure MuJoCo renders without a display; return the backend in use.
+
+    Respects an explicit ``MUJOCO_GL``. Otherwise, if MuJoCo was imported before
+    a headless backend was chosen and there is no X display, swaps its GLFW
+    context class for EGL (or OSMesa).
+
+    Returns:
+        The backend name (see :func:`active_gl_backend`).
+    """
+    backend = active_gl_backend()
+    explicit = os.environ.get("MUJOCO_GL", "").lower()
+    if backend != "glfw" or os.environ.get("DISPLAY") or explicit == "glfw":
+        return backend
+    from mujoco.rendering.classic import gl_context
+
+    for name in HEADLESS_BACKENDS:
+        try:
+            module = importlib.import_module(f"mujoco.{name}")
+        except (ImportError, OSError, RuntimeError, AttributeError):
+            continue
+        gl_context.GLContext = module.GLContext
+        return name
+    return backend
+
+
+# ----------------------------------------------------------------- renderer
+def _camera_id(model: mujoco.MjModel, camera: Camera) -> int:
+    if isinstance(camera, str):
+        cam = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, camera)
+        if cam < 0:
+            names = [model.camera(i).name for i in range(model.ncam)]
+            raise RenderError(f"no camera {camera!r} in the model; cameras: {names}")
+        return int(cam)
+    if not -1 <= int(camera) < model.ncam:
+        raise RenderError(f"camera id {camera} out of range [-1, {model.ncam})")
+    return int(camera)
+
+
+class SceneRenderer:
+    """One offscreen renderer (one GL context) of a model at a fixed image size.
+
+    Args:
+        model: The compiled model.
+        width: Image width in pixels.
+        height: Image height in pixels.
+        geom_object: Optional geom id -> object index map (see
+            ``CompiledScene.geom_object``) used by :meth:`segmentation`.
+
+    Raises:
+        RenderError: the size exceeds the model's offscreen buffer, or no GL
+            context can be created.
+    """
+
+    def __init__(self, model: mujoco.MjModel, width: int = DEFAULT_SIZE[0],
+                 height: int = DEFAULT_SIZE[1], geom_object: np.ndarray | None = None) -> None:
+        max_w, max_h = int(model.vis.global_.offwidth), int(model.vis.global_.offheight)
+        if not (0 < width <= max_w and 0 < height <= max_h):
+            raise RenderError(
+                f"image size {width}x{height} outside the model's offscreen buffer "
+                f"{max_w}x{max_h} (fix: use a smaller size, at most {OFFSCREEN_SIZE})")
+        ensure_headless_gl()
+        try:
+            self._renderer = mujoco.Renderer(model, height=height, width=width)
+        except Exception as exc:  # GL errors come as many types; name the fix.
+            raise RenderError(
+                f"cannot create an OpenGL context ({type(exc).__name__}: {exc}); "
+                f"backend {active_gl_backend()!r} (fix: install libegl1 libegl-mesa0 "
+                "libgl1-mesa-dri, or libosmesa6 and set MUJOCO_GL=osmesa)") from exc
+        self.model = model
+        self.width, self.height = width, height
+        self.geom_object = geom_object
+
+    def _option(self, show_markers: bool) -> mujoco.MjvOption:
+        opt = mujoco.MjvOption()
+        opt.geomgroup[MARKER_GROUP] = 1 if show_markers else 0
+        return opt
+
+    def rgb(self, data: mujoco.MjData, camera: Camera = TOP_CAMERA,
+            show_markers: bool = True) -> np.ndarray:
+        """RGB image (height, width, 3) uint8 from ``camera``.
+
+        Args:
+            data: The model's data (positions must be current: ``mj_forward``).
+            camera: Camera name or id (-1: the free camera).
+            show_markers: Draw the translucent goal markers.
+        """
+        r = self._renderer
+        r.update_scene(data, _camera_id(self.model, camera), self._option(show_markers))
+        return r.render().copy()
+
+    def depth(self, data: mujoco.MjData, camera: Camera = TOP_CAMERA) -> np.ndarray:
+        """Depth image (height, width) float32, metres from the camera plane
+        (goal markers hidden)."""
+        r = self._renderer
+        r.enable_depth_rendering()
+        try:
+            r.update_scene(data, _camera_id(self.model, camera), self._option(False))
+            return r.render().astype(np.float32)
+        finally:
+            r.disable_depth_rendering()
+
+    def segmentation(self, data: mujoco.MjData, camera: Camera = TOP_CAMERA) -> np.ndarray:
+        """Object segmentation (height, width) int64 (goal markers hidden).
+
+        Each pixel holds the object index of the geom it shows (through
+        ``geom_object``), or :data:`BACKGROUND_ID`; without ``geom_object``, the
+        raw geom id (or -1).
+        """
+        r = self._renderer
+        r.enable_segmentation_rendering()
+        try:
+            r.update_scene(data, _camera_id(self.model, camera), self._option(False))
+            seg = r.render()
+        finally:
+            r.disable_segmentation_rendering()
+        ids, types = seg[..., 0].astype(np.int64), seg[..., 1]
+        geom = np.where(types == mujoco.mjtObj.mjOBJ_GEOM, ids, -1)
+        if self.geom_object is None:
+            return geom
+        table = np.asarray(self.geom_object, dtype=np.int64)
+        return np.where(geom >= 0, table[np.clip(geom, 0, len(table) - 1)], BACKGROUND_ID)
+
+    def close(self) -> None:
+        """Free the GL context (safe to call twice)."""
+        renderer = getattr(self, "_renderer", None)
+        if renderer is not None:
+            renderer.close()
+            self._renderer = None
+
+    def __enter__(self) -> SceneRenderer:
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        self.close()
+
+
+def render_rgb(model: mujoco.MjModel, data: mujoco.MjData, camera: Camera = TOP_CAMERA,
+               width: int = DEFAULT_SIZE[0], height: int = DEFAULT_SIZE[1]) -> np.ndarray:
+    """One RGB image (height, width, 3) uint8 (opens and closes a renderer).
+
+    Raises:
+        RenderError: see :class:`SceneRenderer`.
+    """
+    with SceneRenderer(model, width, height) as r:
+        return r.rgb(data, camera)
+
+
+def render_depth(model: mujoco.MjModel, data: mujoco.MjData, camera: Camera = TOP_CAMERA,
+                 width: int = DEFAULT_SIZE[0], height: int = DEFAULT_SIZE[1]) -> np.ndarray:
+    """One depth image (height, width) float32 in metres (opens and closes a renderer)."""
+    with SceneRenderer(model, width, height) as r:
+        return r.depth(data, camera)
+
+
+def render_segmentation(model: mujoco.MjModel, data: mujoco.MjData,
+                        camera: Camera = TOP_CAMERA, width: int = DEFAULT_SIZE[0],
+                        height: int = DEFAULT_SIZE[1],
+                        geom_object: np.ndarray | None = None) -> np.ndarray:
+    """One segmentation image (height, width) int64 of object indices, -1 elsewhere
+    (see :meth:`SceneRenderer.segmentation`)."""
+    with SceneRenderer(model, width, height, geom_object) as r:
+        return r.segmentation(data, camera)
+
+
+# -------------------------------------------------------------------- video
+def _has_ffmpeg() -> bool:
+    return importlib.util.find_spec("imageio_ffmpeg") is not None
+
+
+class VideoRecorder:
+    """Collects RGB frames and writes them as an animated GIF or an MP4.
+
+    MP4 needs the ``imageio-ffmpeg`` package; without it an ``.mp4`` path is
+    written as a GIF next to it (same name, ``.gif``) with a warning. The file is
+    written on :meth:`close` (or leaving the ``with`` block).
+
+    Args:
+        path: Output file (``.gif`` or ``.mp4``).
+        fps: Frames per second.
+
+    Raises:
+        RenderError: unsupported suffix or fps not positive.
+    """
+
+    def __init__(self, path: str | Path, fps: float = DEFAULT_FPS) -> None:
+        path = Path(path)
+        if path.suffix.lower() not in (".gif", ".mp4"):
+            raise RenderError(f"video path {str(path)!r} must end in .gif or .mp4")
+        if not fps > 0:
+            raise RenderError(f"fps must be positive, got {fps}")
+        if path.suffix.lower() == ".mp4" and not _has_ffmpeg():
+            warnings.warn(f"imageio-ffmpeg is not installed: writing {path.with_suffix('.gif')} "
+                          "instead of an MP4", stacklevel=2)
+            path = path.with_suffix(".gif")
+        self.path = path
+        self.fps = float(fps)
+        self.frames: list[np.ndarray] = []
+
+    def append(self, frame: np.ndarray) -> None:
+        """Add one RGB frame (height, width, 3) uint8; all frames must share a shape.
+
+        Raises:
+            RenderError: the frame's shape differs from the first frame's.
+        """
+        frame = np.asarray(frame)
+        if frame.ndim != 3 or frame.shape[2] != 3:
+            raise RenderError(f"a frame must be (height, width, 3), got {frame.shape}")
+        if self.frames and frame.shape != self.frames[0].shape:
+            raise RenderError(f"frame shape {frame.shape} differs from the first "
+                              f"{self.frames[0].shape}")
+        self.frames.append(frame.astype(np.uint8, copy=True))
+
+    def close(self) -> Path | None:
+        """Write the file (nothing if no frame was added).
+
+        Returns:
+            The path written, or None.
+        """
+        if not self.frames:
+            return None
+        import imageio.v3 as iio
+
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        kwargs: dict[str, Any]
+        if self.path.suffix.lower() == ".gif":
+            # Pillow's GIF writer: duration per frame in ms; loop forever.
+            kwargs = {"duration": 1000.0 / self.fps, "loop": 0}
+        else:
+            kwargs = {"fps": self.fps}
+        iio.imwrite(self.path, np.stack(self.frames), **kwargs)
+        self.frames = []
+        return self.path
+
+    def __enter__(self) -> VideoRecorder:
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        self.close()

@@ -1,0 +1,173 @@
+"""Headless rendering: RGB, depth, segmentation and video files."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import imageio.v3 as iio
+import mujoco
+import numpy as np
+import pytest
+
+import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
+from factask.geometry import Pose
+from factask.model import TaskGraph
+from factask.sim.assets import FRONT_CAMERA, TOP_CAMERA, TOP_CAMERA_HEIGHT
+from factask.sim.compile import CompiledScene, compile_graph, set_object_pose
+from factask.sim.render import (
+    BACKGROUND_ID,
+    RenderError,
+    SceneRenderer,
+    VideoRecorder,
+    active_gl_backend,
+    render_depth,
+    render_rgb,
+    render_segmentation,
+)
+
+WIDTH, HEIGHT = 160, 120
+
+
+@pytest.fixture(scope="module")
+def scene() -> CompiledScene:
+    graph = TaskGraph.model_validate({
+        "name": "render-test",
+        "variables": [
+            {"name": "blocks", "kind": "block", "color": "red", "count": 2},
+            {"name": "bowl", "kind": "bowl", "color": "green"},
+            {"name": "pad", "kind": "kit", "color": "blue"},
+        ],
+        "factors": [{"name": "blocks_in_bowl",
+                     "goal": {"type": "inside", "objects": ["blocks"], "container": "bowl"}}],
+    })
+    return compile_graph(graph, robot=None)
+
+
+@pytest.fixture(scope="module")
+def renderer(scene: CompiledScene) -> Iterator[SceneRenderer]:
+    try:
+        r = SceneRenderer(scene.model, WIDTH, HEIGHT, scene.geom_object)
+    except RenderError as exc:  # pragma: no cover - machines without any GL
+        pytest.skip(f"no headless GL here: {exc}")
+    with r:
+        yield r
+
+
+def test_backend_is_headless() -> None:
+    assert active_gl_backend() in ("egl", "osmesa")
+
+
+_LATE_IMPORT = """
+import mujoco  # before factask.sim: MuJoCo picks GLFW, which needs a display
+import factask.sim
+from factask.sim.render import active_gl_backend, render_rgb
+m = mujoco.MjModel.from_xml_string('<mujoco><worldbody><light pos="0 0 1"/>'
+    '<geom type="sphere" size=".1" rgba="1 0 0 1"/></worldbody></mujoco>')
+d = mujoco.MjData(m); mujoco.mj_forward(m, d)
+img = render_rgb(m, d, -1, 32, 24)
+print(active_gl_backend(), img.shape, int(img.max()))
+"""
+
+
+def test_renders_even_if_mujoco_was_imported_first() -> None:
+    env = {k: v for k, v in os.environ.items() if k not in ("MUJOCO_GL", "DISPLAY")}
+    out = subprocess.run([sys.executable, "-c", _LATE_IMPORT], env=env, capture_output=True,
+                         text=True, timeout=120, check=False)
+    assert out.returncode == 0, out.stderr
+    backend, *rest = out.stdout.split()
+    assert backend in ("egl", "osmesa")
+    assert "(24, 32, 3)" in " ".join(rest)
+
+
+@pytest.mark.parametrize("camera", [TOP_CAMERA, FRONT_CAMERA])
+def test_rgb_has_shape_and_content(scene: CompiledScene, renderer: SceneRenderer,
+                                   camera: str) -> None:
+    img = renderer.rgb(scene.make_data(), camera)
+    assert img.shape == (HEIGHT, WIDTH, 3) and img.dtype == np.uint8
+    assert img.std() > 5.0
+    assert len(np.unique(img.reshape(-1, 3), axis=0)) > 10
+
+
+def test_depth_is_plausible(scene: CompiledScene, renderer: SceneRenderer) -> None:
+    depth = renderer.depth(scene.make_data(), TOP_CAMERA)
+    assert depth.shape == (HEIGHT, WIDTH)
+    # Top camera looks straight down from TOP_CAMERA_HEIGHT: the table is that far,
+    # objects a few centimetres nearer.
+    assert np.median(depth) == pytest.approx(TOP_CAMERA_HEIGHT, abs=0.01)
+    assert TOP_CAMERA_HEIGHT - 0.1 < depth.min() < TOP_CAMERA_HEIGHT - 0.001
+
+
+def test_segmentation_shows_every_object(scene: CompiledScene,
+                                         renderer: SceneRenderer) -> None:
+    seg = renderer.segmentation(scene.make_data(), TOP_CAMERA)
+    assert seg.shape == (HEIGHT, WIDTH)
+    ids = set(np.unique(seg).tolist())
+    assert BACKGROUND_ID in ids
+    assert ids - {BACKGROUND_ID} == set(range(len(scene.objects)))
+
+
+def test_segmentation_pixels_match_rgb_colour(scene: CompiledScene,
+                                              renderer: SceneRenderer) -> None:
+    data = scene.make_data()
+    seg = renderer.segmentation(data, TOP_CAMERA)
+    rgb = renderer.rgb(data, TOP_CAMERA, show_markers=False).astype(float)
+    bowl = scene.object_names.index("bowl")
+    mean = rgb[seg == bowl].mean(axis=0)
+    assert mean[1] > mean[0] and mean[1] > mean[2]  # the bowl is green
+
+
+def test_one_shot_helpers(scene: CompiledScene) -> None:
+    data = scene.make_data()
+    assert render_rgb(scene.model, data, TOP_CAMERA, 64, 48).shape == (48, 64, 3)
+    assert render_depth(scene.model, data, TOP_CAMERA, 64, 48).shape == (48, 64)
+    seg = render_segmentation(scene.model, data, TOP_CAMERA, 64, 48, scene.geom_object)
+    assert seg.min() >= BACKGROUND_ID
+
+
+def test_bad_camera_and_size(scene: CompiledScene, renderer: SceneRenderer) -> None:
+    with pytest.raises(RenderError, match="no camera 'side'"):
+        renderer.rgb(scene.make_data(), "side")
+    with pytest.raises(RenderError, match="offscreen buffer"):
+        SceneRenderer(scene.model, 5000, 100)
+
+
+def test_video_gif_is_written(tmp_path: Path, scene: CompiledScene,
+                              renderer: SceneRenderer) -> None:
+    path = tmp_path / "clip.gif"
+    data = scene.make_data()
+    block = scene.objects["blocks__0"]
+    with VideoRecorder(path, fps=10) as video:
+        for i in range(3):
+            # Frames must differ: GIF writers merge identical consecutive frames.
+            set_object_pose(scene.model, data, block, Pose.from_xyz_yaw(0.4 + 0.1 * i, 0, 0.02))
+            mujoco.mj_forward(scene.model, data)
+            video.append(renderer.rgb(data))
+    frames = iio.imread(path, index=None)
+    assert frames.shape[0] == 3 and frames.shape[1:3] == (HEIGHT, WIDTH)
+
+
+def test_mp4_without_ffmpeg_falls_back_to_gif(tmp_path: Path) -> None:
+    import importlib.util
+
+    if importlib.util.find_spec("imageio_ffmpeg") is not None:
+        pytest.skip("imageio-ffmpeg is installed: MP4 is written")
+    with pytest.warns(UserWarning, match="imageio-ffmpeg"):
+        video = VideoRecorder(tmp_path / "clip.mp4")
+    video.append(np.zeros((8, 8, 3), np.uint8))
+    video.append(np.full((8, 8, 3), 255, np.uint8))
+    assert video.close() == tmp_path / "clip.gif"
+    assert (tmp_path / "clip.gif").stat().st_size > 0
+
+
+def test_video_rejects_bad_input(tmp_path: Path) -> None:
+    with pytest.raises(RenderError, match=r"\.gif or \.mp4"):
+        VideoRecorder(tmp_path / "clip.avi")
+    video = VideoRecorder(tmp_path / "clip.gif")
+    video.append(np.zeros((8, 8, 3), np.uint8))
+    with pytest.raises(RenderError, match="differs"):
+        video.append(np.zeros((4, 8, 3), np.uint8))
+    assert VideoRecorder(tmp_path / "empty.gif").close() is None
