@@ -249,3 +249,23 @@ def test_ur5e_reach_matches_documented_limits():
             assert pos_err > 0.02
         else:
             assert pos_err < 0.002, (x, y, z, pos_err)
+
+
+@pytest.mark.parametrize("kind", ["floating", "arm"])
+def test_place_stops_on_contact_when_stacking(kind):
+    """A place pose below the top of the stack stops at contact and leaves a tower."""
+    model, data, robot = build_scene(kind, blocks=((0.5, 0.1), (0.4, -0.2), (0.6, -0.1)))
+    first = robot.pick_and_place(
+        Pose.from_xyz_yaw(0.4, -0.2, BLOCK), Pose.from_xyz_yaw(0.5, 0.1, 2 * BLOCK + 0.005)
+    )
+    # Deliberately 1 cm too low: the guarded descent must stop on the block below.
+    second = robot.pick_and_place(
+        Pose.from_xyz_yaw(0.6, -0.1, BLOCK), Pose.from_xyz_yaw(0.5, 0.1, 3 * BLOCK - 0.01)
+    )
+    assert first.ok and second.ok, (first.reason, second.reason)
+    for _ in range(500):
+        mujoco.mj_step(model, data)
+    for level, i in enumerate((0, 1, 2)):
+        pos = block_pose(model, data, i).pos
+        assert np.linalg.norm(pos[:2] - [0.5, 0.1]) < 0.005
+        assert abs(pos[2] - (level + 0.5) * BLOCK) < 0.003
