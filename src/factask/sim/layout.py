@@ -49,6 +49,7 @@ from factask.sim.objects import (
     corner_vertex,
     floor_thickness,
     footprint_corners,
+    footprint_corners_batch,
     footprint_points,
     footprint_radius,
     group_area,
@@ -78,6 +79,8 @@ MAX_RESETS = 10
 MAX_FILL_FRACTION = 0.9
 #: Height intervals overlapping by less than this (metres) do not collide (resting).
 Z_CONTACT_EPS = 1e-4
+#: Candidates tested together (vectorised) before looking at the next ones.
+_CHUNK = 25
 #: Support name used for slots resting directly on the table.
 TABLE = "table"
 
@@ -192,7 +195,8 @@ class Occupancy:
             return np.ones(k, dtype=bool)
         ignored = set(ignore)
         skip = np.array([n in ignored for n in names])
-        cand = np.array([footprint_corners(obj, p, self.clearance / 2) for p in poses])
+        cand = footprint_corners_batch(obj, np.array([p.pos[:2] for p in poses]),
+                                       np.array([p.yaw for p in poses]), self.clearance / 2)
         xy = obb_overlaps(cand, grown) & ~skip[None, :]
         cz = np.array([float(p.pos[2]) for p in poses])
         c0, c1 = cz - obj.half[2], cz + obj.half[2]
@@ -289,16 +293,22 @@ def _random_yaws(rng: np.random.Generator, k: int) -> np.ndarray:
 def _first_free(occ: Occupancy, obj: SceneObject, poses: list[Pose],
                 ignore: Iterable[str] = (), within: Area | None = None) -> Pose | None:
     """The first candidate inside the workspace (and ``within``) that is free."""
-    ok = np.array([in_workspace(obj, p) for p in poses], dtype=bool)
-    if within is not None:
-        ok &= np.array([bool(within.contains(footprint_points(obj, p)).all()) for p in poses],
-                       dtype=bool)
-    idx = np.flatnonzero(ok)
-    if len(idx) == 0:
+    if not poses:
         return None
-    free = occ.free_mask(obj, [poses[i] for i in idx], ignore)
-    hits = idx[free]
-    return poses[int(hits[0])] if len(hits) else None
+    corners = footprint_corners_batch(obj, np.array([p.pos[:2] for p in poses]),
+                                      np.array([p.yaw for p in poses]))
+    ok = WORKSPACE_AREA.contains(corners.reshape(-1, 2)).reshape(len(poses), 4).all(axis=1)
+    for start in range(0, len(poses), _CHUNK):  # chunks: most objects fit early
+        idx = [i for i in range(start, min(start + _CHUNK, len(poses))) if ok[i]]
+        if within is not None:
+            idx = [i for i in idx if bool(within.contains(footprint_points(obj, poses[i])).all())]
+        if not idx:
+            continue
+        free = occ.free_mask(obj, [poses[i] for i in idx], ignore)
+        hits = np.flatnonzero(free)
+        if len(hits):
+            return poses[idx[int(hits[0])]]
+    return None
 
 
 def _table_candidates(obj: SceneObject, placement: object, rng: np.random.Generator,
@@ -571,6 +581,7 @@ class _Plan:
     check_yaw: bool = True
     chain: bool = False
     support_group: list[str] = field(default_factory=list)
+    random: bool = False  # made from random choices: another attempt may differ
 
 
 def _same_size(objs: list[SceneObject]) -> np.ndarray:
@@ -638,18 +649,22 @@ def solve_targets(graph: TaskGraph, layout: Mapping[str, Pose], rng: np.random.G
         for attempt in range(max_attempts):
             tries += 1
             ctx.attempt = attempt
+            plan = None
             try:
                 plan = _SOLVERS[f.goal.type](ctx, f, movers)
                 _accept(ctx, movers, plan)
                 break
             except _Infeasible as exc:
-                last, plan = exc, None
-                if not exc.retry:
+                last, made = exc, plan
+                plan = None
+                # Anchored, deterministic targets come out the same every attempt.
+                if not exc.retry or (made is not None and not made.random):
                     break
         if plan is None:
             assert last is not None
+            # retry=False marks reasons no initial layout can change (capacity, shape).
             raise LayoutError(f"factor {fname!r} ({f.goal.type})", last.reason, tries=tries,
-                              retryable=True)
+                              retryable=last.retry)
         solved = SolvedFactor(
             factor=fname, relation=f.goal.type, objects=[o.name for o in movers],
             slots=plan.slots, matches=plan.matches.astype(bool),
@@ -846,7 +861,7 @@ def _solve_region(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Pl
     slots, surfaces, supports = _pack_plan(ctx, movers, groups, ctx.attempt % 2 == 1)
     ignore = [{s} for s in supports]
     return _plan(slots, surfaces, supports, ignore, np.ones((n, n), dtype=bool),
-                 region=list(hosts))
+                 region=list(hosts), random=True)
 
 
 def _solve_on(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Plan:
@@ -866,7 +881,8 @@ def _solve_on(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Plan:
             return _plan([slot], [surface], [host], [{host}], ones, support_group=hosts)
         slots, surfaces, supports = _pack_plan(ctx, movers, [(host, list(range(n)))],
                                                ctx.attempt % 2 == 1)
-        return _plan(slots, surfaces, supports, [{host}] * n, ones, support_group=hosts)
+        return _plan(slots, surfaces, supports, [{host}] * n, ones, support_group=hosts,
+                     random=True)
     hobjs = [ctx.objs[h] for h in hosts]
     hposes = [ctx.current[h] for h in hosts]
     area = group_area(hobjs, hposes)
@@ -902,6 +918,7 @@ def _search(ctx: _Ctx, movers: list[SceneObject], build: object, what: str) -> _
     last = "no candidate"
     for xy, yaw in _free_spots(ctx, MAX_TRIES_PER_OBJECT):
         plan = build(xy, yaw)
+        plan.random = True
         try:
             _accept(ctx, movers, plan)
             return plan
@@ -1012,6 +1029,7 @@ def _solve_circle(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Pl
                           for o, h in zip(hobjs, hosts, strict=True))
         r = goal.radius or radius
         plan = ring(area.center, r, surface, [] if first.is_receptacle else hosts)
+        plan.random = True  # the phase is random
         if first.collides and not first.is_receptacle:  # on its top: must stay on it
             for o, slot in zip(movers, plan.slots, strict=True):
                 if not bool(area.contains(footprint_corners(o, slot)).all()):

@@ -187,6 +187,16 @@ def rect_corners(center_xy: np.ndarray, yaw: float, half_xy: np.ndarray) -> np.n
     return np.asarray(center_xy, dtype=float)[:2] + local @ yaw_rotation_2d(yaw).T
 
 
+def footprint_corners_batch(obj: SceneObject, xy: np.ndarray, yaw: np.ndarray,
+                            margin: float = 0.0) -> np.ndarray:
+    """Footprint corners (k, 4, 2) of ``obj`` at k centres ``xy`` (k, 2) and yaws (k,)."""
+    local = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float) * (obj.half_xy + margin)
+    c, s = np.cos(yaw)[:, None], np.sin(yaw)[:, None]
+    x = c * local[None, :, 0] - s * local[None, :, 1]
+    y = s * local[None, :, 0] + c * local[None, :, 1]
+    return np.stack([x, y], axis=-1) + np.asarray(xy, dtype=float)[:, None, :]
+
+
 def footprint_corners(obj: SceneObject, pose: Pose, margin: float = 0.0) -> np.ndarray:
     """Corners (4, 2) of the object's footprint OBB at ``pose``, grown by ``margin``.
 
