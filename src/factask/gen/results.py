@@ -63,6 +63,9 @@ class GenerationResult:
         steps: Every attempt of every step, in order.
         usage: Tokens and cost of this generation's calls.
         failure: Why completion was not reached (None if it was).
+        llm_error: The generation stopped because the LLM could not be reached
+            (an infrastructure problem, not the model's answer: a benchmark
+            retries such tasks on resume).
     """
 
     approach: str
@@ -73,6 +76,7 @@ class GenerationResult:
     steps: list[StepRecord] = field(default_factory=list)
     usage: Usage = field(default_factory=Usage)
     failure: str | None = None
+    llm_error: bool = False
 
     @property
     def completed(self) -> bool:
@@ -88,6 +92,7 @@ class GenerationResult:
         return {
             "approach": self.approach, "proposal": self.proposal, "task": self.task,
             "level_reached": self.level_reached, "failure": self.failure,
+            "llm_error": self.llm_error,
             "graph": self.graph.to_dict() if self.graph is not None else None,
             "steps": [s.to_dict() for s in self.steps], "usage": self.usage.to_dict(),
         }
@@ -102,4 +107,5 @@ class GenerationResult:
             level_reached=data.get("level_reached", "none"),
             steps=[StepRecord.from_dict(s) for s in data.get("steps", [])],
             usage=Usage.from_dict(data.get("usage", {})), failure=data.get("failure"),
+            llm_error=bool(data.get("llm_error", False)),
         )

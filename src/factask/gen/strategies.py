@@ -160,6 +160,7 @@ class Generator:
             result.failure = str(exc)
         except LLMError as exc:
             result.failure = f"LLM call failed: {exc}"
+            result.llm_error = True
         if result.failure is None and not result.completed:
             result.failure = f"stopped at level {result.level_reached!r}"
         self._result = None

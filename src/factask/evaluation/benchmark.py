@@ -1,0 +1,360 @@
+"""The generation benchmark: a task list through generation and verification.
+
+One JSON line per finished (approach, task) pair is appended to
+``RUN_DIR/results.jsonl`` as soon as it finishes (flushed and fsynced), so an
+interrupted run loses nothing and a rerun resumes where it stopped without
+repeating a finished pair. At the end the three rates of the research — the
+fraction of tasks whose final graph reaches *syntax*, *runtime* and
+*completion* — are written per approach as ``summary.json``, ``summary.md``
+and a bar chart ``rates.png`` next to the research's numbers.
+
+Tasks that need deformables a rigid suction world cannot express (ropes, cloth,
+bags, particle piles, spatula sweeping) are not sent to the model; they get a
+``not_expressible`` line and their own column in the table.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import time
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from factask.gen.results import APPROACHES
+from factask.gen.strategies import Generator
+from factask.gen.verify import LEVELS, at_least
+from factask.model.errors import FactaskError
+
+#: The research's rates in percent (syntax, runtime, completion), GPT-4, 55 tasks.
+RESEARCH_RATES: dict[str, tuple[float, float, float]] = {
+    "one-shot": (95.0, 53.3, 16.7),
+    "variables-first": (96.4, 78.2, 29.1),
+    "subtasks-first": (98.3, 90.2, 16.7),
+}
+#: The rates' levels, in table order.
+RATE_LEVELS = ("syntax", "runtime", "completion")
+
+RESULTS_FILE = "results.jsonl"
+
+_DEFORMABLE_WORDS = re.compile(
+    r"\b(ropes?|cables?|cloths?|fabrics?|bags?|sacks?|piles?|particles?|sweep(?:ing|s)?|"
+    r"swept|spatula)\b")
+_DEFORMABLE_ASSETS = ("rope", "cloth", "bag", "cable")
+_PUSH_WORDS = re.compile(r"\b(push(?:ing|es)?|sweep(?:ing|s)?)\b")
+
+
+class BenchmarkError(FactaskError):
+    """The task list cannot be read, or the run directory is not usable."""
+
+
+@dataclass
+class BenchTask:
+    """One task proposal of the list.
+
+    Attributes:
+        name: Task name (kebab-case).
+        description: What the task is.
+        assets: GenSim/Ravens URDF names the original used.
+        origin: Where it comes from (``ravens_cliport_original``, ``gensim_generated``).
+    """
+
+    name: str
+    description: str
+    assets: list[str] = field(default_factory=list)
+    origin: str = ""
+
+    @property
+    def proposal(self) -> str:
+        return f"{self.name}: {self.description}"
+
+
+def default_tasks_path() -> Path:
+    """``../shared/data/gensim_tasks.json`` relative to the working directory."""
+    return Path.cwd().parent / "shared" / "data" / "gensim_tasks.json"
+
+
+def load_tasks(path: str | os.PathLike[str]) -> list[BenchTask]:
+    """Read a task list (a JSON list of ``{name, description, assets, origin}``).
+
+    Raises:
+        BenchmarkError: the file is missing or not such a list.
+    """
+    try:
+        data = json.loads(Path(path).read_text())
+    except (OSError, json.JSONDecodeError) as exc:
+        raise BenchmarkError(f"cannot read task list {path}: {exc}") from None
+    if isinstance(data, Mapping):
+        data = data.get("tasks", [])
+    if not isinstance(data, list):
+        raise BenchmarkError(f"{path}: expected a JSON list of tasks")
+    tasks = []
+    for i, item in enumerate(data):
+        if not isinstance(item, Mapping) or not item.get("name"):
+            raise BenchmarkError(f"{path}: entry {i} has no name")
+        tasks.append(BenchTask(name=str(item["name"]), description=str(item.get("description",
+                                                                                 "")),
+                               assets=[str(a) for a in item.get("assets", [])],
+                               origin=str(item.get("origin", ""))))
+    return tasks
+
+
+def not_expressible_reason(task: BenchTask) -> str | None:
+    """Why a rigid suction world cannot express ``task``, or None if it can.
+
+    Detects deformables and particles from the task's words (rope, cloth, bag,
+    piles, sweeping) and its assets (rope/cloth/bag URDFs; small blocks pushed
+    or swept as a pile).
+    """
+    text = f"{task.name.replace('-', ' ')} {task.description}".lower()
+    found = sorted(set(_DEFORMABLE_WORDS.findall(text)))
+    assets = " ".join(task.assets).lower()
+    bad_assets = [a for a in _DEFORMABLE_ASSETS if a in assets]
+    if "block/small.urdf" in assets and _PUSH_WORDS.search(text):
+        bad_assets.append("small blocks pushed as a pile")
+    if not found and not bad_assets:
+        return None
+    parts = []
+    if found:
+        parts.append("mentions " + ", ".join(found))
+    if bad_assets:
+        parts.append("assets: " + ", ".join(bad_assets))
+    return ("needs deformables or particles (ropes, cloth, bags, piles, sweeping) that a "
+            "rigid suction world cannot express: " + "; ".join(parts))
+
+
+# ------------------------------------------------------------------ results file
+def read_results(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
+    """Every complete line of a results file (a torn last line is ignored)."""
+    p = Path(path)
+    if not p.exists():
+        return []
+    out = []
+    for line in p.read_text().splitlines():
+        line = line.strip()
+        if not line:
+            continue
+        try:
+            out.append(json.loads(line))
+        except json.JSONDecodeError:
+            continue
+    return out
+
+
+def is_finished(record: Mapping[str, Any]) -> bool:
+    """A line whose pair need not run again (an LLM outage is retried)."""
+    return record.get("status") in ("done", "not_expressible")
+
+
+def finished_pairs(records: Iterable[Mapping[str, Any]]) -> set[tuple[str, str]]:
+    """(approach, task) pairs already finished."""
+    return {(r["approach"], r["task"]) for r in records if is_finished(r)}
+
+
+def _repair_tail(path: Path) -> None:
+    """Cut a torn last line (a run killed mid-write) so appends stay line-aligned."""
+    if not path.exists() or path.stat().st_size == 0:
+        return
+    data = path.read_bytes()
+    if data.endswith(b"\n"):
+        return
+    cut = data.rfind(b"\n") + 1
+    with open(path, "r+b") as fh:
+        fh.truncate(cut)
+
+
+def _append(fh: Any, record: Mapping[str, Any]) -> None:
+    fh.write(json.dumps(record) + "\n")
+    fh.flush()
+    os.fsync(fh.fileno())
+
+
+# ------------------------------------------------------------------------ runner
+OnStart = Callable[[str, BenchTask], None]
+OnResult = Callable[[dict[str, Any]], None]
+
+
+def run_benchmark(
+    tasks: Sequence[BenchTask],
+    approaches: Sequence[str],
+    generator: Generator,
+    out_dir: str | os.PathLike[str],
+    on_start: OnStart | None = None,
+    on_result: OnResult | None = None,
+    meta: Mapping[str, Any] | None = None,
+) -> dict[str, Any]:
+    """Run every (task, approach) pair not finished yet; write results and summary.
+
+    Args:
+        tasks: The task proposals.
+        approaches: Approaches to run (each of :data:`APPROACHES`).
+        generator: Generation + verification (its client, verifier and memory).
+        out_dir: The run directory.
+        on_start: Called before a pair runs.
+        on_result: Called with each new line as it is written.
+        meta: Extra fields for ``summary.json`` (model, task file, ...).
+
+    Returns:
+        The summary (as written to ``summary.json``).
+
+    Raises:
+        BenchmarkError: an unknown approach, or an unusable run directory.
+    """
+    for a in approaches:
+        if a not in APPROACHES:
+            raise BenchmarkError(f"unknown approach {a!r}; use {', '.join(APPROACHES)} or all")
+    out = Path(out_dir)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise BenchmarkError(f"cannot create run directory {out}: {exc}") from None
+    path = out / RESULTS_FILE
+    _repair_tail(path)
+    done = finished_pairs(read_results(path))
+    with open(path, "a", encoding="utf-8") as fh:
+        for task in tasks:
+            reason = not_expressible_reason(task)
+            for approach in approaches:
+                if (approach, task.name) in done:
+                    continue
+                if on_start is not None:
+                    on_start(approach, task)
+                record = _run_one(generator, task, approach, reason)
+                _append(fh, record)
+                if is_finished(record):
+                    done.add((approach, task.name))
+                if on_result is not None:
+                    on_result(record)
+    summary = summarize(read_results(path), approaches, [t.name for t in tasks])
+    summary.update(dict(meta or {}))
+    write_summary(out, summary)
+    return summary
+
+
+def _run_one(generator: Generator, task: BenchTask, approach: str,
+             reason: str | None) -> dict[str, Any]:
+    base = {"approach": approach, "task": task.name, "origin": task.origin}
+    if reason is not None:
+        return {**base, "status": "not_expressible", "reason": reason, "level_reached": "none"}
+    start = time.perf_counter()
+    result = generator.generate(task.proposal, approach, name=task.name,
+                                description=task.description)
+    record = {**base, **result.to_dict(), "task": task.name,
+              "status": "llm_error" if result.llm_error else "done",
+              "repairs": result.repairs,
+              "wall_s": round(time.perf_counter() - start, 3)}
+    return record
+
+
+# ----------------------------------------------------------------------- summary
+def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
+              task_names: Sequence[str] | None = None) -> dict[str, Any]:
+    """The rates per approach from result lines (the last line of a pair wins).
+
+    Args:
+        records: Lines of ``results.jsonl``.
+        approaches: Approaches to report, in order.
+        task_names: Restrict to these tasks (None: every task in the file).
+
+    Returns:
+        ``{"approaches": {approach: {tasks, syntax, runtime, completion (rates in
+        [0, 1]), counts, not_expressible, llm_errors, tokens, cost_usd}},
+        "research": RESEARCH_RATES}``.
+    """
+    wanted = set(task_names) if task_names is not None else None
+    latest: dict[tuple[str, str], Mapping[str, Any]] = {}
+    for r in records:
+        if wanted is not None and r.get("task") not in wanted:
+            continue
+        latest[(r["approach"], r["task"])] = r
+    table: dict[str, Any] = {}
+    for a in approaches:
+        rows = [r for (ap, _), r in latest.items() if ap == a]
+        done = [r for r in rows if r.get("status") == "done"]
+        counts = {lvl: sum(1 for r in done if at_least(r.get("level_reached", "none"), lvl))
+                  for lvl in RATE_LEVELS}
+        n = len(done)
+        tokens = sum(int(r.get("usage", {}).get("total_tokens", 0)) for r in done)
+        cost = sum(float(r.get("usage", {}).get("cost_usd", 0.0)) for r in done)
+        table[a] = {
+            "tasks": n,
+            **{lvl: (counts[lvl] / n if n else 0.0) for lvl in RATE_LEVELS},
+            "counts": counts,
+            "not_expressible": sum(1 for r in rows if r.get("status") == "not_expressible"),
+            "llm_errors": sum(1 for r in rows if r.get("status") == "llm_error"),
+            "repairs": sum(int(r.get("repairs", 0)) for r in done),
+            "tokens": tokens,
+            "cost_usd": round(cost, 6),
+        }
+    return {"approaches": table, "levels": list(RATE_LEVELS),
+            "research": {k: list(v) for k, v in RESEARCH_RATES.items()}}
+
+
+def summary_table(summary: Mapping[str, Any]) -> str:
+    """The summary as a Markdown table (ours next to the research's numbers)."""
+    head = ("| approach | tasks | syntax % | runtime % | completion % | not expressible | "
+            "LLM errors | repairs | tokens | cost $ | research syntax / runtime / completion % |")
+    lines = [head, "|" + "---|" * 11]
+    for a, row in summary["approaches"].items():
+        ref = RESEARCH_RATES.get(a)
+        ref_text = " / ".join(f"{x:.1f}" for x in ref) if ref else "-"
+        lines.append(
+            f"| {a} | {row['tasks']} | {100 * row['syntax']:.1f} | {100 * row['runtime']:.1f} | "
+            f"{100 * row['completion']:.1f} | {row['not_expressible']} | {row['llm_errors']} | "
+            f"{row['repairs']} | {row['tokens']} | {row['cost_usd']:.4f} | {ref_text} |")
+    return "\n".join(lines)
+
+
+def write_summary(out_dir: str | os.PathLike[str], summary: Mapping[str, Any]) -> None:
+    """Write ``summary.json``, ``summary.md`` and ``rates.png`` into ``out_dir``."""
+    out = Path(out_dir)
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    md = ["# Generation benchmark", "",
+          "Rates: fraction of tasks whose final graph reaches each level "
+          "(syntax: valid graph; runtime: compiles, resets and steps; completion: the "
+          "oracle succeeds in at least half of the episodes).", "", summary_table(summary), ""]
+    (out / "summary.md").write_text("\n".join(md))
+    plot_rates(summary, out / "rates.png")
+
+
+def plot_rates(summary: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
+    """Grouped bar chart: per approach and level, this run's rate and the research's."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    approaches = list(summary["approaches"])
+    fig, axes = plt.subplots(1, len(RATE_LEVELS), figsize=(4.2 * len(RATE_LEVELS), 3.8),
+                             sharey=True)
+    width = 0.38
+    for ax, lvl in zip(axes, RATE_LEVELS, strict=True):
+        i = RATE_LEVELS.index(lvl)
+        xs = range(len(approaches))
+        ours = [100 * summary["approaches"][a][lvl] for a in approaches]
+        ref = [RESEARCH_RATES.get(a, (0.0, 0.0, 0.0))[i] for a in approaches]
+        ax.bar([x - width / 2 for x in xs], ours, width, label="this run", color="#4e79a7")
+        ax.bar([x + width / 2 for x in xs], ref, width, label="research (GPT-4)",
+               color="#bab0ac")
+        for x, v in zip(xs, ours, strict=True):
+            ax.text(x - width / 2, v + 1, f"{v:.0f}", ha="center", fontsize=8)
+        ax.set_xticks(list(xs))
+        ax.set_xticklabels(approaches, rotation=15, fontsize=8)
+        ax.set_title(f"{lvl} pass rate")
+        ax.set_ylim(0, 110)
+    axes[0].set_ylabel("% of tasks")
+    axes[-1].legend(fontsize=8, loc="upper right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+__all__ = [
+    "LEVELS", "RATE_LEVELS", "RESEARCH_RATES", "BenchTask", "BenchmarkError",
+    "default_tasks_path", "finished_pairs", "load_tasks", "not_expressible_reason",
+    "plot_rates", "read_results", "run_benchmark", "summarize", "summary_table",
+    "write_summary",
+]
