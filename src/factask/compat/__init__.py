@@ -1,0 +1,6 @@
+"""Compatibility layers for task code written against other simulators' APIs.
+
+:mod:`factask.compat.cliport` runs GenSim/CLIPort ``Task`` classes (PyBullet code)
+against a recording environment and turns what they set up into a factask
+:class:`~factask.model.graph.TaskGraph`.
+"""

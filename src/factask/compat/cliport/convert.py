@@ -1,0 +1,383 @@
+"""Turn what a CLIPort task recorded (objects, goals) into a factask TaskGraph.
+
+Rules (documented in docs/compat.md):
+
+* one state variable per object id, named ``<kind>_<colour>_<index>``;
+* ``category='fixed'`` -> a fixed variable; a goal's object is always movable;
+* the recorded start pose -> ``AtFixedPose`` (x, y, yaw), or ``StartOn`` /
+  ``StartInside`` when the object starts above the table on another object;
+* one factor per ``add_goal``: ``pose`` -> ``AtPose`` (targets, ``matches``,
+  ``rotations=False`` -> ``check_yaw=False``), ``zone`` -> ``InZone`` on the
+  recorded region nearest to the zone pose (or a new fixed zone);
+* weights = ``step_max_reward``, rescaled to sum to 1;
+* an object in several goals keeps only its **last** goal (factask has one goal
+  per object); the earlier ones lose it, with a warning.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from factask.compat.cliport.errors import CliportImportError, Unsupported
+from factask.compat.cliport.grippers import Spatula
+from factask.compat.cliport.recorder import RecordedObject, Session
+from factask.compat.cliport.scoring import RavensGoal
+from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
+from factask.geometry import tilt_deg
+from factask.model.errors import GraphValidationError
+from factask.model.factors import SubtaskFactor
+from factask.model.graph import Limits, TaskGraph
+from factask.model.kinds import kind_spec
+from factask.model.relations import AtPose, InZone, TargetPose
+from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Z_TOLERANCE, Tolerances
+from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+
+#: An object whose bottom is this far above the table starts on something.
+START_ABOVE_TABLE = 0.01
+#: Slack when deciding that a support's top is under an object's bottom, metres.
+SUPPORT_SLACK = 0.02
+#: Weights are rescaled silently when they sum to 1 within this; beyond it, with a warning.
+WEIGHT_WARN_TOLERANCE = 1e-3
+#: Objects tilted more than this (degrees) at the start lose their tilt (with a warning).
+TILT_WARN_DEG = 5.0
+#: Longest factor name (the graph model allows 64 characters).
+MAX_NAME = 48
+#: Colour of a zone variable created from a zone goal's params.
+GOAL_ZONE_COLOR = "gray"
+
+
+@dataclass
+class _Goal:
+    index: int
+    objs: list[RecordedObject]
+    symmetries: list[float]
+    matches: np.ndarray
+    targets: list[tuple[np.ndarray, np.ndarray]]
+    replace: bool
+    rotations: bool
+    metric: str
+    zones: list[tuple[np.ndarray, np.ndarray, tuple[float, float]]]
+    max_reward: float
+    language: str
+
+
+def slugify(text: str, fallback: str) -> str:
+    """A snake_case name from free text (graph-model name rules)."""
+    slug = re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")
+    slug = re.sub(r"_+", "_", slug)[:MAX_NAME].strip("_")
+    if not slug or not slug[0].isalpha():
+        slug = f"{fallback}_{slug}".strip("_")
+    return slug
+
+
+def kebab(class_name: str) -> str:
+    """``StackBoxesColumn`` -> ``stack-boxes-column`` (GenSim's task names)."""
+    words = re.sub(r"(?<=[a-z0-9])(?=[A-Z])|(?<=[A-Z])(?=[A-Z][a-z])", "-", class_name)
+    name = re.sub(r"[^a-z0-9-]+", "-", words.lower()).strip("-")
+    return name or "cliport-task"
+
+
+def _unique(name: str, taken: set[str]) -> str:
+    out, k = name, 2
+    while out in taken:
+        suffix = f"_{k}"
+        out = f"{name[:MAX_NAME - len(suffix)]}{suffix}"
+        k += 1
+    taken.add(out)
+    return out
+
+
+# ------------------------------------------------------------------ goals
+def _language(task: Any, index: int, goal: Any) -> str:
+    for g, text in getattr(task, "_factask_goal_lang", []):
+        if g is goal and text:
+            return text
+    langs = list(getattr(task, "lang_goals", []) or [])
+    if len(langs) == len(task.goals) and langs:
+        return str(langs[index])
+    if langs:
+        return str(langs[min(index, len(langs) - 1)])
+    return str(getattr(task, "lang_template", "") or f"goal {index}")
+
+
+def _read_goals(task: Any, session: Session) -> list[_Goal]:
+    out = []
+    for i, goal in enumerate(task.goals):
+        if len(goal) != 8:
+            raise CliportImportError(f"goal {i} has {len(goal)} fields; CLIPort goals are "
+                                     "(objs, matches, targs, replace, rotations, metric, "
+                                     "params, max_reward)")
+        objs, matches, targs, replace, rotations, metric, params, max_reward = goal
+        objs = list(objs)
+        ids, syms = [], []
+        for o in objs:
+            if isinstance(o, (tuple, list)):
+                ids.append(o[0])
+                sym = o[1][0] if isinstance(o[1], (tuple, list)) else o[1]
+                syms.append(float(sym or 0.0))
+            else:
+                ids.append(o)
+                syms.append(0.0)
+        recorded = [session.obj(oid) for oid in ids]
+        if len({o.obj_id for o in recorded}) != len(recorded):
+            raise CliportImportError(f"goal {i} lists the same object twice")
+        targets = []
+        for t in list(targs or []):
+            try:
+                targets.append(split_pose(t))
+            except (TypeError, ValueError) as exc:
+                raise CliportImportError(f"goal {i}: bad target pose {t!r}: {exc}") from None
+        m = np.asarray(matches if matches is not None else np.ones((len(ids), len(targets))),
+                       dtype=float)
+        if m.ndim == 1 and len(ids) == 1:
+            m = m.reshape(1, -1)
+        if metric == "pose" and m.shape != (len(ids), len(targets)):
+            raise CliportImportError(f"goal {i}: matches is {m.shape}, expected "
+                                     f"{(len(ids), len(targets))} (objects x targets)")
+        zones = []
+        if metric == "zone":
+            for zp in list(params or []):
+                zpos, zquat = split_pose(zp[0])
+                zsize = np.asarray(zp[1], dtype=float).reshape(-1)
+                zones.append((zpos, zquat, (float(zsize[0]), float(zsize[-1] if len(zsize) == 1
+                                                                   else zsize[1]))))
+            if not zones:
+                raise CliportImportError(f"goal {i}: metric 'zone' needs params "
+                                         "[(zone_pose, zone_size)]")
+        elif metric != "pose":
+            raise Unsupported(f"goal {i}: metric {metric!r} (only 'pose' and 'zone' exist)")
+        out.append(_Goal(i, recorded, syms, (m > 0).astype(int), targets, bool(replace),
+                         bool(rotations), str(metric), zones, float(max_reward),
+                         _language(task, i, goal)))
+    return out
+
+
+# -------------------------------------------------------------- variables
+def object_names(objects: list[RecordedObject]) -> dict[int, str]:
+    counts: dict[str, int] = {}
+    names = {}
+    for o in objects:
+        base = f"{o.kind}_{o.color}"
+        names[o.obj_id] = f"{base}_{counts.get(base, 0)}"
+        counts[base] = counts.get(base, 0) + 1
+    return names
+
+
+def _inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
+    yaw = yaw_of_xyzw(o.quat)
+    d = xy - o.pos[:2]
+    c, s = math.cos(-yaw), math.sin(-yaw)
+    local = np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])
+    return bool(abs(local[0]) <= o.size[0] / 2 and abs(local[1]) <= o.size[1] / 2)
+
+
+def _placement(o: RecordedObject, earlier: list[RecordedObject], names: dict[int, str],
+               warn: Any) -> Any:
+    name = names[o.obj_id]
+    bottom = float(o.pos[2]) - o.size[2] / 2
+    holders = [c for c in earlier if _inside_footprint(o.pos[:2], c)]
+    receptacles = [c for c in holders if kind_spec(c.kind).receptacle]
+    if receptacles:
+        return StartInside(container=names[receptacles[-1].obj_id])
+    if bottom > START_ABOVE_TABLE:
+        below = [c for c in holders if kind_spec(c.kind).support
+                 and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
+        if below:
+            support = max(below, key=lambda c: c.pos[2] + c.size[2] / 2)
+            return StartOn(support=names[support.obj_id])
+        warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
+             "the table instead")
+    if tilt_deg(np.array([o.quat[3], *o.quat[:3]])) > TILT_WARN_DEG:
+        warn(f"{name} starts tilted; only its yaw is kept")
+    x, y = float(o.pos[0]), float(o.pos[1])
+    if not (WORKSPACE_X[0] <= x <= WORKSPACE_X[1] and WORKSPACE_Y[0] <= y <= WORKSPACE_Y[1]):
+        warn(f"{name} starts outside the workspace at ({x:.3f}, {y:.3f}); it starts at a "
+             "random free spot instead")
+        return OnTable()
+    return AtFixedPose(x=x, y=y, yaw_deg=math.degrees(yaw_of_xyzw(o.quat)))
+
+
+# ---------------------------------------------------------------- factors
+def _target(pos: np.ndarray, quat: np.ndarray, height: float) -> TargetPose:
+    z = float(pos[2])
+    # Ravens ignores z; factask checks it. Keep it only where it says "stacked".
+    keep_z = z > height / 2 + Z_TOLERANCE
+    return TargetPose(x=float(pos[0]), y=float(pos[1]), z=z if keep_z else None,
+                      yaw_deg=math.degrees(yaw_of_xyzw(quat)))
+
+
+def _zone_variable(goal: _Goal, objects: list[RecordedObject], names: dict[int, str],
+                   extra: list[StateVariable], warn: Any) -> str:
+    zpos, zquat, (sx, sy) = goal.zones[0]
+    if len(goal.zones) > 1:
+        warn(f"goal {goal.index}: {len(goal.zones)} zones given; factask uses the first")
+    moving = {o.obj_id for o in goal.objs}
+    regions = [o for o in objects if kind_spec(o.kind).region and o.obj_id not in moving]
+    if regions:
+        near = min(regions, key=lambda o: float(np.linalg.norm(o.pos[:2] - zpos[:2])))
+        if float(np.linalg.norm(near.pos[:2] - zpos[:2])) <= max(sx, sy) / 2:
+            return names[near.obj_id]
+    taken = set(names.values()) | {v.name for v in extra}
+    name = _unique(f"zone_goal_{goal.index}", taken)
+    x = float(np.clip(zpos[0], *WORKSPACE_X))
+    y = float(np.clip(zpos[1], *WORKSPACE_Y))
+    extra.append(StateVariable(
+        name=name, description=f"zone of goal {goal.index} (from add_goal params)",
+        kind="zone", size=(sx, sy, 0.001), color=GOAL_ZONE_COLOR, fixed=True,
+        initial=AtFixedPose(x=x, y=y, yaw_deg=math.degrees(yaw_of_xyzw(zquat)))))
+    warn(f"goal {goal.index}: no recorded zone at {tuple(round(float(c), 3) for c in zpos[:2])}; "
+         f"added fixed zone variable {name!r} of size {sx:.3f} x {sy:.3f}")
+    return name
+
+
+def _keep_last_goal_per_object(goals: list[_Goal], names: dict[int, str], warn: Any) -> None:
+    claimed: set[int] = set()
+    for g in reversed(goals):
+        keep = [i for i, o in enumerate(g.objs) if o.obj_id not in claimed]
+        dropped = [names[o.obj_id] for o in g.objs if o.obj_id in claimed]
+        if dropped:
+            warn(f"goal {g.index} ({g.language!r}): {', '.join(dropped)} also in a later "
+                 "goal; only the last goal of an object is kept")
+        claimed.update(o.obj_id for o in g.objs)
+        g.objs = [g.objs[i] for i in keep]
+        g.symmetries = [g.symmetries[i] for i in keep]
+        if g.metric == "pose":
+            g.matches = g.matches[keep, :] if keep else g.matches[:0]
+
+
+def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph,
+                                                                       list[RavensGoal]]:
+    """The task graph and Ravens goal queue of a task after its ``reset``.
+
+    Args:
+        task: The reset task instance.
+        session: Its recording session (objects, warnings).
+        class_name: The task class's name (gives the graph's name).
+
+    Returns:
+        (validated graph, ordered Ravens goals).
+
+    Raises:
+        CliportImportError: a goal cannot be expressed or the graph is invalid.
+        Unsupported: a goal uses a metric or shape factask lacks.
+    """
+    warn = session.warn
+    objects = list(session.objects.values())
+    if not objects:
+        raise CliportImportError("reset added no objects (env.add_object was never called)")
+    names = object_names(objects)
+    goals = _read_goals(task, session)
+    if not goals:
+        raise CliportImportError("reset added no goals (add_goal was never called)")
+    if getattr(task, "ee", None) is Spatula:
+        warn("the task asks for a spatula; factask uses its suction cup")
+
+    ravens = [RavensGoal(
+        objects=[names[o.obj_id] for o in g.objs], symmetries=list(g.symmetries),
+        matches=g.matches.tolist(),
+        targets=[(float(p[0]), float(p[1]), float(p[2]), yaw_of_xyzw(q)) for p, q in g.targets],
+        replace=g.replace, rotations=g.rotations, metric=g.metric,
+        zones=[(float(p[0]), float(p[1]), float(p[2]), yaw_of_xyzw(q), sx, sy)
+               for p, q, (sx, sy) in g.zones],
+        max_reward=g.max_reward, language=g.language) for g in goals]
+
+    symmetry: dict[int, float] = {}
+    for g in goals:
+        for o, sym in zip(g.objs, g.symmetries, strict=True):
+            symmetry[o.obj_id] = sym
+    _keep_last_goal_per_object(goals, names, warn)
+
+    # Factors.
+    tol = None
+    pos_eps = float(getattr(task, "pos_eps", XY_TOLERANCE))
+    rot_eps_deg = math.degrees(float(getattr(task, "rot_eps", math.radians(YAW_TOLERANCE_DEG))))
+    if not (math.isclose(pos_eps, XY_TOLERANCE) and math.isclose(rot_eps_deg,
+                                                                 YAW_TOLERANCE_DEG)):
+        tol = Tolerances(xy=pos_eps, yaw_deg=rot_eps_deg)
+    extra: list[StateVariable] = []
+    taken = set(names.values())
+    drafts: list[tuple[_Goal, Any]] = []
+    for g in goals:
+        rows = [i for i in range(len(g.objs)) if g.metric != "pose" or g.matches[i].any()]
+        if len(rows) < len(g.objs):
+            warn(f"goal {g.index}: {len(g.objs) - len(rows)} object(s) may go to no target "
+                 "(a zero row of matches); they are left out")
+            g.objs = [g.objs[i] for i in rows]
+            g.matches = g.matches[rows, :]
+        if not g.objs:
+            warn(f"goal {g.index} ({g.language!r}) has no objects left and is dropped")
+            continue
+        objs = [names[o.obj_id] for o in g.objs]
+        extra_kw = {"tolerances": tol} if tol is not None else {}
+        if g.metric == "pose":
+            if len(g.objs) > len(g.targets):
+                raise Unsupported(f"goal {g.index}: {len(g.objs)} objects but only "
+                                  f"{len(g.targets)} target pose(s); factask gives every "
+                                  "object its own target")
+            height = {o.obj_id: o.size[2] for o in g.objs}
+            tallest = max(height.values())
+            rel: Any = AtPose(objects=objs, poses=[_target(p, q, tallest) for p, q in g.targets],
+                              matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
+        else:
+            zone = _zone_variable(g, objects, names, extra, warn)
+            taken.add(zone)
+            rel = InZone(objects=objs, zone=zone, **extra_kw)
+        drafts.append((g, rel))
+    if not drafts:
+        raise CliportImportError("no goal is left to check after merging goals per object")
+
+    weights = [g.max_reward for g, _ in drafts]
+    if any(not math.isfinite(w) or w <= 0 for w in weights):
+        warn("some step_max_reward values are not positive; every goal gets an equal share")
+        weights = [1.0] * len(drafts)
+    total = sum(weights)
+    if abs(total - 1.0) > WEIGHT_WARN_TOLERANCE:
+        why = " (after dropping goals)" if len(drafts) < len(goals) else ""
+        warn(f"step_max_reward values sum to {total:.4g}{why}, not 1; rescaled to sum to 1")
+    factors = []
+    for (g, rel), w in zip(drafts, weights, strict=True):
+        name = _unique(slugify(g.language, "goal"), taken)
+        factors.append(SubtaskFactor(name=name, description=g.language, goal=rel,
+                                     weight=w / total))
+    # Fix rounding so the weights sum to exactly 1.
+    drift = 1.0 - sum(f.weight for f in factors)
+    factors[-1].weight = factors[-1].weight + drift
+
+    # Variables.
+    moved = {o.obj_id for g, _ in drafts for o in g.objs}
+    variables = []
+    for k, o in enumerate(objects):
+        name = names[o.obj_id]
+        spec = kind_spec(o.kind)
+        fixed = o.category == "fixed" or not spec.movable
+        if o.obj_id in moved and fixed:
+            if o.category == "fixed":
+                warn(f"{name} was added as 'fixed' but a goal moves it; made movable")
+            fixed = False
+        sym = symmetry.get(o.obj_id)
+        sym_deg = None
+        if sym is not None:
+            sym_deg = min(360.0, max(0.0, math.degrees(sym)))
+        variables.append(StateVariable(
+            name=name, description=f"{o.urdf} (CLIPort object {o.obj_id})", kind=o.kind,
+            size=o.size, color=o.color, fixed=fixed, symmetry_deg=sym_deg,
+            initial=_placement(o, objects[:k], names, warn)))
+    variables.extend(extra)
+
+    max_steps = int(getattr(task, "max_steps", 0) or 0)
+    limits = Limits(max_actions=min(max(max_steps, 1), 1000)) if max_steps else Limits()
+    doc = (type(task).__doc__ or "").strip().splitlines()
+    description = str(getattr(task, "lang_template", "") or (doc[0] if doc else ""))
+    graph = TaskGraph(name=kebab(class_name), description=description, variables=variables,
+                      factors=factors, limits=limits)
+    try:
+        graph.validate()
+    except GraphValidationError as exc:
+        raise CliportImportError(f"the imported graph is not valid:\n{exc}") from exc
+    return graph, ravens

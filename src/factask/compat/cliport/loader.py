@@ -1,0 +1,267 @@
+"""Load a GenSim/CLIPort task file unchanged and import it as a factask graph.
+
+**The file is executed** (it is Python): only load files you trust, or use the
+batch command, which runs each file in a child process with a time limit.
+
+While a file is loaded, :func:`cliport_aliases` puts a synthetic ``cliport``
+package (``cliport.tasks``, ``cliport.tasks.task``, ``cliport.utils.utils``,
+``cliport.tasks.primitives``, ``cliport.tasks.grippers``, ``cliport.tasks.cameras``)
+and a ``pybullet`` stand-in into ``sys.modules``, mapping to the modules of
+:mod:`factask.compat.cliport`; afterwards the previous entries are restored.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import random
+import sys
+import traceback
+import types
+import uuid
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from factask.compat.cliport import cameras, grippers, primitives, pybullet_stub, task, utils
+from factask.compat.cliport.convert import build_graph, kebab, object_names
+from factask.compat.cliport.errors import CliportImportError, Unsupported
+from factask.compat.cliport.recorder import FAKE_ASSETS_ROOT, RecordingEnv, Session, session_scope
+from factask.compat.cliport.scoring import RavensGoal
+from factask.compat.cliport.task import RAVENS_POS_EPS, RAVENS_ROT_EPS, Task
+from factask.model.errors import FactaskError
+from factask.model.graph import TaskGraph
+
+#: Module names the alias context provides.
+ALIAS_NAMES = (
+    "cliport", "cliport.tasks", "cliport.tasks.task", "cliport.tasks.primitives",
+    "cliport.tasks.grippers", "cliport.tasks.cameras", "cliport.utils", "cliport.utils.utils",
+    "pybullet",
+)
+
+
+@dataclass
+class ImportResult:
+    """A CLIPort task imported as a factask graph.
+
+    Attributes:
+        graph: The validated task graph.
+        warnings: Every approximation or dropped detail, in order.
+        task_name: The graph's (kebab-case) name.
+        class_name: The task class imported.
+        goals: CLIPort's goal queue, in order, in factask's object names (for
+            :func:`~factask.compat.cliport.scoring.ravens_reward`).
+        object_ids: CLIPort object id -> variable name.
+        pos_eps: The task's Ravens XY tolerance, metres.
+        rot_eps: The task's Ravens yaw tolerance, radians.
+    """
+
+    graph: TaskGraph
+    warnings: list[str] = field(default_factory=list)
+    task_name: str = ""
+    class_name: str = ""
+    goals: list[RavensGoal] = field(default_factory=list)
+    object_ids: dict[int, str] = field(default_factory=dict)
+    pos_eps: float = RAVENS_POS_EPS
+    rot_eps: float = RAVENS_ROT_EPS
+
+
+def _package(name: str, **attrs: Any) -> types.ModuleType:
+    mod = types.ModuleType(name, f"factask stand-in for {name}")
+    mod.__path__ = []  # a package, so submodule imports resolve through sys.modules
+    for key, value in attrs.items():
+        setattr(mod, key, value)
+    return mod
+
+
+def _tasks_getattr(name: str) -> Any:
+    if name.startswith("__"):
+        raise AttributeError(name)
+    raise Unsupported(f"cliport.tasks.{name}: other CLIPort/GenSim task classes are not "
+                      "available; a task file must define its own Task subclass")
+
+
+def _alias_modules() -> dict[str, types.ModuleType]:
+    tasks_pkg = _package("cliport.tasks", Task=Task, task=task, primitives=primitives,
+                         grippers=grippers, cameras=cameras)
+    tasks_pkg.__getattr__ = _tasks_getattr  # type: ignore[attr-defined]
+    utils_pkg = _package("cliport.utils", utils=utils)
+    root = _package("cliport", tasks=tasks_pkg, utils=utils_pkg)
+    return {
+        "cliport": root, "cliport.tasks": tasks_pkg, "cliport.tasks.task": task,
+        "cliport.tasks.primitives": primitives, "cliport.tasks.grippers": grippers,
+        "cliport.tasks.cameras": cameras, "cliport.utils": utils_pkg,
+        "cliport.utils.utils": utils, "pybullet": pybullet_stub,
+    }
+
+
+@contextlib.contextmanager
+def cliport_aliases() -> Iterator[None]:
+    """Make ``cliport.*`` and ``pybullet`` importable as factask's stand-ins.
+
+    Whatever those names meant before (a real install, nothing) is restored on
+    exit, so the aliases never leak into the rest of the process.
+    """
+    saved = {name: sys.modules.get(name) for name in ALIAS_NAMES}
+    sys.modules.update(_alias_modules())
+    try:
+        yield
+    finally:
+        for name, prev in saved.items():
+            if prev is None:
+                sys.modules.pop(name, None)
+            else:
+                sys.modules[name] = prev
+
+
+@contextlib.contextmanager
+def _seeded(seed: int) -> Iterator[None]:
+    """Seed ``random`` and ``np.random`` (task code uses them) and restore them after."""
+    py_state, np_state = random.getstate(), np.random.get_state()
+    random.seed(seed)
+    np.random.seed(seed)
+    try:
+        yield
+    finally:
+        random.setstate(py_state)
+        np.random.set_state(np_state)
+
+
+def _where(exc: BaseException, path: Path) -> str:
+    """'file:line in function: code' of the last traceback frame in the user's file."""
+    frames = [f for f in traceback.extract_tb(exc.__traceback__)
+              if Path(f.filename).resolve() == path.resolve()]
+    if not frames:
+        return str(path)
+    f = frames[-1]
+    code = f" `{f.line.strip()}`" if f.line else ""
+    return f"{path}:{f.lineno} in {f.name}:{code}"
+
+
+def _user_error(what: str, exc: BaseException, path: Path) -> CliportImportError:
+    cls = Unsupported if isinstance(exc, Unsupported) else CliportImportError
+    return cls(f"{what}: {type(exc).__name__}: {exc} (at {_where(exc, path)})")
+
+
+def _exec_file(path: Path) -> types.ModuleType:
+    try:
+        source = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise CliportImportError(f"cannot read {path}: {exc}") from None
+    try:
+        code = compile(source, str(path), "exec")
+    except SyntaxError as exc:
+        raise CliportImportError(
+            f"{path}:{exc.lineno}: syntax error: {exc.msg}"
+            + (f" `{exc.text.strip()}`" if exc.text else "")) from None
+    name = f"factask_cliport_user_{uuid.uuid4().hex[:12]}"
+    module = types.ModuleType(name)
+    module.__file__ = str(path)
+    sys.modules[name] = module  # dataclasses/typing look the module up while it runs
+    try:
+        exec(code, module.__dict__)
+    except CliportImportError:
+        raise
+    except Exception as exc:
+        raise _user_error(f"loading {path.name} failed", exc, path) from exc
+    finally:
+        sys.modules.pop(name, None)
+    return module
+
+
+def _camel(stem: str) -> str:
+    return "".join(part.capitalize() for part in stem.replace("-", "_").split("_"))
+
+
+def _pick_class(module: types.ModuleType, path: Path, class_name: str | None) -> type:
+    if class_name is not None:
+        cls = getattr(module, class_name, None)
+        if not (isinstance(cls, type) and issubclass(cls, Task)):
+            raise CliportImportError(f"{path}: no Task subclass named {class_name!r}")
+        return cls
+    own = [v for v in vars(module).values()
+           if isinstance(v, type) and issubclass(v, Task) and v is not Task
+           and v.__module__ == module.__name__]
+    if not own:
+        raise CliportImportError(f"{path}: no Task subclass defined (a task file defines "
+                                 "`class MyTask(Task):` with `from cliport.tasks.task import "
+                                 "Task`)")
+    if len(own) == 1:
+        return own[0]
+    by_name = [c for c in own if c.__name__ == _camel(path.stem)]
+    if by_name:
+        return by_name[0]
+    raise CliportImportError(f"{path}: several Task subclasses "
+                             f"({', '.join(c.__name__ for c in own)}); pick one with --class")
+
+
+def load_task_class(path: str | Path, class_name: str | None = None) -> type:
+    """Execute a task file with the CLIPort stand-ins and return its Task class.
+
+    Args:
+        path: The ``.py`` file (executed: trusted code only).
+        class_name: The class to return; default: the one Task subclass the file
+            defines (or the one named after the file, if it defines several).
+
+    Returns:
+        The class (a subclass of :class:`factask.compat.cliport.task.Task`).
+
+    Raises:
+        CliportImportError: unreadable file, syntax error (with its line), an
+            exception while the module runs (with the user's line), or no Task subclass.
+    """
+    p = Path(path)
+    with cliport_aliases():
+        module = _exec_file(p)
+    return _pick_class(module, p, class_name)
+
+
+def import_cliport(path: str | Path, class_name: str | None = None,
+                   seed: int = 0) -> ImportResult:
+    """Load a task file, run ``reset`` against a recording env, and build its graph.
+
+    Args:
+        path: The ``.py`` file (executed: trusted code only).
+        class_name: Which Task subclass (default: see :func:`load_task_class`).
+        seed: Seed of every random draw of the reset (``np.random``, ``random``,
+            ``get_random_pose``).
+
+    Returns:
+        The validated graph, the warnings and the Ravens goal queue.
+
+    Raises:
+        CliportImportError: any failure, with a message naming the file and line.
+        Unsupported: the task uses something factask does not model (a subclass
+            of CliportImportError).
+    """
+    p = Path(path)
+    session = Session(seed=seed, rng=np.random.default_rng(seed))
+    try:
+        with cliport_aliases(), _seeded(seed), session_scope(session):
+            module = _exec_file(p)
+            cls = _pick_class(module, p, class_name)
+            try:
+                instance = cls()
+                instance.set_assets_root(FAKE_ASSETS_ROOT)
+                env = RecordingEnv(session, instance)
+                instance.reset(env)
+            except Exception as exc:
+                raise _user_error(f"{cls.__name__}.reset failed", exc, p) from exc
+            try:
+                graph, goals = build_graph(instance, session, cls.__name__)
+            except CliportImportError as exc:
+                raise type(exc)(f"{p}: {cls.__name__}: {exc}") from exc
+            except FactaskError as exc:
+                raise CliportImportError(f"{p}: {cls.__name__}: {exc}") from exc
+    finally:
+        session.close()
+    names = {v.name for v in graph.variables}
+    return ImportResult(
+        graph=graph, warnings=list(session.warnings), task_name=kebab(cls.__name__),
+        class_name=cls.__name__, goals=goals,
+        object_ids={oid: n for oid, n in object_names(list(session.objects.values())).items()
+                    if n in names},
+        pos_eps=float(instance.pos_eps), rot_eps=float(instance.rot_eps))
+

@@ -1,0 +1,105 @@
+"""Stand-in for ``pybullet`` while a task file is loaded.
+
+Pure pose maths (``getQuaternionFromEuler``, ``multiplyTransforms``, ...) is
+computed; calls about recorded objects (``getBasePositionAndOrientation``,
+``resetBasePositionAndOrientation``, ``changeVisualShape``) read or update the
+recording; ``stepSimulation`` does nothing (nothing moves during a reset).
+Anything else raises :class:`~factask.compat.cliport.errors.Unsupported` naming
+the call.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from factask.compat.cliport import transforms
+from factask.compat.cliport.errors import Unsupported
+from factask.compat.cliport.recorder import active_session, color_name
+
+# Constants task code passes around (values as in PyBullet).
+GEOM_SPHERE, GEOM_BOX, GEOM_CYLINDER, GEOM_MESH, GEOM_PLANE, GEOM_CAPSULE = 2, 3, 4, 5, 6, 7
+JOINT_REVOLUTE, JOINT_PRISMATIC, JOINT_SPHERICAL = 0, 1, 2
+JOINT_PLANAR, JOINT_FIXED, JOINT_POINT2POINT, JOINT_GEAR = 3, 4, 5, 6
+DIRECT, GUI = 2, 1
+
+
+def getQuaternionFromEuler(euler: Any) -> tuple[float, ...]:
+    """Quaternion xyzw of roll, pitch, yaw (PyBullet: fixed axes x, y, z)."""
+    return tuple(float(c) for c in Rotation.from_euler("xyz", list(euler)).as_quat())
+
+
+def getEulerFromQuaternion(quat: Any) -> tuple[float, ...]:
+    """Roll, pitch, yaw of a quaternion xyzw."""
+    return tuple(float(c) for c in transforms.rotation(quat).as_euler("xyz"))
+
+
+def getMatrixFromQuaternion(quat: Any) -> tuple[float, ...]:
+    """Row-major 3x3 rotation matrix, flat."""
+    return transforms.matrix(quat)
+
+
+def multiplyTransforms(pos0: Any, quat0: Any, pos1: Any, quat1: Any
+                       ) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """(pos0, quat0) * (pos1, quat1)."""
+    return transforms.multiply((pos0, quat0), (pos1, quat1))
+
+
+def invertTransform(pos: Any, quat: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Inverse of (pos, quat)."""
+    return transforms.invert((pos, quat))
+
+
+def getBasePositionAndOrientation(obj_id: int, *args: Any, **kwargs: Any
+                                  ) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """The recorded pose of an object (nothing has moved during a reset)."""
+    o = active_session().obj(obj_id)
+    return tuple(map(float, o.pos)), tuple(map(float, o.quat))
+
+
+def resetBasePositionAndOrientation(obj_id: int, pos: Any, quat: Any,
+                                    *args: Any, **kwargs: Any) -> None:
+    """Move a recorded object (its start pose becomes this one)."""
+    o = active_session().obj(obj_id)
+    o.pos, o.quat = transforms.split_pose((pos, quat))
+
+
+def changeVisualShape(obj_id: int, link: int = -1, *args: Any,
+                      rgbaColor: Any = None, **kwargs: Any) -> None:
+    """Recolour a recorded object (other visual changes are ignored)."""
+    s = active_session()
+    o = s.obj(obj_id)
+    if rgbaColor is not None:
+        o.color = color_name(rgbaColor, s)
+    if kwargs.get("textureUniqueId") is not None:
+        s.warn("p.changeVisualShape(textureUniqueId=...) ignored: factask has no textures")
+
+
+def getVisualShapeData(obj_id: int, *args: Any, **kwargs: Any
+                       ) -> list[tuple[Any, ...]]:
+    """One visual-shape entry of the recorded object: (id, link, geom, dimensions, ...)."""
+    o = active_session().obj(obj_id)
+    rgba = (0.5, 0.5, 0.5, 1.0)
+    return [(o.obj_id, -1, GEOM_BOX, tuple(o.size), b"", (0.0, 0.0, 0.0),
+             (0.0, 0.0, 0.0, 1.0), rgba)]
+
+
+def getAABB(obj_id: int, *args: Any, **kwargs: Any
+            ) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Axis-aligned box of the recorded object (its own extents about its position)."""
+    o = active_session().obj(obj_id)
+    half = np.asarray(o.size) / 2
+    return tuple(map(float, o.pos - half)), tuple(map(float, o.pos + half))
+
+
+def stepSimulation(*args: Any, **kwargs: Any) -> None:
+    """No-op: nothing is simulated while recording."""
+
+
+def __getattr__(name: str) -> Any:
+    if name.startswith("__"):
+        raise AttributeError(name)
+    raise Unsupported(f"pybullet.{name} is not supported by factask's CLIPort layer "
+                      "(only pose maths and recorded-object poses/colours are)")

@@ -1,0 +1,155 @@
+"""Stand-in for ``cliport.utils.utils``: colours and pose helpers task code uses.
+
+Colours are factask's palette (:mod:`factask.model.palette`), which starts with
+the Ravens/Tableau values, as RGB lists (task code writes ``COLORS[name] + [1]``).
+Unlike GenSim, an unknown colour name is an error listing the valid names, not
+silently red. Names this module does not provide raise
+:class:`~factask.compat.cliport.errors.Unsupported` naming them.
+"""
+
+from __future__ import annotations
+
+import random
+from typing import Any
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from factask.compat.cliport import transforms
+from factask.compat.cliport.errors import Unsupported
+from factask.model.palette import COLOR_NAMES
+from factask.model.palette import COLORS as PALETTE
+
+
+class _Colors(dict):  # type: ignore[type-arg]
+    """Name -> RGB list; a copy on every lookup (callers append alpha in place)."""
+
+    def __getitem__(self, key: Any) -> list[float]:
+        if key not in self:
+            raise KeyError(f"unknown colour {key!r}; valid colours: {', '.join(self)}")
+        return list(dict.__getitem__(self, key))
+
+
+#: Colour name -> [r, g, b] in [0, 1].
+COLORS: dict[str, list[float]] = _Colors({n: list(PALETTE[n]) for n in COLOR_NAMES})
+COLORS_NAMES = list(COLOR_NAMES)
+#: Ravens' colour splits.
+TRAIN_COLORS = ["blue", "red", "green", "yellow", "brown", "gray", "cyan"]
+EVAL_COLORS = ["blue", "red", "green", "orange", "purple", "pink", "white"]
+
+
+def get_colors_names(mode: str = "train") -> list[str]:
+    """Colour names a task may sample from (GenSim returns the train split always)."""
+    return list(TRAIN_COLORS)
+
+
+def get_colors(mode: str = "train", n_colors: int = -1, **kwargs: Any
+               ) -> tuple[list[list[float]], list[str]]:
+    """``n_colors`` distinct colours (all of them if -1): (RGB lists, names)."""
+    names = get_colors_names(mode)
+    if n_colors != -1:
+        names = random.sample(names, n_colors)
+    return [COLORS[n] for n in names], names
+
+
+def get_random_color() -> tuple[list[list[float]], list[str]]:
+    """One random train colour, as GenSim returns it."""
+    return get_colors(mode="train", n_colors=1)
+
+
+def invert(pose: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Inverse of a (position, quaternion xyzw) pose."""
+    return transforms.invert(pose)
+
+
+def multiply(pose0: Any, pose1: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Product ``pose0 * pose1`` of two poses."""
+    return transforms.multiply(pose0, pose1)
+
+
+def apply(pose: Any, position: Any) -> tuple[Any, ...]:
+    """Move point(s) ``position`` ((3,) or (3, N)) into the frame of ``pose``."""
+    pts = np.float32(position)
+    shape = pts.shape
+    pts = pts.reshape(3, -1)
+    pos, quat = transforms.split_pose(pose)
+    rot = np.float32(Rotation.from_quat(quat).as_matrix())
+    out = rot @ pts + np.float32(pos).reshape(3, 1)
+    return tuple(out.reshape(shape))
+
+
+def eulerXYZ_to_quatXYZW(rotation: Any) -> tuple[float, ...]:
+    """Quaternion xyzw of Euler angles (x, y, z) in CLIPort's convention (static z-x-y)."""
+    rx, ry, rz = (float(c) for c in rotation)
+    return tuple(float(c) for c in Rotation.from_euler("zxy", [rz, rx, ry]).as_quat())
+
+
+def quatXYZW_to_eulerXYZ(quaternion_xyzw: Any) -> tuple[float, ...]:
+    """Euler angles (x, y, z) of a quaternion xyzw, inverse of :func:`eulerXYZ_to_quatXYZW`."""
+    rz, rx, ry = Rotation.from_quat(transforms.as_quat_xyzw(quaternion_xyzw)).as_euler("zxy")
+    return float(rx), float(ry), float(rz)
+
+
+def q_mult(q1: Any, q2: Any) -> tuple[float, ...]:
+    """Product of two (w, x, y, z) quaternions (CLIPort's ``q_mult`` order)."""
+    w1, x1, y1, z1 = q1
+    w2, x2, y2, z2 = q2
+    return (w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 + y1 * w2 + z1 * x2 - x1 * z2,
+            w1 * z2 + z1 * w2 + x1 * y2 - y1 * x2)
+
+
+def sample_distribution(prob: Any, n_samples: int = 1) -> np.ndarray:
+    """Sample pixel coordinates in proportion to ``prob`` (uses ``np.random``)."""
+    prob = np.asarray(prob, dtype=float)
+    flat = prob.flatten() / np.sum(prob)
+    idx = np.random.choice(np.arange(len(flat)), n_samples, p=flat, replace=False)
+    return np.int32(np.array(np.unravel_index(idx, prob.shape)).T.squeeze())
+
+
+def xyz_to_pix(position: Any, bounds: Any, pixel_size: float) -> tuple[int, int]:
+    """Pixel (row, column) of a world position in CLIPort's top-down heightmap."""
+    bounds = np.asarray(bounds)
+    u = int(np.round((position[1] - bounds[1, 0]) / pixel_size))
+    v = int(np.round((position[0] - bounds[0, 0]) / pixel_size))
+    return u, v
+
+
+def pix_to_xyz(pixel: Any, height: Any, bounds: Any, pixel_size: float,
+               skip_height: bool = False) -> tuple[float, float, float]:
+    """World position of a heightmap pixel (height from ``height`` unless skipped)."""
+    bounds = np.asarray(bounds)
+    u, v = int(pixel[0]), int(pixel[1])
+    x = bounds[0, 0] + v * pixel_size
+    y = bounds[1, 0] + u * pixel_size
+    z = 0.0 if skip_height else bounds[2, 0] + float(np.asarray(height)[u, v])
+    return float(x), float(y), float(z)
+
+
+def solve_hanoi_all(n_disks: int) -> list[list[int]]:
+    """Moves [disk, from rod, to rod] solving Towers of Hanoi from rod 0 to rod 2."""
+    steps: list[list[int]] = []
+
+    def solve(n: int, t0: int, t1: int, t2: int) -> None:
+        if n == 0:
+            steps.append([n, t0, t1])
+            return
+        solve(n - 1, t0, t2, t1)
+        steps.append([n, t0, t1])
+        solve(n - 1, t2, t1, t0)
+
+    solve(n_disks - 1, 0, 2, 1)
+    return steps
+
+
+def set_seed(seed: int, torch: bool = False) -> None:
+    """Seed ``random`` and ``np.random`` (torch is not used here)."""
+    random.seed(seed)
+    np.random.seed(seed)
+
+
+def __getattr__(name: str) -> Any:
+    if name.startswith("__"):
+        raise AttributeError(name)
+    raise Unsupported(f"cliport.utils.utils.{name} is not provided by factask's CLIPort layer")
