@@ -36,7 +36,8 @@ DEFAULT_FPS = 20
 #: Headless backends in order of preference.
 HEADLESS_BACKENDS = ("egl", "osmesa")
 
-Camera = str | int
+#: A camera: its name, its id (-1: the free camera) or a ``mujoco.MjvCamera``.
+Camera = str | int | mujoco.MjvCamera
 
 
 class RenderError(FactaskError):
@@ -86,7 +87,9 @@ def ensure_headless_gl() -> str:
 
 
 # ----------------------------------------------------------------- renderer
-def _camera_id(model: mujoco.MjModel, camera: Camera) -> int:
+def _camera_id(model: mujoco.MjModel, camera: Camera) -> int | mujoco.MjvCamera:
+    if isinstance(camera, mujoco.MjvCamera):
+        return camera
     if isinstance(camera, str):
         cam = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, camera)
         if cam < 0:
@@ -143,7 +146,7 @@ class SceneRenderer:
 
         Args:
             data: The model's data (positions must be current: ``mj_forward``).
-            camera: Camera name or id (-1: the free camera).
+            camera: Camera name, id (-1: the free camera) or ``mujoco.MjvCamera``.
             show_markers: Draw the translucent goal markers.
         """
         r = self._renderer
