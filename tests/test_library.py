@@ -223,6 +223,14 @@ def test_sequenced_tasks_chain_their_factors(graphs: dict[str, TaskGraph]) -> No
         assert "red" in g.factor_order()[0]
 
 
+def test_docs_list_every_task_and_template() -> None:
+    doc = Path(__file__).resolve().parents[1] / "docs" / "library.md"
+    text = doc.read_text()
+    for name in [*TASKS, *TEMPLATES]:
+        assert f"`{name}`" in text, name
+    assert (doc.parent / "img" / "stack-block-pyramid-graph.png").exists()
+
+
 # -------------------------------------------------------------------- templates
 def test_at_least_12_templates_and_lookup() -> None:
     assert len(TEMPLATES) >= 12

@@ -6,7 +6,9 @@ from factask.library.builders import assemble, register, start_inside, start_on,
 from factask.model import TaskGraph
 
 BLOCK = (0.04, 0.04, 0.04)
-BOWL = (0.12, 0.12, 0.05)
+#: A wide bowl: two 4 cm blocks fit side by side inside its round wall (a 12 cm
+#: bowl holds only one).
+WIDE_BOWL = (0.16, 0.16, 0.05)
 CONTAINER = (0.16, 0.16, 0.05)
 PALLET = (0.30, 0.25, 0.0375)
 SQUARE_STAND = (0.09, 0.09, 0.005)
@@ -49,8 +51,9 @@ def stack_blocks_in_container() -> TaskGraph:
 
 @register("color-sorted-container-stack")
 def color_sorted_container_stack() -> TaskGraph:
-    bowl_a = var("left_bowl", "bowl", "white", BOWL, description="bowl holding red and blue")
-    bowl_b = var("right_bowl", "bowl", "white", BOWL,
+    bowl_a = var("left_bowl", "bowl", "white", WIDE_BOWL,
+                 description="bowl holding red and blue")
+    bowl_b = var("right_bowl", "bowl", "white", WIDE_BOWL,
                  description="bowl holding yellow and green")
     colors_bowl = {"red": bowl_a, "blue": bowl_a, "green": bowl_b, "yellow": bowl_b}
     blocks = [var(f"{c}_block", "block", c, BLOCK, initial=start_inside(b))
