@@ -1,0 +1,99 @@
+"""Commands importing GenSim/CLIPort task files: ``import-cliport`` and its batch form.
+
+Task files are Python and **are executed**. ``import-cliport`` runs the file in
+this process; ``import-cliport-batch`` runs each file in a child process with a
+time limit. Import only code you trust.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+from rich.console import Console
+
+from factask.cli.app import app
+
+console = Console()
+err_console = Console(stderr=True, soft_wrap=True)
+
+_EXEC_WARNING = ("The task file is Python code and IS EXECUTED (not sandboxed): "
+                 "only import files you trust.")
+
+
+@app.command("import-cliport", help=(
+    "Import a GenSim/CLIPort task file (a Task subclass) as a factask task graph. "
+    "Its reset(env) runs against a recording environment; the objects and goals it "
+    "adds become variables and factors. " + _EXEC_WARNING))
+def import_cliport_cmd(
+    file: Path = typer.Argument(..., help="The task's .py file (it is executed)."),
+    class_name: str | None = typer.Option(None, "--class", help="Task class to import "
+                                          "(default: the one the file defines)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the reset's random draws."),
+    out: Path = typer.Option(..., "--out", "-o", help="Where to write the graph JSON."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="Do not print the warnings."),
+) -> None:
+    """Write the graph JSON; print the import warnings; exit 1 with the reason on failure."""
+    from factask.compat.cliport import CliportImportError, import_cliport
+
+    try:
+        result = import_cliport(file, class_name=class_name, seed=seed)
+    except CliportImportError as exc:
+        err_console.print(f"[red]{file}: import failed[/red]")
+        err_console.print(str(exc), markup=False, highlight=False)
+        raise typer.Exit(1) from None
+    try:
+        out.write_text(result.graph.to_json(), encoding="utf-8")
+    except OSError as exc:
+        err_console.print(f"[red]cannot write {out}: {exc.strerror or exc}[/red]")
+        raise typer.Exit(2) from None
+    g = result.graph
+    console.print(f"[green]{file}: imported[/green] {result.class_name} as {g.name!r}: "
+                  f"{len(g.variables)} variable(s), {len(g.factors)} factor(s) -> {out}")
+    if not quiet:
+        for w in result.warnings:
+            err_console.print(f"  warning: {w}", markup=False, highlight=False)
+
+
+@app.command("import-cliport-batch", help=(
+    "Import every .py task file of a folder, each in a child process with a time "
+    "limit, writing one JSON line per file (file, class, loaded, imported, compiled, "
+    "oracle_success_rate, error) as soon as it finishes. " + _EXEC_WARNING))
+def import_cliport_batch_cmd(
+    folder: Path = typer.Argument(..., help="Folder of task files (each is executed)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Results file (JSON lines)."),
+    timeout: float = typer.Option(120.0, "--timeout", min=0.1,
+                                  help="Wall-clock seconds per file before it is killed."),
+    seed: int = typer.Option(0, "--seed", help="Seed of each reset's random draws."),
+    episodes: int = typer.Option(0, "--episodes", min=0, help="Oracle episodes per file "
+                                 "(0: do not run the oracle; needs factask.sim.episode)."),
+    graphs: Path | None = typer.Option(None, "--graphs", help="Also write each imported "
+                                       "graph to this folder as <file stem>.json."),
+) -> None:
+    """Run the batch; exit 0 even if files fail (their lines say why)."""
+    from factask.compat.cliport.batch import run_batch, task_files
+
+    if not folder.is_dir():
+        err_console.print(f"[red]{folder} is not a folder[/red]")
+        raise typer.Exit(2)
+    n = len(task_files(folder))
+    if n == 0:
+        err_console.print(f"[yellow]{folder} has no .py files[/yellow]")
+
+    def show(rec: dict) -> None:
+        ok = rec.get("imported") and not rec.get("error")
+        mark = "[green]ok[/green]" if ok else "[red]failed[/red]"
+        line = f"{mark} {Path(rec['file']).name}"
+        if rec.get("error"):
+            line += f": {str(rec['error']).splitlines()[0][:200]}"
+        err_console.print(line)
+
+    try:
+        with out.open("w", encoding="utf-8") as fh:
+            records = run_batch(folder, fh, timeout=timeout, seed=seed, episodes=episodes,
+                                graphs_dir=graphs, on_result=show)
+    except OSError as exc:
+        err_console.print(f"[red]cannot write {out}: {exc.strerror or exc}[/red]")
+        raise typer.Exit(2) from None
+    good = sum(1 for r in records if r.get("imported") and not r.get("error"))
+    console.print(f"{good}/{len(records)} file(s) imported -> {out}")

@@ -1,0 +1,124 @@
+"""Import a folder of CLIPort task files, each in its own child process.
+
+Every file **is executed** (it is Python). Each runs in a fresh
+``python -m factask.compat.cliport.worker`` process, in its own process group,
+with a wall-clock time limit (the only limit a hanging user file respects); one
+JSON line per file is written as soon as that file is done, so a crash, a hang
+or a bad file never stops the batch and a partial results file is still useful.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import IO, Any
+
+#: Default time limit per file, seconds (a reset alone takes 2-4 s in PyBullet).
+DEFAULT_TIMEOUT_S = 120.0
+#: Characters of a crashed child's stderr kept in its error message.
+STDERR_TAIL = 600
+
+
+def task_files(folder: str | Path) -> list[Path]:
+    """The ``.py`` files of ``folder`` (not recursive, no ``__init__.py``), sorted."""
+    return sorted(p for p in Path(folder).glob("*.py")
+                  if p.is_file() and p.name != "__init__.py")
+
+
+def _failed(path: Path, error: str) -> dict[str, Any]:
+    return {"file": str(path), "class": None, "task": None, "loaded": False,
+            "imported": False, "compiled": None, "oracle_success_rate": None,
+            "warnings": [], "error": error}
+
+
+def _kill_group(proc: subprocess.Popen[str]) -> None:
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        proc.kill()
+
+
+def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
+            episodes: int = 0, graph_out: str | Path | None = None) -> dict[str, Any]:
+    """Import one file in a child process; always return a result record.
+
+    Args:
+        path: The task file.
+        timeout: Seconds the child may take (it and its children are killed after).
+        seed: Import seed.
+        episodes: Oracle episodes per file (0: none).
+        graph_out: Where the child writes the graph JSON, if given.
+
+    Returns:
+        The worker's record, or a failed record saying why the child gave none.
+    """
+    p = Path(path)
+    cmd = [sys.executable, "-m", "factask.compat.cliport.worker", str(p),
+           "--seed", str(seed), "--episodes", str(episodes)]
+    if graph_out is not None:
+        cmd += ["--graph-out", str(graph_out)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        _kill_group(proc)
+        proc.communicate()
+        return _failed(p, f"timed out after {timeout:g} s (wall clock)")
+    for line in reversed(out.splitlines()):
+        line = line.strip()
+        if line.startswith("{"):
+            try:
+                rec = json.loads(line)
+            except json.JSONDecodeError:
+                continue
+            if isinstance(rec, dict) and "loaded" in rec:
+                return rec
+    tail = err.strip()[-STDERR_TAIL:]
+    return _failed(p, f"child process exited with code {proc.returncode} without a result"
+                   + (f": {tail}" if tail else ""))
+
+
+def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT_S,
+              seed: int = 0, episodes: int = 0, graphs_dir: str | Path | None = None,
+              on_result: Callable[[dict[str, Any]], None] | None = None
+              ) -> list[dict[str, Any]]:
+    """Import every task file of ``folder``; write one JSON line per file to ``out``.
+
+    Args:
+        folder: Folder of task files.
+        out: Text stream of the JSONL results (flushed after every line).
+        timeout: Seconds per file.
+        seed: Import seed.
+        episodes: Oracle episodes per file (0: none).
+        graphs_dir: If given, each imported graph is written there as ``<stem>.json``.
+        on_result: Called with each record as it is written (progress display).
+
+    Returns:
+        Every record, in file order.
+    """
+    records = []
+    for rec in iter_batch(folder, timeout, seed, episodes, graphs_dir):
+        out.write(json.dumps(rec) + "\n")
+        out.flush()
+        if on_result is not None:
+            on_result(rec)
+        records.append(rec)
+    return records
+
+
+def iter_batch(folder: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
+               episodes: int = 0, graphs_dir: str | Path | None = None
+               ) -> Iterator[dict[str, Any]]:
+    """Records of :func:`run_one` for each file of ``folder``, one at a time."""
+    gdir = Path(graphs_dir) if graphs_dir is not None else None
+    if gdir is not None:
+        gdir.mkdir(parents=True, exist_ok=True)
+    for path in task_files(folder):
+        graph_out = gdir / f"{path.stem}.json" if gdir is not None else None
+        yield run_one(path, timeout, seed, episodes, graph_out)
