@@ -912,11 +912,13 @@ def _free_spots(ctx: _Ctx, k: int) -> list[tuple[np.ndarray, float]]:
     return list(zip(xy, yaw, strict=True))
 
 
-def _search(ctx: _Ctx, movers: list[SceneObject], build: object, what: str) -> _Plan:
-    """Try random free spots until ``build(xy, yaw)`` gives an acceptable plan."""
+def _search(ctx: _Ctx, movers: list[SceneObject], build: object, what: str,
+            spots: list[tuple[np.ndarray, float]] | None = None) -> _Plan:
+    """Try spots (default: random ones on the table) until ``build(xy, yaw)`` gives
+    an acceptable plan."""
     assert callable(build)
     last = "no candidate"
-    for xy, yaw in _free_spots(ctx, MAX_TRIES_PER_OBJECT):
+    for xy, yaw in spots if spots is not None else _free_spots(ctx, MAX_TRIES_PER_OBJECT):
         plan = build(xy, yaw)
         plan.random = True
         try:
@@ -947,7 +949,16 @@ def _solve_stack(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Pla
 
     if goal.base:
         area, surface, hosts = _anchor(ctx, goal.base)
-        return build(area.center, area.yaw, surface, hosts)
+        fits = bool(np.all(movers[0].half_xy <= area.packing_half() + GEOMETRY_EPS))
+        if len(hosts) > 1 or not fits:
+            return build(area.center, area.yaw, surface, hosts)
+        # Centred on the base if free there, else another spot of its top face.
+        room = np.maximum(area.packing_half() - movers[0].half_xy, 0.0)
+        local = ctx.rng.uniform(-room, room, size=(MAX_TRIES_PER_OBJECT, 2))
+        local[0] = 0.0
+        spots = [(area.center + yaw_rotation_2d(area.yaw) @ p, area.yaw) for p in local]
+        return _search(ctx, movers, lambda xy, yaw: build(xy, yaw, surface, hosts),
+                       f"a stack of {n} on {goal.base!r}", spots)
     return _search(ctx, movers, build, f"a stack of {n}")
 
 
