@@ -53,6 +53,7 @@ class Example:
         description: Its description.
         payload: The JSON shown to the model.
         score: Word overlap with the query.
+        note: Shown to the model but not used for retrieval (e.g. the source task).
     """
 
     source: str
@@ -60,10 +61,12 @@ class Example:
     description: str
     payload: dict[str, Any]
     score: int = 0
+    note: str = ""
 
     def render(self) -> str:
         """Markdown block: a title line and the JSON."""
-        return (f"Example ({self.source}) `{self.name}`: {self.description}\n```json\n"
+        note = f" ({self.note})" if self.note else ""
+        return (f"Example ({self.source}) `{self.name}`: {self.description}{note}\n```json\n"
                 f"{json.dumps(self.payload, separators=(',', ':'))}\n```")
 
 

@@ -86,8 +86,8 @@ class SubtaskMemory:
     def retrieve(self, query: str, k: int = 3) -> list[Example]:
         """The ``k`` entries most similar to ``query`` as examples."""
         candidates = [
-            Example("memory", e["name"], f"{e.get('description', '')} (from task "
-                    f"{e.get('task', '?')})", e["fragment"])
+            Example("memory", e["name"], e.get("description", ""), e["fragment"],
+                    note=f"verified in task {e.get('task', '?')}")
             for e in self.entries()
         ]
         return top_k(candidates, query, k)

@@ -103,11 +103,39 @@ class SubtaskDesign(BaseModel):
 
 
 # --------------------------------------------------------------------- parsing
+def _top_level_objects(text: str) -> tuple[list[str], bool]:
+    """Balanced top-level ``{...}`` spans of ``text`` (JSON strings respected), and
+    whether an object was still open at the end (a truncated answer)."""
+    spans: list[str] = []
+    depth, start, in_str, esc = 0, -1, False, False
+    for i, ch in enumerate(text):
+        if depth and in_str:
+            if esc:
+                esc = False
+            elif ch == "\\":
+                esc = True
+            elif ch == '"':
+                in_str = False
+            continue
+        if ch == '"' and depth:
+            in_str = True
+        elif ch == "{":
+            if depth == 0:
+                start = i
+            depth += 1
+        elif ch == "}" and depth:
+            depth -= 1
+            if depth == 0:
+                spans.append(text[start:i + 1])
+    return spans, depth > 0
+
+
 def extract_json(text: str) -> Any:
     """The first JSON object in ``text``.
 
     Accepts a bare object, one inside a Markdown fence, or one after leading
-    prose; trailing text after the object is ignored.
+    prose; trailing text after the object is ignored. Only *top-level* objects
+    count: an object nested in a truncated answer is never taken for the answer.
 
     Args:
         text: The model's answer.
@@ -121,26 +149,26 @@ def extract_json(text: str) -> Any:
     if not text or not text.strip():
         raise AnswerError("The answer was empty. Reply with one JSON object only.")
     candidates = [m.group(1) for m in _FENCE_RE.finditer(text)] + [text]
-    decoder = json.JSONDecoder()
     last_error = ""
+    truncated = False
     for candidate in candidates:
-        start = candidate.find("{")
-        while start != -1:
+        spans, open_end = _top_level_objects(candidate)
+        truncated = truncated or open_end
+        for span in spans:
             try:
-                value, _ = decoder.raw_decode(candidate, start)
+                value = json.loads(span)
             except json.JSONDecodeError as exc:
                 last_error = f"{exc.msg} at line {exc.lineno} column {exc.colno}"
-                start = candidate.find("{", start + 1)
                 continue
             if isinstance(value, dict):
                 return value
-            start = candidate.find("{", start + 1)
     snippet = text.strip()[:160].replace("\n", " ")
     detail = f" (JSON error: {last_error})" if last_error else ""
+    if truncated:
+        detail += " (the object is not closed: the answer looks cut off, keep it shorter)"
     raise AnswerError(
         "The answer contains no complete JSON object" + detail + f". It began: {snippet!r}. "
-        "Reply with exactly one JSON object following the schema, nothing else "
-        "(the answer may have been cut off: keep it shorter)."
+        "Reply with exactly one JSON object following the schema, nothing else."
     )
 
 

@@ -1,0 +1,88 @@
+"""The LLM client through litellm against the loopback server: config, cache, usage."""
+
+from __future__ import annotations
+
+import socket
+
+import pytest
+
+from factask.gen.llm import LLMClient, LLMConfig, LLMConfigError, LLMError, ResponseCache
+from factask.gen.loopback import LoopbackServer, ScriptedResponder, conversation_step
+
+MSGS = [{"role": "system", "content": "be brief"},
+        {"role": "user", "content": "Step: ping\nsay something"}]
+
+
+def test_config_arguments_win_over_environment() -> None:
+    env = {"FACTASK_MODEL": "openai/env-model", "FACTASK_API_BASE": "http://env/v1",
+           "FACTASK_TEMPERATURE": "0.7", "FACTASK_RETRIES": "5"}
+    cfg = LLMConfig.from_env(env, model="openai/arg-model", temperature=None)
+    assert cfg.model == "openai/arg-model"
+    assert cfg.api_base == "http://env/v1"
+    assert cfg.temperature == pytest.approx(0.7)
+    assert cfg.num_retries == 5
+
+
+def test_config_without_model_is_a_typed_error() -> None:
+    with pytest.raises(LLMConfigError, match="FACTASK_MODEL"):
+        LLMConfig.from_env({})
+    with pytest.raises(LLMConfigError, match="FACTASK_TEMPERATURE"):
+        LLMConfig.from_env({"FACTASK_MODEL": "x", "FACTASK_TEMPERATURE": "warm"})
+
+
+def test_conversation_step_reads_the_first_user_message() -> None:
+    msgs = [{"role": "system", "content": "Step: nope"},
+            {"role": "user", "content": "Step: subtask_goal (subtask `put_red`)\n..."},
+            {"role": "user", "content": "Step: other"}]
+    assert conversation_step(msgs) == ("subtask_goal", "put_red")
+    assert conversation_step([{"role": "user", "content": "hello"}]) == ("", None)
+
+
+def test_call_records_usage_and_sends_the_schema(tmp_path) -> None:
+    responder = ScriptedResponder({"ping": ['{"answer": "pong"}']})
+    with LoopbackServer(responder) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=0))
+        reply = client.complete(MSGS, schema={"type": "object"}, schema_name="pong")
+    assert reply.text == '{"answer": "pong"}'
+    assert not reply.cached
+    assert reply.usage.prompt_tokens > 0 and reply.usage.completion_tokens == 2
+    assert client.usage.calls == 1
+    sent = server.requests[0]
+    assert sent["response_format"]["type"] == "json_schema"
+    assert sent["response_format"]["json_schema"]["schema"] == {"type": "object"}
+    assert sent["messages"][1]["content"].startswith("Step: ping")
+
+
+def test_cache_makes_a_rerun_free_and_identical(tmp_path) -> None:
+    responder = ScriptedResponder({"ping": ["first", "second"]})
+    with LoopbackServer(responder) as server:
+        cfg = LLMConfig(model="openai/scripted", api_base=server.url, num_retries=0)
+        a = LLMClient(cfg, ResponseCache(tmp_path)).complete(MSGS)
+        b = LLMClient(cfg, ResponseCache(tmp_path)).complete(MSGS)
+        other_temp = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                         temperature=0.5, num_retries=0),
+                               ResponseCache(tmp_path)).complete(MSGS)
+    assert a.text == b.text == "first"
+    assert b.cached and b.usage.cached_calls == 1 and b.usage.total_tokens == 0
+    assert server.served == 2  # the cached call never reached the server
+    assert other_temp.text == "second" and not other_temp.cached  # parameters are in the key
+    assert len(ResponseCache(tmp_path)) == 2
+
+
+def test_unreachable_endpoint_is_a_typed_error() -> None:
+    with socket.socket() as s:  # a port that nothing listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    client = LLMClient(LLMConfig(model="openai/scripted", api_base=f"http://127.0.0.1:{port}/v1",
+                                 num_retries=0, timeout=5))
+    with pytest.raises(LLMError, match="failed"):
+        client.complete(MSGS)
+
+
+def test_script_error_is_a_server_error_not_a_hang() -> None:
+    with LoopbackServer(ScriptedResponder({})) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=0, timeout=5))
+        with pytest.raises(LLMError):
+            client.complete(MSGS)
