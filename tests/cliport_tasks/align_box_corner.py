@@ -15,8 +15,8 @@ class AlignBoxCorner(Task):
         super().reset(env)
         box_size = self.get_random_size(0.05, 0.15, 0.05, 0.15, 0.01, 0.06)
         corner_pose = ((0.62, -0.18, 0.0), utils.eulerXYZ_to_quatXYZW((0, 0, np.pi / 2)))
-        corner_urdf = self.fill_template("corner/corner-template.urdf",
-                                         {"DIMX": (box_size[0] / 2, 0), "DIMY": (0, box_size[1] / 2)})
+        replace = {"DIMX": (box_size[0] / 2, 0), "DIMY": (0, box_size[1] / 2)}
+        corner_urdf = self.fill_template("corner/corner-template.urdf", replace)
         env.add_object(corner_urdf, corner_pose, "fixed")
         box_urdf = self.fill_template("box/box-template.urdf", {"DIM": box_size})
         box = env.add_object(box_urdf, self.get_random_pose(env, box_size))

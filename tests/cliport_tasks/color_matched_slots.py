@@ -16,7 +16,7 @@ class ColorMatchedSlots(Task):
         colors = [utils.COLORS["red"], tuple(utils.COLORS["green"] + [1]), "blue"]
         slot_xs = [0.35, 0.5, 0.65]
         blocks, targs = [], []
-        for color, x in zip(colors, slot_xs):
+        for color, x in zip(colors, slot_xs, strict=True):
             blocks.append(env.add_object("block/block.urdf",
                                          self.get_random_pose(env, (0.04, 0.04, 0.04)),
                                          color=color))

@@ -4,7 +4,6 @@ import os
 
 import numpy as np
 from cliport.tasks.task import Task
-from cliport.utils import utils
 
 
 class PackBoxesInContainer(Task):

@@ -24,7 +24,8 @@ class StackBlockPyramid(Task):
         place_pos = [(0, -0.05, 0.03), (0, 0, 0.03), (0, 0.05, 0.03),
                      (0, -0.025, 0.08), (0, 0.025, 0.08), (0, 0, 0.13)]
         targs = [(utils.apply(base_pose, i), base_pose[1]) for i in place_pos]
-        rows = [("bottom", blocks[:3], targs[:3], 1 / 2), ("middle", blocks[3:5], targs[3:5], 1 / 3),
+        rows = [("bottom", blocks[:3], targs[:3], 1 / 2),
+                ("middle", blocks[3:5], targs[3:5], 1 / 3),
                 ("top", blocks[5:], targs[5:], 1 / 6)]
         for row, objs, row_targs, reward in rows:
             self.add_goal(objs=objs, matches=np.ones((len(objs), len(objs))), targ_poses=row_targs,

@@ -1,4 +1,5 @@
 """Stack three blue boxes into a column (the brief's example, unchanged)."""
+# ruff: noqa: UP031 - kept exactly as the CLIPort-style example was written
 
 import numpy as np
 from cliport.tasks.task import Task
