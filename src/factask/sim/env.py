@@ -1,0 +1,287 @@
+"""The gymnasium environment of a task graph.
+
+One :class:`FactaskEnv` per task graph. The graph is compiled once; each reset
+samples a collision-free initial layout, solves every relation into target
+poses (shown by translucent goal markers), and lets the scene settle. An action
+is one pick-and-place primitive executed by the suction robot in simulated time;
+the reward is the *change* of the task's total reward (the weighted sum of
+factor progress), so the return of an episode equals its final total reward, and
+``info["total_reward"]`` carries the total itself. Every factor is re-checked
+after every action: undoing a finished subtask lowers the reward.
+
+Physics failures (NaN, MuJoCo instability warnings) end the episode with
+``info["failure"]`` set; they never raise.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import gymnasium as gym
+import mujoco
+import numpy as np
+from gymnasium import spaces
+
+from factask.geometry import Pose
+from factask.model.errors import FactaskError
+from factask.model.graph import TaskGraph
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
+from factask.sim.checks import TaskStatus, check_task
+from factask.sim.compile import (
+    CompiledScene,
+    compile_graph,
+    get_object_pose,
+    set_marker,
+    set_object_pose,
+)
+from factask.sim.layout import SolvedFactor, reset_layout
+from factask.sim.objects import SceneObject, objects_by_name
+from factask.sim.robot import SuctionRobot, make_robot
+
+#: Simulated seconds the scene settles after a reset (objects placed exactly
+#: resting may still shift by a fraction of a millimetre).
+SETTLE_SECONDS = 0.3
+#: MuJoCo warnings that mean the simulation can no longer be trusted.
+_UNSTABLE = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
+             mujoco.mjtWarning.mjWARN_BADQVEL)
+#: Default rendering size (width, height) and camera.
+RENDER_SIZE = (320, 240)
+RENDER_CAMERA = "front"
+
+
+class ActionError(FactaskError):
+    """An action that is not a finite (pick, place) pair of (x, y, z, yaw)."""
+
+
+@dataclass(frozen=True)
+class StepRecord:
+    """What one action did (kept in ``env.history``)."""
+
+    action: int
+    ok: bool
+    reason: str | None
+    sim_steps: int
+    total_reward: float
+
+
+def _pose4(value: Any, what: str) -> Pose:
+    arr = np.asarray(value, dtype=float).reshape(-1)
+    if arr.shape != (4,) or not np.all(np.isfinite(arr)):
+        raise ActionError(f"{what} must be 4 finite numbers (x, y, z, yaw in radians), "
+                          f"got {value!r}")
+    return Pose.from_xyz_yaw(*arr)
+
+
+class FactaskEnv(gym.Env):
+    """A task graph as a gymnasium environment with a suction pick-and-place action.
+
+    Args:
+        graph: The task (validated and compiled here).
+        robot: "floating" (mocap suction cup, fast) or "arm" (UR5e-like arm).
+        render_mode: None or "rgb_array" (``render()`` returns an RGB image).
+        render_size: (width, height) of rendered images.
+        camera: Camera name for ``render()`` ("front" or "top").
+
+    Observation (dict): ``object_poses`` (n, 7) position + quaternion (w, x, y, z)
+    of every object instance in ``env.object_names`` order, ``ee_pose`` (7,),
+    ``suction`` (1,) 1 while holding an object.
+
+    Action (dict): ``pick`` and ``place``, each (x, y, z, yaw): the suction tip's
+    position at the grasp (on the object's top) and at the release, and the tool
+    yaw; the object turns with the tool by ``place yaw - pick yaw``.
+
+    Raises:
+        GraphValidationError, CompileError: the graph cannot be compiled.
+    """
+
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["rgb_array"], "render_fps": 10}
+
+    def __init__(self, graph: TaskGraph, robot: str = "floating",
+                 render_mode: str | None = None,
+                 render_size: tuple[int, int] = RENDER_SIZE,
+                 camera: str = RENDER_CAMERA) -> None:
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
+        self.graph = graph
+        self.robot_kind = robot
+        self.scene: CompiledScene = compile_graph(graph, robot=robot)
+        self.model = self.scene.model
+        self.data = mujoco.MjData(self.model)
+        self.robot: SuctionRobot = make_robot(robot, self.model, self.data)
+        self.objects: dict[str, SceneObject] = objects_by_name(graph)
+        self.object_names: list[str] = list(self.scene.objects)
+        self._body_to_object = {h.body_id: n for n, h in self.scene.objects.items()}
+        self.render_mode = render_mode
+        self.render_size = render_size
+        self.camera = camera
+        self._renderer: Any = None
+        n = len(self.object_names)
+        self.observation_space = spaces.Dict({
+            "object_poses": spaces.Box(-np.inf, np.inf, (n, 7), np.float64),
+            "ee_pose": spaces.Box(-np.inf, np.inf, (7,), np.float64),
+            "suction": spaces.Box(0.0, 1.0, (1,), np.float64),
+        })
+        low = np.array([WORKSPACE_X[0], WORKSPACE_Y[0], WORKSPACE_Z[0], -np.pi])
+        high = np.array([WORKSPACE_X[1], WORKSPACE_Y[1], WORKSPACE_Z[1], np.pi])
+        self.action_space = spaces.Dict({
+            "pick": spaces.Box(low, high, dtype=np.float64),
+            "place": spaces.Box(low, high, dtype=np.float64),
+        })
+        self.solved: dict[str, SolvedFactor] = {}
+        self.initial_layout: dict[str, Pose] = {}
+        self.history: list[StepRecord] = []
+        self.actions_taken = 0
+        self.failure: str | None = None
+        self._status: TaskStatus | None = None
+        #: Called every few physics steps during actions (e.g. to record video).
+        self.frame_callback: Callable[[], None] | None = None
+
+    # ------------------------------------------------------------ state access
+    def object_poses(self) -> dict[str, Pose]:
+        """Current pose of every object instance."""
+        return {n: get_object_pose(self.data, h) for n, h in self.scene.objects.items()}
+
+    def held_objects(self) -> set[str]:
+        """Instances the robot holds now."""
+        body = self.robot.grasped()
+        if body is None:
+            return set()
+        name = self._body_to_object.get(int(body))
+        return {name} if name else set()
+
+    def status(self) -> TaskStatus:
+        """Check every factor now."""
+        return check_task(self.graph, self.solved, self.object_poses(), self.held_objects(),
+                          self.objects)
+
+    def _obs(self) -> dict[str, np.ndarray]:
+        poses = self.object_poses()
+        return {
+            "object_poses": np.array([poses[n].to_list() for n in self.object_names],
+                                     dtype=np.float64).reshape(len(self.object_names), 7),
+            "ee_pose": np.array(self.robot.ee_pose().to_list(), dtype=np.float64),
+            "suction": np.array([1.0 if self.robot.grasped() is not None else 0.0]),
+        }
+
+    def _info(self, status: TaskStatus) -> dict[str, Any]:
+        return {
+            "total_reward": status.reward,
+            "success": status.success,
+            "factors": {n: s.progress for n, s in status.factors.items()},
+            "satisfied": {n: s.satisfied for n, s in status.factors.items()},
+            "details": {n: s.detail for n, s in status.factors.items()},
+            "language_goals": {f.name: f.description for f in self.graph.factors},
+            "language_goal": self.graph.description,
+            "actions": self.actions_taken,
+            "failure": self.failure,
+            "targets": {
+                name: {
+                    "objects": list(s.objects),
+                    "targets": {o: p.to_list() for o, p in s.targets(self.objects).items()},
+                }
+                for name, s in self.solved.items()
+            },
+        }
+
+    def physics_failure(self) -> str | None:
+        """Why the simulation state is no longer trustworthy, or None."""
+        if not (np.all(np.isfinite(self.data.qpos)) and np.all(np.isfinite(self.data.qvel))):
+            return "physics: NaN or infinite positions/velocities"
+        for w in _UNSTABLE:
+            if self.data.warning[w].number > 0:
+                return f"physics: MuJoCo warning {mujoco.mjtWarning(w).name}"
+        return None
+
+    # ------------------------------------------------------------- gym API
+    def reset(self, *, seed: int | None = None,
+              options: dict[str, Any] | None = None) -> tuple[dict[str, np.ndarray], dict]:
+        """Sample the initial layout and solve the targets.
+
+        Same seed, same initial state (bit for bit).
+
+        Raises:
+            LayoutError: no feasible layout after bounded retries.
+        """
+        super().reset(seed=seed)
+        rng = np.random.default_rng(self.np_random.integers(0, 2**63 - 1))
+        layout, solved = reset_layout(self.graph, rng)
+        self.initial_layout, self.solved = layout, solved
+        mujoco.mj_resetData(self.model, self.data)
+        for name, handle in self.scene.objects.items():
+            set_object_pose(self.model, self.data, handle, layout[name])
+        for (factor, slot), mocap in self.scene.markers.items():
+            inst = self.scene.marker_objects[(factor, slot)]
+            targets = solved[factor].targets(self.objects)
+            if inst in targets:
+                set_marker(self.data, mocap, targets[inst])
+        self.robot.reset()
+        for _ in range(round(SETTLE_SECONDS / self.model.opt.timestep)):
+            mujoco.mj_step(self.model, self.data)
+        self.history = []
+        self.actions_taken = 0
+        self.failure = self.physics_failure()
+        status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
+        self._status = status
+        return self._obs(), self._info(status)
+
+    def step(self, action: dict[str, Any]) -> tuple[dict[str, np.ndarray], float, bool, bool,
+                                                    dict[str, Any]]:
+        """Execute one pick-and-place.
+
+        Returns:
+            (observation, reward change, terminated, truncated, info). ``terminated``
+            when the task succeeds or physics failed; ``truncated`` when the action
+            budget (``graph.max_actions()``) is used up.
+
+        Raises:
+            ActionError: the action is malformed (missing keys, wrong shape, NaN).
+            RuntimeError: ``step`` before ``reset``.
+        """
+        if self._status is None:
+            raise RuntimeError("call reset() before step()")
+        if not isinstance(action, dict) or not {"pick", "place"} <= set(action):
+            raise ActionError(f"action must be a dict with 'pick' and 'place', got {action!r}")
+        pick = _pose4(action["pick"], "pick")
+        place = _pose4(action["place"], "place")
+        prev = self._status.reward
+        if self.failure is not None:
+            return self._obs(), 0.0, True, False, self._info(self._status)
+        max_steps = int(self.graph.limits.max_sim_seconds_per_action / self.model.opt.timestep)
+        result = self.robot.pick_and_place(pick, place, on_step=self.frame_callback,
+                                           max_steps=max_steps)
+        self.actions_taken += 1
+        self.failure = self.physics_failure()
+        status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
+        self._status = status
+        self.history.append(StepRecord(self.actions_taken, result.ok, result.reason,
+                                       result.sim_steps, status.reward))
+        info = self._info(status)
+        info["action_ok"] = result.ok
+        info["action_failure"] = result.reason
+        terminated = status.success or self.failure is not None
+        truncated = not terminated and self.actions_taken >= self.graph.max_actions()
+        return self._obs(), status.reward - prev, terminated, truncated, info
+
+    # ------------------------------------------------------------- rendering
+    def render(self) -> np.ndarray | None:
+        """RGB image of the scene (``render_mode="rgb_array"``), else None."""
+        if self.render_mode != "rgb_array":
+            return None
+        return self.render_rgb()
+
+    def render_rgb(self, camera: str | None = None) -> np.ndarray:
+        """RGB image (height, width, 3) uint8, whatever the render mode."""
+        if self._renderer is None:
+            from factask.sim.render import SceneRenderer
+
+            self._renderer = SceneRenderer(self.model, *self.render_size,
+                                           geom_object=self.scene.geom_object)
+        return self._renderer.rgb(self.data, camera or self.camera)
+
+    def close(self) -> None:
+        """Release the renderer's GL context."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
