@@ -29,8 +29,8 @@ ON_RED = {"type": "on", "objects": ["blue_block"], "support": "red_block"}
 
 
 def demo_graph(name: str = "stack-blue-on-red-in-zone") -> dict[str, Any]:
-    """The whole task graph as JSON data."""
-    return {
+    """The whole task graph as JSON data (a fresh copy: callers may mutate it)."""
+    return _copy({
         "name": name,
         "description": "Put the red block in the green zone, then the blue block on it.",
         "variables": [RED, BLUE, ZONE],
@@ -40,7 +40,11 @@ def demo_graph(name: str = "stack-blue-on-red-in-zone") -> dict[str, Any]:
             {"name": "stack_blue_on_red", "description": "put the blue block on the red block",
              "goal": ON_RED, "weight": 0.5},
         ],
-    }
+    })
+
+
+def _copy(data: Any) -> Any:
+    return json.loads(json.dumps(data))
 
 
 def _j(data: Any) -> str:

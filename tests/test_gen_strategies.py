@@ -1,0 +1,190 @@
+"""The three strategies end to end: litellm -> loopback server -> verification ladder
+(the real MuJoCo backend, floating robot) -> feedback -> repair."""
+
+from __future__ import annotations
+
+import json
+from types import SimpleNamespace
+
+import pytest
+
+from factask.gen.demo import DEMO_PROPOSAL, demo_answers, demo_graph, demo_responder
+from factask.gen.llm import LLMClient, LLMConfig, ResponseCache
+from factask.gen.loopback import LoopbackServer, ScriptedResponder
+from factask.gen.memory import SubtaskMemory
+from factask.gen.results import APPROACHES, GenerationResult
+from factask.gen.strategies import Generator, UnknownApproachError, split_proposal
+from factask.gen.verify import Verifier
+from factask.model import parse_graph
+
+EPISODES = 1  # the multi-episode rule is tested with scripted episodes below
+
+
+def _client(server: LoopbackServer, cache=None) -> LLMClient:
+    return LLMClient(LLMConfig(model="openai/scripted", api_base=server.url, num_retries=0,
+                               timeout=30), ResponseCache(cache) if cache else None)
+
+
+def _run(script, approach: str, max_repairs: int = 3, memory=None, cache=None,
+         verifier=None) -> tuple[GenerationResult, LoopbackServer]:
+    responder = script if callable(script) else ScriptedResponder(script)
+    with LoopbackServer(responder) as server:
+        gen = Generator(_client(server, cache), verifier or Verifier(episodes=EPISODES),
+                        memory=memory, max_repairs=max_repairs)
+        result = gen.generate(DEMO_PROPOSAL, approach)
+    return result, server
+
+
+def _feedback_was_sent(server: LoopbackServer, result: GenerationResult) -> bool:
+    """Every failed attempt but the last of its step reached the model as a user message."""
+    sent = [m["content"] for r in server.requests for m in r["messages"] if m["role"] == "user"]
+    failed = [s for s in result.steps if not s.ok and s.step != "assembly" and s.feedback]
+    return all(any(s.feedback in text for text in sent) for s in failed[:1])
+
+
+def test_split_proposal() -> None:
+    assert split_proposal("build-a-bridge: two pillars and a deck") == (
+        "build-a-bridge", "two pillars and a deck")
+    name, desc = split_proposal("Put the red block in the bowl!")
+    assert name == "put-the-red-block-in-the" and desc.startswith("Put")
+
+
+@pytest.mark.parametrize("approach", APPROACHES)
+def test_each_approach_recovers_from_a_broken_answer_and_completes(approach, tmp_path) -> None:
+    memory = SubtaskMemory(tmp_path / "memory")
+    result, server = _run(demo_responder(broken=True), approach, memory=memory)
+    assert result.level_reached == "completion", result.failure
+    assert result.failure is None and result.completed
+    graph = parse_graph(result.graph.to_dict())  # valid as a whole
+    assert graph.name == "stack-blue-on-red-in-zone"
+    assert {f.goal.type for f in graph.factors} == {"in_zone", "on"}
+    assert graph.factor_order() == ["place_red_in_zone", "stack_blue_on_red"]
+    # At least one answer failed and a later attempt of the same step succeeded.
+    failed_steps = {s.step for s in result.steps if not s.ok}
+    assert failed_steps
+    assert any(s.ok and s.attempt > 0 and s.step in failed_steps for s in result.steps)
+    assert result.repairs >= 1
+    assert _feedback_was_sent(server, result)
+    assert result.usage.calls == len(server.requests) and result.usage.prompt_tokens > 0
+    # Verified subtasks were remembered, and later prompts can retrieve them.
+    assert {e["name"] for e in memory.entries()} == {"place_red_in_zone", "stack_blue_on_red"}
+    # The result survives a JSON round trip (a benchmark line).
+    again = GenerationResult.from_dict(json.loads(json.dumps(result.to_dict())))
+    assert again.level_reached == "completion" and again.graph == result.graph
+
+
+def test_repairs_that_never_succeed_are_bounded_and_reported() -> None:
+    result, server = _run({"one_shot": ["still thinking..."]}, "one-shot", max_repairs=2)
+    assert len(server.requests) == 3  # first answer + 2 repairs, no more
+    assert [s.attempt for s in result.steps] == [0, 1, 2]
+    assert not any(s.ok for s in result.steps)
+    assert result.level_reached == "none" and result.graph is None
+    assert "one_shot" in result.failure and "JSON" in result.failure
+    # The conversation grew by the answer and the feedback at each repair.
+    assert [len(r["messages"]) for r in server.requests] == [2, 4, 6]
+
+
+def test_infeasible_layout_gets_runtime_feedback_then_repair() -> None:
+    crowded = demo_graph()
+    crowded["variables"][0]["count"] = 40  # 40 blocks cannot fit in one zone
+    result, server = _run({"one_shot": [json.dumps(crowded), json.dumps(demo_graph())]},
+                          "one-shot")
+    first = result.steps[0]
+    assert not first.ok and first.level == "syntax"
+    assert "Level 2 (runtime)" in first.feedback and "place_red_in_zone" in first.feedback
+    assert result.level_reached == "completion"
+    assert first.feedback in server.requests[1]["messages"][-1]["content"]
+
+
+def test_best_graph_is_kept_when_repairs_run_out() -> None:
+    crowded = demo_graph()
+    crowded["variables"][0]["count"] = 40
+    result, _ = _run({"one_shot": [json.dumps(crowded), "junk"]}, "one-shot", max_repairs=1)
+    assert result.level_reached == "syntax"  # the valid-but-infeasible graph is kept
+    assert result.graph is not None and result.graph.variables[0].count == 40
+    assert result.failure and not result.completed
+
+
+def test_missing_variables_and_wrong_schema_are_repaired() -> None:
+    good = demo_answers()
+    plan = json.loads(good["subtask_plan"])
+    plan["subtasks"][1]["variables"] = ["blue_block", "purple_block"]
+    script = dict(good, subtask_plan=[json.dumps(plan), good["subtask_plan"]],
+                  variables=[json.dumps({"objects": ["red"]}), good["variables"]])
+    result, _ = _run(script, "variables-first")
+    fb = {s.step: s.feedback for s in result.steps if not s.ok}
+    assert "VariablesAnswer" in fb["variables"]
+    assert "unknown variable 'purple_block'" in fb["subtask_plan"]
+    assert result.level_reached == "completion"
+
+
+def test_subtasks_first_may_leave_out_earlier_variables() -> None:
+    good = demo_answers()
+    design = {"variables": [json.loads(good["subtask_design:stack_blue_on_red"])
+                            ["variables"][0]],
+              "goal": {"type": "on", "objects": ["blue_block"], "support": "red_block"}}
+    script = dict(good, **{"subtask_design:stack_blue_on_red": json.dumps(design)})
+    result, _ = _run(script, "subtasks-first")
+    assert result.level_reached == "completion"
+    assert sorted(v.name for v in result.graph.variables) == [
+        "blue_block", "green_zone", "red_block"]
+
+
+def test_a_planning_step_that_never_parses_stops_with_a_structured_failure() -> None:
+    result, server = _run({"subtask_outline": ['{"subtasks": []}']}, "subtasks-first",
+                          max_repairs=1)
+    assert len(server.requests) == 2
+    assert result.level_reached == "none" and result.graph is None
+    assert result.failure.startswith("subtask_outline")
+
+
+def test_rerun_from_the_cache_is_free_and_identical(tmp_path) -> None:
+    first, _ = _run(demo_responder(broken=True), "subtasks-first", cache=tmp_path)
+    second, s2 = _run(ScriptedResponder({}), "subtasks-first", cache=tmp_path)
+    assert len(s2.requests) == 0
+    assert second.usage.cached_calls == second.usage.calls == first.usage.calls
+    assert second.usage.total_tokens == 0
+    assert second.graph == first.graph
+    assert [(s.step, s.attempt, s.ok) for s in second.steps] == [
+        (s.step, s.attempt, s.ok) for s in first.steps]
+
+
+def test_unknown_approach_is_a_typed_error() -> None:
+    with LoopbackServer(ScriptedResponder({})) as server, pytest.raises(UnknownApproachError):
+        Generator(_client(server)).generate("x: y", "bottom-up")
+
+
+class _ScriptedEpisodes(Verifier):
+    """The real completion logic over scripted episode outcomes."""
+
+    def __init__(self, outcomes: list[bool]) -> None:
+        super().__init__(episodes=len(outcomes))
+        self.outcomes = outcomes
+
+    def _backend(self):  # type: ignore[override]
+        def check_runtime(graph, seed=0, robot="floating"):
+            return None
+
+        def run_episode(graph, seed, robot="floating"):
+            i = self.seeds.index(seed) if seed in self.seeds else len(self.seeds)
+            self.seeds.append(seed)
+            ok = self.outcomes[i % len(self.outcomes)]
+            return SimpleNamespace(
+                seed=seed, reward=1.0 if ok else 0.5, success=ok, steps=3,
+                failure=None if ok else "stack_blue_on_red: no free spot on red_block",
+                factors={"place_red_in_zone": 1.0, "stack_blue_on_red": 1.0 if ok else 0.0},
+                details={"stack_blue_on_red": "blue_block is 3 cm off the red block"})
+        self.seeds: list[int] = []
+        return check_runtime, run_episode
+
+
+def test_completion_needs_half_the_episodes_with_distinct_seeds() -> None:
+    graph = parse_graph(demo_graph())
+    v = _ScriptedEpisodes([True, False, False])
+    outcome = v.check(graph)
+    assert outcome.level == "runtime" and not outcome.ok
+    assert len(set(v.seeds)) == 3
+    assert "1 of 3 episodes" in outcome.feedback
+    assert "factor 'stack_blue_on_red' progress 0.00" in outcome.feedback
+    assert "3 cm off" in outcome.feedback and "no free spot" in outcome.feedback
+    assert _ScriptedEpisodes([True, False]).check(graph).level == "completion"
