@@ -1,0 +1,228 @@
+"""Commands that run the oracle: ``run``, ``eval-library`` and ``demo``."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from factask.cli.app import app
+from factask.model import FactaskError, GraphValidationError, TaskGraph, parse_graph
+
+console = Console()
+err_console = Console(stderr=True, soft_wrap=True)
+
+ROBOT_HELP = "Robot: 'floating' (mocap suction cup, fast) or 'arm' (UR-type suction arm)."
+
+
+def _progress(quiet: bool) -> Progress:
+    return Progress(
+        TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
+        TimeElapsedColumn(), console=err_console, disable=quiet, transient=True,
+    )
+
+
+def load_task(spec: str, seed: int = 0) -> TaskGraph:
+    """A task from a library name, a graph JSON file, or a CLIPort task file.
+
+    Args:
+        spec: ``NAME`` (library), ``FILE.json``, or ``FILE.py[:ClassName]``.
+        seed: Seed for CLIPort task files (their ``reset`` samples poses).
+
+    Raises:
+        typer.Exit: with code 2 and a message when the task cannot be loaded.
+    """
+    path_part, _, class_name = spec.partition(":") if ".py" in spec else (spec, "", "")
+    if path_part.endswith(".py"):
+        from factask.compat.cliport import import_cliport
+
+        try:
+            result = import_cliport(path_part, class_name or None, seed=seed)
+        except FactaskError as exc:
+            err_console.print(f"[red]cannot import {spec}[/red]: {exc}")
+            raise typer.Exit(2) from None
+        for warning in result.warnings:
+            err_console.print(f"[yellow]warning:[/yellow] {warning}")
+        return result.graph
+    if spec.endswith(".json") or Path(spec).is_file():
+        try:
+            return parse_graph(Path(spec).read_text())
+        except OSError as exc:
+            err_console.print(f"[red]cannot read {spec}: {exc.strerror or exc}[/red]")
+            raise typer.Exit(2) from None
+        except GraphValidationError as exc:
+            err_console.print(f"[red]{spec}: invalid task graph[/red]\n{exc}")
+            raise typer.Exit(2) from None
+    from factask.library import get_task
+    from factask.library.tasks import UnknownTaskError
+
+    try:
+        return get_task(spec)
+    except UnknownTaskError as exc:
+        err_console.print(f"[red]{exc}[/red]")
+        raise typer.Exit(2) from None
+
+
+def _episode_table(result: Any) -> Table:
+    table = Table(title=f"{result.task}: success {result.success_rate:.0%} "
+                  f"({'completed' if result.completed else 'not completed'})")
+    for col in ("seed", "reward", "success", "actions", "failure"):
+        table.add_column(col)
+    for e in result.episodes:
+        table.add_row(str(e.seed), f"{e.reward:.3f}", "yes" if e.success else "no",
+                      str(e.steps), e.failure or "")
+    return table
+
+
+@app.command()
+def run(
+    task: str = typer.Argument(..., help="Library task name, graph FILE.json, or "
+                               "CLIPort FILE.py[:Class] (user code: it is executed)."),
+    episodes: int = typer.Option(1, "--episodes", "-n", min=1, help="Oracle episodes."),
+    seed: int = typer.Option(0, "--seed", "-s", help="First seed; episode k uses seed + k."),
+    robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
+    video: Path | None = typer.Option(None, "--video", help="Write a GIF of the first episode."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
+) -> None:
+    """Run the scripted oracle on a task and report reward and success per episode.
+
+    An episode succeeds at total reward >= 0.99; the task is completed when at
+    least half of its episodes succeed.
+    """
+    from factask.sim.env import FactaskEnv
+    from factask.sim.episode import TaskResult, run_episode
+
+    if robot not in ("floating", "arm"):
+        err_console.print(f"[red]unknown robot {robot!r}[/red] (use floating or arm)")
+        raise typer.Exit(2)
+    graph = load_task(task, seed)
+    try:
+        env = FactaskEnv(graph, robot=robot)
+    except FactaskError as exc:
+        err_console.print(f"[red]cannot compile {graph.name}[/red]: {exc}")
+        raise typer.Exit(2) from None
+    results = []
+    try:
+        with _progress(as_json) as progress:
+            bar = progress.add_task(f"{graph.name} ({robot})", total=episodes)
+            for k in range(episodes):
+                def show(i: int, planned: Any, info: dict[str, Any], k: int = k) -> None:
+                    if as_json:
+                        return
+                    done = ", ".join(f"{n} {p:.0%}" for n, p in info["factors"].items())
+                    progress.console.print(f"  seed {seed + k} action {i}: {planned.purpose}"
+                                           f" -> reward {info['total_reward']:.2f} [{done}]",
+                                           markup=False, highlight=False)
+
+                results.append(run_episode(graph, seed + k, robot=robot, env=env,
+                                           video=video if k == 0 else None, on_action=show))
+                progress.advance(bar)
+    finally:
+        env.close()
+    result = TaskResult(graph.name, results)
+    if as_json:
+        typer.echo(json.dumps(result.to_dict()))
+    else:
+        console.print(_episode_table(result))
+        if video is not None:
+            written = video if video.suffix == ".gif" else video.with_suffix(".gif")
+            console.print(f"video: {written}")
+    if not result.completed:
+        raise typer.Exit(1)
+
+
+@app.command("eval-library")
+def eval_library(
+    episodes: int = typer.Option(10, "--episodes", "-n", min=1, help="Episodes per task."),
+    seed: int = typer.Option(0, "--seed", "-s", help="First seed."),
+    robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
+    tasks: list[str] | None = typer.Option(None, "--task", "-t", help="Only these tasks."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
+) -> None:
+    """Run the oracle on every library task; print a table and the summary.
+
+    The summary has tasks_total, tasks_completed and episode_success_rate.
+    """
+    from factask.library import task_names
+    from factask.sim.episode import evaluate_task, summarize
+
+    names = tasks or task_names()
+    results = []
+    with _progress(as_json) as progress:
+        bar = progress.add_task("library", total=len(names) * episodes)
+        for name in names:
+            graph = load_task(name)
+            progress.update(bar, description=name)
+            results.append(evaluate_task(graph, episodes, seed, robot,
+                                         on_episode=lambda _r: progress.advance(bar)))
+    summary = summarize(results)
+    if as_json:
+        typer.echo(json.dumps({"robot": robot, "episodes_per_task": episodes, **summary,
+                               "tasks": [r.to_dict() for r in results]}))
+    else:
+        table = Table(title=f"oracle on the task library ({robot}, {episodes} episode(s) each)")
+        for col in ("task", "success", "completed", "mean actions", "failures"):
+            table.add_column(col)
+        for r in results:
+            fails = sorted({e.failure for e in r.episodes if e.failure})
+            table.add_row(r.task, f"{r.success_rate:.0%}", "yes" if r.completed else "NO",
+                          f"{sum(e.steps for e in r.episodes) / len(r.episodes):.1f}",
+                          "; ".join(fails)[:80])
+        console.print(table)
+        console.print(f"tasks completed: {summary['tasks_completed']}/{summary['tasks_total']}, "
+                      f"episode success rate: {summary['episode_success_rate']:.1%}")
+    if summary["tasks_completed"] < summary["tasks_total"]:
+        raise typer.Exit(1)
+
+
+@app.command()
+def demo(
+    out: Path = typer.Option(Path("out/demo"), "--out", help="Folder for the demo's files."),
+    task: str = typer.Option("stack-block-pyramid", "--task", help="Library task to show."),
+    robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
+    seed: int = typer.Option(0, "--seed", "-s"),
+) -> None:
+    """The main demo: a library task's graph, then the oracle solving it, on video."""
+    from factask.sim.episode import run_episode
+    from factask.viz import draw_graph
+
+    graph = load_task(task)
+    out.mkdir(parents=True, exist_ok=True)
+    console.rule(f"[bold]{graph.name}[/bold]: {graph.description}")
+    table = Table(title="subtask factors, in order")
+    for col in ("factor", "goal", "scope", "weight", "language goal"):
+        table.add_column(col)
+    for name in graph.factor_order():
+        f = graph.factor(name)
+        table.add_row(name, f.goal.type, ", ".join(f.scope_names), f"{f.weight:.2f}",
+                      f.description)
+    console.print(table)
+    (out / f"{graph.name}.json").write_text(graph.to_json())
+    picture = draw_graph(graph, out / f"{graph.name}-graph.png", title=graph.name)
+    console.print(f"graph picture: {picture}")
+
+    width = max(len(n) for n in graph.factor_names())
+
+    def show(i: int, planned: Any, info: dict[str, Any]) -> None:
+        console.print(f"action {i:2d}: {planned.purpose} -> total reward "
+                      f"{info['total_reward']:.2f}", markup=False, highlight=False)
+        for n, p in info["factors"].items():
+            bar = "#" * round(p * 20)
+            console.print(f"    {n:<{width}} |{bar:<20}| {p:4.0%}", markup=False,
+                          highlight=False)
+
+    with console.status(f"running the oracle ({robot})..."):
+        result = run_episode(graph, seed, robot=robot, video=out / f"{graph.name}.gif",
+                             on_action=show)
+    (out / "episode.json").write_text(json.dumps(result.to_dict(), indent=2))
+    console.print(f"video: {out / (graph.name + '.gif')}")
+    status = "[green]success[/green]" if result.success else f"[red]failed[/red]: {result.failure}"
+    console.print(f"episode: reward {result.reward:.3f} in {result.steps} actions — {status}")
+    if not result.success:
+        sys.exit(1)
