@@ -1041,11 +1041,16 @@ def _solve_circle(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Pl
         r = goal.radius or radius
         plan = ring(area.center, r, surface, [] if first.is_receptacle else hosts)
         plan.random = True  # the phase is random
-        if first.collides and not first.is_receptacle:  # on its top: must stay on it
-            for o, slot in zip(movers, plan.slots, strict=True):
-                if not bool(area.contains(footprint_corners(o, slot)).all()):
-                    raise _Infeasible(f"a circle of radius {r:.3f} m does not fit on top of "
-                                      f"{goal.center!r}", retry=False)
+        if first.collides and not first.is_receptacle:
+            fits_on_top = all(bool(area.contains(footprint_corners(o, slot)).all())
+                              for o, slot in zip(movers, plan.slots, strict=True))
+            if not fits_on_top:
+                # Too small to carry the ring (a block among others): the ring goes
+                # *around* it on the table, clear of its footprint.
+                outer = float(np.linalg.norm(area.half)) + diag / 2 + CLEARANCE
+                r = max(goal.radius or 0.0, radius, outer)
+                plan = ring(area.center, r, TABLE_Z, [])
+                plan.random = True
         return plan
     r = goal.radius or radius
     return _search(ctx, movers, lambda xy, _yaw: ring(xy, r, TABLE_Z, []),
