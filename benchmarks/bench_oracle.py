@@ -1,0 +1,133 @@
+"""Measure the scripted oracle: wall time per episode for each library task.
+
+Run: ``.venv/bin/python benchmarks/bench_oracle.py [--quick] [--episodes K]
+[--robot floating|arm|both] [--tasks a,b,...]``.
+
+For every library task and robot, one environment is compiled (its time is the
+``compile s`` column) and the oracle runs episodes with seeds ``0 .. K-1``
+(default K = 2). Printed per row: mean wall seconds per episode (reset + oracle
+planning + physics), mean simulated seconds per episode (the actions' physics
+time), mean pick-and-place actions per episode and the success rate
+(total reward >= 0.99). Rows are printed as they finish; totals at the end.
+``--quick`` runs three small tasks with K = 1. Wall times depend on the machine
+and its load; nothing here asserts a time.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from dataclasses import dataclass
+
+from factask.library import get_task, task_names
+from factask.model.errors import FactaskError
+from factask.sim.env import FactaskEnv
+from factask.sim.episode import EpisodeResult, run_episode
+
+ROBOTS = ("floating", "arm")
+#: Tasks of ``--quick``: one placing, one stacking, one structure task.
+QUICK_TASKS = ("place-red-in-green", "rainbow-stack", "build-bridge")
+
+
+@dataclass(frozen=True)
+class OracleTiming:
+    """Oracle figures of one (task, robot) pair."""
+
+    task: str
+    robot: str
+    compile_s: float
+    wall_s: float
+    sim_s: float
+    actions: float
+    success_rate: float
+    episodes: int
+    error: str | None = None
+
+
+def bench_task(task: str, robot: str, episodes: int) -> OracleTiming:
+    """Compile ``task`` once for ``robot`` and time ``episodes`` oracle episodes."""
+    try:
+        t0 = time.perf_counter()
+        env = FactaskEnv(get_task(task), robot=robot)
+        compile_s = time.perf_counter() - t0
+    except FactaskError as exc:
+        return OracleTiming(task, robot, 0.0, 0.0, 0.0, 0.0, 0.0, 0, f"compile: {exc}")
+    try:
+        walls: list[float] = []
+        results: list[EpisodeResult] = []
+        for seed in range(episodes):
+            t0 = time.perf_counter()
+            results.append(run_episode(env.graph, seed, robot=robot, env=env))
+            walls.append(time.perf_counter() - t0)
+    finally:
+        env.close()
+    failures = [r.failure for r in results if not r.success and r.failure]
+    return OracleTiming(
+        task=task, robot=robot, compile_s=compile_s, wall_s=statistics.fmean(walls),
+        sim_s=statistics.fmean(r.sim_seconds for r in results),
+        actions=statistics.fmean(r.steps for r in results),
+        success_rate=sum(r.success for r in results) / len(results), episodes=len(results),
+        error=failures[0] if failures else None,
+    )
+
+
+HEADER = (f"{'task':42s} {'robot':8s} {'compile s':>9s} {'wall s/ep':>9s} {'sim s/ep':>8s} "
+          f"{'actions/ep':>10s} {'success':>7s}")
+
+
+def format_row(t: OracleTiming) -> str:
+    """One aligned table row (with the first failure reason, shortened, if any)."""
+    row = (f"{t.task:42s} {t.robot:8s} {t.compile_s:9.2f} {t.wall_s:9.2f} {t.sim_s:8.1f} "
+           f"{t.actions:10.1f} {t.success_rate:7.0%}")
+    if t.error:
+        row += f"  ({t.error[:70]})"
+    return row
+
+
+def run(quick: bool = False, episodes: int | None = None, robots: tuple[str, ...] = ROBOTS,
+        tasks: list[str] | None = None) -> list[OracleTiming]:
+    """Measure, printing rows as they finish and totals at the end."""
+    names = tasks or (list(QUICK_TASKS) if quick else task_names())
+    k = episodes or (1 if quick else 2)
+    print(f"oracle wall time per episode ({len(names)} tasks, seeds 0..{k - 1})")
+    print(HEADER)
+    out = []
+    for robot in robots:
+        for name in names:
+            t = bench_task(name, robot, k)
+            out.append(t)
+            print(format_row(t), flush=True)
+            sys.stdout.flush()
+    for robot in robots:
+        rows = [t for t in out if t.robot == robot and t.episodes]
+        if not rows:
+            continue
+        n_ep = sum(t.episodes for t in rows)
+        wall = sum(t.wall_s * t.episodes for t in rows)
+        sim = sum(t.sim_s * t.episodes for t in rows)
+        acts = sum(t.actions * t.episodes for t in rows)
+        ok = sum(t.success_rate * t.episodes for t in rows)
+        print(f"{robot}: {n_ep} episodes, mean {wall / n_ep:.2f} wall s/episode, "
+              f"{sim / n_ep:.1f} sim s/episode ({sim / wall:.1f}x real time), "
+              f"{wall / acts:.2f} wall s/action, success {ok / n_ep:.0%}, "
+              f"compile mean {statistics.fmean(t.compile_s for t in rows):.2f} s")
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help=f"tasks {QUICK_TASKS}, K = 1")
+    parser.add_argument("--episodes", "-k", type=int, default=None, help="seeds per task")
+    parser.add_argument("--robot", choices=[*ROBOTS, "both"], default="both")
+    parser.add_argument("--tasks", default=None, help="comma-separated library task names")
+    args = parser.parse_args()
+    robots = ROBOTS if args.robot == "both" else (args.robot,)
+    tasks = [t.strip() for t in args.tasks.split(",") if t.strip()] if args.tasks else None
+    run(args.quick, args.episodes, robots, tasks)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,99 @@
+"""Run every benchmark in one process and print all figures, ratios included.
+
+Run: ``make bench`` (= ``.venv/bin/python benchmarks/run_all.py``), or with
+``--quick`` for a short pass (fewer sizes, actions, tasks and seeds).
+
+Sections, in order: compile time vs objects (bench_compile), env step cost vs
+bare mj_step (bench_env), the robots' primitive and IK (bench_robot), the oracle
+per library task (bench_oracle), then a summary of the ratios. Ratios compare
+figures measured side by side in this one run, so machine load affects both
+sides alike; absolute wall times depend on the machine. Nothing asserts a time.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bench_compile
+import bench_env
+import bench_oracle
+import bench_robot
+
+
+def _section(title: str) -> float:
+    print(f"\n=== {title} " + "=" * max(0, 70 - len(title)), flush=True)
+    return time.perf_counter()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="a short pass of every benchmark")
+    parser.add_argument("--episodes", "-k", type=int, default=None,
+                        help="oracle seeds per task (default 2, quick 1)")
+    parser.add_argument("--skip-oracle", action="store_true",
+                        help="leave out the oracle sweep over the library (the longest part)")
+    args = parser.parse_args()
+    start = time.perf_counter()
+    print(f"factask benchmarks{' (quick)' if args.quick else ''}: python "
+          f"{platform.python_version()}, {platform.machine()}, {os.cpu_count()} CPU cores, "
+          f"MUJOCO_GL={os.environ.get('MUJOCO_GL', '')!r}")
+
+    t = _section("compile time vs number of objects (bench_compile)")
+    compile_rows = bench_compile.run(quick=args.quick)
+    print(f"[{time.perf_counter() - t:.0f} s]")
+
+    t = _section("env step cost vs bare mj_step (bench_env)")
+    env_rows = bench_env.run(quick=args.quick)
+    print(f"[{time.perf_counter() - t:.0f} s]")
+
+    t = _section("robots: IK and pick-and-place primitive (bench_robot)")
+    bench_robot.bench_ik()
+    kinds = ("floating", "arm") if args.quick else ("floating", "arm", "arm_ur5e")
+    for kind in kinds:
+        bench_robot.bench_primitive(kind, 1 if args.quick else 2)
+    print(f"[{time.perf_counter() - t:.0f} s]")
+
+    oracle_rows: list[bench_oracle.OracleTiming] = []
+    if not args.skip_oracle:
+        t = _section("oracle per library task (bench_oracle)")
+        oracle_rows = bench_oracle.run(quick=args.quick, episodes=args.episodes)
+        print(f"[{time.perf_counter() - t:.0f} s]")
+
+    _section("summary of ratios (measured side by side in this run)")
+    for layout in bench_compile.LAYOUTS:
+        rows = [r for r in compile_rows if r.layout == layout]
+        if rows:
+            big = rows[-1]
+            share = big.mjcf / (big.mjcf + big.mujoco)
+            print(f"compile ({layout}, n={big.n}): MJCF build + XML is {share:.0%} of the "
+                  f"compile time, MuJoCo's compiler {1 - share:.0%}; "
+                  f"n={rows[0].n} -> {big.n}: {big.total / rows[0].total:.1f}x")
+    for e in env_rows:
+        print(f"env ({e.robot}): one physics step inside env.step costs {e.ratio:.2f}x a bare "
+              f"mj_step ({e.env_step_us:.0f} vs {e.bare_step_us:.0f} us); "
+              f"{e.realtime_factor:.1f}x real time per pick-and-place")
+    by = {e.robot: e for e in env_rows}
+    if {"floating", "arm"} <= set(by):
+        print(f"env arm / floating: {by['arm'].pick_place_s / by['floating'].pick_place_s:.2f}x "
+              "wall per pick-and-place")
+    ok = {r.robot: r for r in oracle_rows if r.episodes}
+    if {"floating", "arm"} <= set(ok):
+        for_robot = {rb: [r for r in oracle_rows if r.robot == rb and r.episodes]
+                     for rb in ("floating", "arm")}
+        walls = {rb: sum(r.wall_s * r.episodes for r in rows) / sum(r.episodes for r in rows)
+                 for rb, rows in for_robot.items()}
+        print(f"oracle arm / floating: {walls['arm'] / walls['floating']:.2f}x wall per episode "
+              f"({walls['arm']:.2f} vs {walls['floating']:.2f} s)")
+    print(f"\ntotal {time.perf_counter() - start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()
