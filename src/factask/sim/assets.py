@@ -77,7 +77,7 @@ WORKSPACE_CENTER = (
     0.0,
 )
 TOP_CAMERA_HEIGHT = 1.0
-FRONT_CAMERA_POS = (1.35, 0.0, 0.75)
+FRONT_CAMERA_POS = (1.2, 0.0, 0.6)
 CAMERA_FOVY = 45.0
 #: Shadow map size: software rendering speed depends on it (4096: 28 fps, 1024: 147 fps).
 SHADOW_SIZE = 1024

@@ -15,6 +15,7 @@ Physics failures (NaN, MuJoCo instability warnings) end the episode with
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -278,6 +279,8 @@ class FactaskEnv(gym.Env):
 
             self._renderer = SceneRenderer(self.model, *self.render_size,
                                            geom_object=self.scene.geom_object)
+            # Free the GL context before interpreter shutdown tears EGL down.
+            weakref.finalize(self, self._renderer.close)
         return self._renderer.rgb(self.data, camera or self.camera)
 
     def close(self) -> None:
