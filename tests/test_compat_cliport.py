@@ -443,3 +443,14 @@ def test_cli_import_cliport(tmp_path):
     bad = CliRunner().invoke(app, ["import-cliport", str(BAD / "unknown_urdf.py"),
                                    "--out", str(tmp_path / "x.json")])
     assert bad.exit_code == 1 and not (tmp_path / "x.json").exists()
+
+
+def test_gensim_habits_refill_long_names_and_short_matches():
+    r = _imp("refill_template_in_loop")
+    g = r.graph
+    # The second fill_template got the first one's token: still a ball, recoloured.
+    assert [(v.kind, v.color) for v in g.variables] == [("ball", "red"), ("ball", "blue")]
+    names = [f.name for f in g.factors]
+    assert len(set(names)) == 2 and all("__" not in n for n in names)
+    assert all(f.goal.matches == [[1, 1, 0, 0]] for f in g.factors)
+    assert any("matches has 2 column(s) for 4 target(s)" in w for w in r.warnings)

@@ -87,7 +87,7 @@ def _unique(name: str, taken: set[str]) -> str:
     out, k = name, 2
     while out in taken:
         suffix = f"_{k}"
-        out = f"{name[:MAX_NAME - len(suffix)]}{suffix}"
+        out = f"{name[:MAX_NAME - len(suffix)].rstrip('_')}{suffix}"
         k += 1
     taken.add(out)
     return out
@@ -137,6 +137,16 @@ def _read_goals(task: Any, session: Session) -> list[_Goal]:
                        dtype=float)
         if m.ndim == 1 and len(ids) == 1:
             m = m.reshape(1, -1)
+        if metric == "pose" and m.ndim == 2 and m.shape[0] == len(ids) \
+                and m.shape[1] != len(targets):
+            # Ravens only looks at the matrix's columns: extra targets are never matched,
+            # extra columns name targets that do not exist.
+            session.warn(f"goal {i}: matches has {m.shape[1]} column(s) for {len(targets)} "
+                         "target(s); missing columns count as 0, extra ones are ignored")
+            fixed = np.zeros((len(ids), len(targets)))
+            n = min(m.shape[1], len(targets))
+            fixed[:, :n] = m[:, :n]
+            m = fixed
         if metric == "pose" and m.shape != (len(ids), len(targets)):
             raise CliportImportError(f"goal {i}: matches is {m.shape}, expected "
                                      f"{(len(ids), len(targets))} (objects x targets)")

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from pydantic import ValidationError
 
 from factask.compat.cliport import cameras, grippers, primitives, pybullet_stub, task, utils
 from factask.compat.cliport.convert import build_graph, kebab, object_names
@@ -253,8 +254,9 @@ def import_cliport(path: str | Path, class_name: str | None = None,
                 graph, goals = build_graph(instance, session, cls.__name__)
             except CliportImportError as exc:
                 raise type(exc)(f"{p}: {cls.__name__}: {exc}") from exc
-            except FactaskError as exc:
-                raise CliportImportError(f"{p}: {cls.__name__}: {exc}") from exc
+            except (FactaskError, ValidationError) as exc:
+                raise CliportImportError(f"{p}: {cls.__name__}: the recorded scene is not "
+                                         f"a valid graph: {exc}") from exc
     finally:
         session.close()
     names = {v.name for v in graph.variables}

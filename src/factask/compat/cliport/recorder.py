@@ -111,6 +111,14 @@ class Session:
         The token is a real file (task code often ``os.remove``-s the filled URDF
         after loading it); its name ends like GenSim's (``<template>.<random>``).
         """
+        base = self.templates.get(str(template))
+        if base is not None:
+            # Filling an already filled URDF (GenSim code does this in loops): its
+            # fields are already replaced, so only a new COLOR takes effect there.
+            template, merged = base.template, dict(base.replace)
+            if "COLOR" in replace:
+                merged["COLOR"] = replace["COLOR"]
+            replace = merged
         if not self.tmpdir:
             self.tmpdir = tempfile.mkdtemp(prefix="factask-cliport-")
         alphabet = string.ascii_lowercase + string.digits
