@@ -139,8 +139,8 @@ def test_a_planning_step_that_never_parses_stops_with_a_structured_failure() -> 
 
 
 def test_rerun_from_the_cache_is_free_and_identical(tmp_path) -> None:
-    first, _ = _run(demo_responder(broken=True), "subtasks-first", cache=tmp_path)
-    second, s2 = _run(ScriptedResponder({}), "subtasks-first", cache=tmp_path)
+    first, _ = _run(demo_responder(broken=True), "one-shot", cache=tmp_path)
+    second, s2 = _run(ScriptedResponder({}), "one-shot", cache=tmp_path)
     assert len(s2.requests) == 0
     assert second.usage.cached_calls == second.usage.calls == first.usage.calls
     assert second.usage.total_tokens == 0

@@ -1,0 +1,190 @@
+"""The generation benchmark: expressibility, rates, files, and resume after SIGKILL."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from factask.evaluation.benchmark import (
+    RESEARCH_RATES,
+    BenchTask,
+    load_tasks,
+    not_expressible_reason,
+    read_results,
+    run_benchmark,
+    summarize,
+    summary_table,
+)
+from factask.gen.demo import demo_responder
+from factask.gen.llm import LLMClient, LLMConfig
+from factask.gen.loopback import LoopbackServer
+from factask.gen.strategies import Generator
+from factask.gen.verify import Verifier
+
+GENSIM = Path("/work/shared/data/gensim_tasks.json")
+if not GENSIM.exists():  # the checkout's sibling, as the CLI's default
+    GENSIM = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
+
+TASKS = [
+    {"name": "red-in-zone-then-blue-on-red", "description": "put the red block in the zone, "
+     "then the blue block on it", "assets": ["block/block.urdf", "zone/zone.urdf"]},
+    {"name": "manipulating-rope", "description": "rearrange a deformable rope",
+     "assets": ["square/square-template.urdf"]},
+    {"name": "blue-on-red-in-green-zone", "description": "red block in the green zone, blue "
+     "block on top", "assets": ["block/block.urdf"]},
+]
+
+
+@pytest.mark.skipif(not GENSIM.exists(), reason="gensim_tasks.json not available")
+def test_deformable_tasks_of_the_gensim_list_are_not_expressible() -> None:
+    tasks = load_tasks(GENSIM)
+    assert len(tasks) == 192
+    flagged = {t.name for t in tasks if not_expressible_reason(t)}
+    assert {"sweeping-piles", "manipulating-rope", "align-rope", "separating-piles",
+            "connect-boxes-with-rope", "push-piles-into-letter", "mix-piles",
+            "sweep-and-sort-blocks"} <= flagged
+    assert not flagged & {"place-red-in-green", "align-box-corner", "stack-block-pyramid",
+                          "towers-of-hanoi", "assembling-kits"}
+    assert len(flagged) < 20
+
+
+def test_not_expressible_reason_reads_assets_and_words() -> None:
+    assert not_expressible_reason(BenchTask("x", "push the small blocks into the zone",
+                                            ["block/small.urdf"]))
+    assert not_expressible_reason(BenchTask("x", "fold it", ["cloth/cloth.urdf"]))
+    assert not_expressible_reason(BenchTask("stack-blocks", "stack three blocks",
+                                            ["block/block.urdf"])) is None
+
+
+def test_summary_last_line_wins_and_errors_are_separate() -> None:
+    lines = [
+        {"approach": "one-shot", "task": "a", "status": "llm_error", "level_reached": "none"},
+        {"approach": "one-shot", "task": "a", "status": "done", "level_reached": "runtime",
+         "usage": {"total_tokens": 10, "cost_usd": 0.5}},
+        {"approach": "one-shot", "task": "b", "status": "done", "level_reached": "completion"},
+        {"approach": "one-shot", "task": "c", "status": "not_expressible"},
+        {"approach": "one-shot", "task": "d", "status": "llm_error", "level_reached": "none"},
+    ]
+    s = summarize(lines, ["one-shot"])
+    row = s["approaches"]["one-shot"]
+    assert row["tasks"] == 2 and row["llm_errors"] == 1 and row["not_expressible"] == 1
+    assert (row["syntax"], row["runtime"], row["completion"]) == (1.0, 1.0, 0.5)
+    assert row["tokens"] == 10
+    table = summary_table(s)
+    assert "| one-shot | 2 | 100.0 | 100.0 | 50.0 | 1 | 1 |" in table
+    assert "95.0 / 53.3 / 16.7" in table
+
+
+def _generator(server: LoopbackServer) -> Generator:
+    client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url, num_retries=0))
+    return Generator(client, Verifier(episodes=1), max_repairs=1)
+
+
+def test_run_writes_jsonl_summary_table_chart_and_skips_finished_pairs(tmp_path) -> None:
+    tasks = [BenchTask(**t) for t in TASKS[:2]]
+    # Two approaches keep the test fast; every approach runs end to end in
+    # test_gen_strategies.py.
+    approaches = ["one-shot", "subtasks-first"]
+    seen: list[dict] = []
+    with LoopbackServer(demo_responder(broken=False)) as server:
+        summary = run_benchmark(tasks, approaches, _generator(server), tmp_path,
+                                on_result=seen.append)
+        served = server.served
+        again = run_benchmark(tasks, approaches, _generator(server), tmp_path)
+        assert server.served == served  # nothing re-ran
+    lines = read_results(tmp_path / "results.jsonl")
+    assert len(lines) == len(seen) == 4
+    for a in approaches:
+        row = summary["approaches"][a]
+        assert row["tasks"] == 1 and row["not_expressible"] == 1
+        assert row["completion"] == 1.0
+    assert again["approaches"] == summary["approaches"]
+    rope = [r for r in lines if r["task"] == "manipulating-rope"]
+    assert {r["status"] for r in rope} == {"not_expressible"} and "rope" in rope[0]["reason"]
+    saved = json.loads((tmp_path / "summary.json").read_text())
+    assert saved["research"]["subtasks-first"] == list(RESEARCH_RATES["subtasks-first"])
+    assert "| subtasks-first | 1 | 100.0 | 100.0 | 100.0 | 1 |" in (
+        tmp_path / "summary.md").read_text()
+    assert (tmp_path / "rates.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+class _Gate:
+    """Answers the first request at once; later ones wait until opened."""
+
+    def __init__(self) -> None:
+        self.inner = demo_responder(broken=False)
+        self.opened = threading.Event()
+        self.count = 0
+
+    def __call__(self, request: dict) -> str:
+        self.count += 1
+        if self.count > 1:
+            self.opened.wait(timeout=300)
+        return self.inner(request)
+
+
+def _bench_cmd(url: str, tasks: Path, out: Path) -> list[str]:
+    return [sys.executable, "-m", "factask", "benchmark", "--approach", "one-shot",
+            "--model", "openai/scripted", "--api-base", url, "--tasks", str(tasks),
+            "--out", str(out), "--episodes", "1", "--max-repairs", "1"]
+
+
+def test_killed_run_resumes_without_losing_or_repeating_a_task(tmp_path) -> None:
+    tasks_file = tmp_path / "tasks.json"
+    tasks_file.write_text(json.dumps(TASKS))
+    run = tmp_path / "run"
+    results = run / "results.jsonl"
+    env = {**os.environ, "LITELLM_LOCAL_MODEL_COST_MAP": "True",
+           "MUJOCO_GL": os.environ.get("MUJOCO_GL", "egl"), "FACTASK_CACHE": ""}
+    gate = _Gate()
+    with LoopbackServer(gate) as server:
+        log = (tmp_path / "first.log").open("w")
+        child = subprocess.Popen(_bench_cmd(server.url, tasks_file, run), env=env,
+                                 stdout=log, stderr=subprocess.STDOUT, cwd=tmp_path)
+        try:
+            # Wait (polling, bounded) for the first finished line, then kill -9.
+            for _ in range(1200):
+                if results.exists() and results.read_text().count("\n") >= 1:
+                    break
+                if child.poll() is not None:
+                    pytest.fail("benchmark exited early:\n" + (tmp_path / "first.log")
+                                .read_text())
+                time.sleep(0.25)
+            else:
+                pytest.fail("no result line appeared")
+            child.send_signal(signal.SIGKILL)
+            child.wait()
+        finally:
+            if child.poll() is None:
+                child.kill()
+            log.close()
+        before = results.read_text()
+        first = before.splitlines()[0]
+        assert child.returncode == -signal.SIGKILL
+        assert json.loads(first)["task"] == TASKS[0]["name"]
+        assert not (run / "summary.json").exists()  # it really stopped midway
+
+        gate.opened.set()
+        done = subprocess.run(_bench_cmd(server.url, tasks_file, run), env=env, cwd=tmp_path,
+                              capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "resuming" in done.stdout
+    after = results.read_text()
+    assert after.startswith(before)  # nothing lost or rewritten
+    lines = [json.loads(x) for x in after.splitlines()]
+    pairs = [(r["approach"], r["task"]) for r in lines]
+    assert len(pairs) == len(set(pairs)) == len(TASKS)  # every task once
+    assert {r["task"] for r in lines} == {t["name"] for t in TASKS}
+    summary = json.loads((run / "summary.json").read_text())
+    row = summary["approaches"]["one-shot"]
+    assert row["tasks"] == 2 and row["not_expressible"] == 1 and row["completion"] == 1.0
+    assert (run / "summary.md").exists() and (run / "rates.png").exists()
+    assert "one-shot" in done.stdout and "16.7" in done.stdout
