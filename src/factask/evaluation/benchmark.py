@@ -328,7 +328,7 @@ def plot_rates(summary: Mapping[str, Any], path: str | os.PathLike[str]) -> None
     import matplotlib.pyplot as plt
 
     approaches = list(summary["approaches"])
-    fig, axes = plt.subplots(1, len(RATE_LEVELS), figsize=(4.2 * len(RATE_LEVELS), 3.8),
+    fig, axes = plt.subplots(1, len(RATE_LEVELS), figsize=(4.2 * len(RATE_LEVELS), 4.0),
                              sharey=True)
     width = 0.38
     for ax, lvl in zip(axes, RATE_LEVELS, strict=True):
@@ -346,8 +346,10 @@ def plot_rates(summary: Mapping[str, Any], path: str | os.PathLike[str]) -> None
         ax.set_title(f"{lvl} pass rate")
         ax.set_ylim(0, 110)
     axes[0].set_ylabel("% of tasks")
-    axes[-1].legend(fontsize=8, loc="upper right")
-    fig.tight_layout()
+    handles, labels = axes[0].get_legend_handles_labels()
+    # One legend above the panels: inside a panel it would hide the bars.
+    fig.legend(handles, labels, loc="upper center", ncol=2, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
