@@ -25,7 +25,7 @@ from factask.compat.cliport import utils as cutils
 from factask.compat.cliport.batch import run_batch, run_one
 from factask.compat.cliport.loader import ALIAS_NAMES
 from factask.compat.cliport.urdf_map import URDF_TABLE, asset_key, resolve_asset
-from factask.model import AtFixedPose, AtPose, InZone, StartOn, parse_graph
+from factask.model import AtFixedPose, AtPose, InZone, OnTable, StartOn, parse_graph
 
 TASKS = Path(__file__).parent / "cliport_tasks"
 BAD = TASKS / "bad"
@@ -89,9 +89,13 @@ def test_stack_boxes_column():
     assert all(math.isclose(f.weight, 1 / 3) for f in g.factors)
     poses = [f.goal.poses[0] for f in g.factors]
     assert all((p.x, p.y) == pytest.approx((0.5, 0.0)) for p in poses)
-    # The bottom box rests on the table; the stacked ones keep their utils.apply z.
+    # The bottom box rests on the table; the stacked ones keep a height, corrected to
+    # where they rest on the real (randomly sized) boxes below, with warnings.
+    h = [v.extents[2] for v in g.variables]
     assert poses[0].z is None
-    assert poses[1].z == pytest.approx(0.105) and poses[2].z == pytest.approx(0.175)
+    assert poses[1].z == pytest.approx(h[0] + h[1] / 2, abs=1e-5)
+    assert poses[2].z == pytest.approx(h[0] + h[1] + h[2] / 2, abs=1e-5)
+    assert any("target z 0.1050" in w for w in r.warnings)
     assert g.limits.max_actions == 15
 
 
@@ -135,8 +139,10 @@ def test_pyramid_layers_weights_and_stacked_z():
     assert stand.extents == pytest.approx((0.05, 0.15, 0.005)) and stand.is_fixed
     bottom, middle, top = g.factors
     assert [p.z for p in bottom.goal.poses] == [None, None, None]
-    assert all(p.z == pytest.approx(0.0825) for p in middle.goal.poses)
-    assert top.goal.poses[0].z == pytest.approx(0.1325)
+    # Ravens' layers are 5 cm apart for 4 cm blocks (it ignores z): the heights
+    # become where the blocks rest, on the 5 mm stand.
+    assert all(p.z == pytest.approx(0.065) for p in middle.goal.poses)
+    assert top.goal.poses[0].z == pytest.approx(0.105)
     assert [p.y for p in bottom.goal.poses] == pytest.approx([0.05, 0.1, 0.15])
     assert all(g.variable(n).symmetry_deg == pytest.approx(90) for n in bottom.goal.objects)
 
@@ -181,7 +187,12 @@ def test_ell_into_fixture():
     g = _imp("block_insertion").graph
     ell = g.variable("ell_red_0")
     assert ell.kind == "ell" and ell.symmetry_deg == pytest.approx(360.0)
-    assert g.variable("fixture_brown_0").is_fixed
+    # get_random_pose meant "a free spot": factask samples one (clear of the fixture,
+    # which was added later); the hand-placed fixture keeps its pose.
+    assert isinstance(ell.initial, OnTable)
+    fixture = g.variable("fixture_brown_0")
+    assert fixture.is_fixed and isinstance(fixture.initial, AtFixedPose)
+    assert (fixture.initial.x, fixture.initial.y) == pytest.approx((0.55, -0.25))
     assert g.factors[0].goal.poses[0].yaw_deg == pytest.approx(45.0)
 
 
@@ -199,7 +210,9 @@ def test_rewards_not_summing_to_one_are_rescaled():
     g = r.graph
     assert [f.weight for f in g.factors] == pytest.approx([2 / 3, 1 / 3])
     assert any("sum to 1.5" in w for w in r.warnings)
-    assert g.factors[1].goal.poses[0].z == pytest.approx(0.0375 + 0.09 + 0.01875)
+    # On the pallet's top (0.0375), on top of a 6 cm box.
+    assert [p.z for p in g.factors[0].goal.poses] == pytest.approx([0.0675] * 3)
+    assert g.factors[1].goal.poses[0].z == pytest.approx(0.0375 + 0.06 + 0.03)
 
 
 def test_kitting_shapes_become_blocks_with_shape_matches():

@@ -48,6 +48,10 @@ WEIGHT_WARN_TOLERANCE = 1e-3
 TILT_WARN_DEG = 5.0
 #: Longest factor name (the graph model allows 64 characters).
 MAX_NAME = 48
+#: Footprints closer than this to merely touching do not support each other, metres.
+OVERLAP_SHRINK = 0.002
+#: Decimals kept of target coordinates (metres, degrees): 1 micrometre.
+TARGET_DECIMALS = 6
 #: Colour of a zone variable created from a zone goal's params.
 GOAL_ZONE_COLOR = "gray"
 
@@ -188,8 +192,12 @@ def _inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
 
 
 def _placement(o: RecordedObject, earlier: list[RecordedObject], names: dict[int, str],
-               warn: Any) -> Any:
+               moved: set[int], warn: Any) -> Any:
     name = names[o.obj_id]
+    if o.random_start and o.obj_id in moved and o.category != "fixed":
+        # The task asked for "a random free spot" (get_random_pose): so does factask,
+        # each episode, clear of everything (objects added later included).
+        return OnTable()
     bottom = float(o.pos[2]) - o.size[2] / 2
     holders = [c for c in earlier if _inside_footprint(o.pos[:2], c)]
     receptacles = [c for c in holders if kind_spec(c.kind).receptacle]
@@ -214,12 +222,92 @@ def _placement(o: RecordedObject, earlier: list[RecordedObject], names: dict[int
 
 
 # ---------------------------------------------------------------- factors
-def _target(pos: np.ndarray, quat: np.ndarray, height: float) -> TargetPose:
-    z = float(pos[2])
-    # Ravens ignores z; factask checks it. Keep it only where it says "stacked".
+@dataclass
+class _Slot:
+    key: tuple[int, int]
+    x: float
+    y: float
+    z: float
+    half: tuple[float, float]
+    height: float
+
+
+def _half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
+    """Half extents of the axis-aligned box around a footprint turned by ``yaw``."""
+    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
+    hx, hy = size[0] / 2, size[1] / 2
+    return c * hx + s * hy, s * hx + c * hy
+
+
+def _overlap(ax: float, ay: float, ah: tuple[float, float], bx: float, by: float,
+             bh: tuple[float, float]) -> bool:
+    return (abs(ax - bx) < ah[0] + bh[0] - OVERLAP_SHRINK
+            and abs(ay - by) < ah[1] + bh[1] - OVERLAP_SHRINK)
+
+
+def resting_heights(goals: list[_Goal], objects: list[RecordedObject],
+                    moved: set[int]) -> dict[tuple[int, int], float]:
+    """Physical centre height of every pose target, from what would lie under it.
+
+    Ravens ignores target z, so task code often gets it wrong (e.g. 5 cm layers for
+    4 cm blocks); factask checks heights. A target's height is recomputed as the top
+    of what supports it (the table, a fixed object, or a lower target) plus half
+    the height of the objects that may go there.
+
+    Returns:
+        (goal index, target index) -> centre z, metres.
+    """
+    slots: list[_Slot] = []
+    for g in goals:
+        if g.metric != "pose" or not g.objs:
+            continue
+        for j, (pos, quat) in enumerate(g.targets):
+            allowed = [o for i, o in enumerate(g.objs) if g.matches[i, j]]
+            if not allowed:
+                continue
+            yaw = yaw_of_xyzw(quat)
+            size = max((o.size for o in allowed), key=lambda s: s[2])
+            slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
+                               _half_xy(size, yaw), size[2]))
+    fixed = []
+    for o in objects:
+        spec = kind_spec(o.kind)
+        if o.obj_id in moved or not spec.collides:
+            continue
+        bottom = float(o.pos[2]) - o.size[2] / 2
+        top = bottom if spec.receptacle else bottom + o.size[2]
+        fixed.append((float(o.pos[0]), float(o.pos[1]), _half_xy(o.size, yaw_of_xyzw(o.quat)),
+                      top))
+    out: dict[tuple[int, int], float] = {}
+    done: list[tuple[_Slot, float]] = []
+    for slot in sorted(slots, key=lambda s: s.z):
+        support = 0.0
+        for fx, fy, fh, top in fixed:
+            if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
+                support = max(support, top)
+        for other, z in done:
+            if other.z < slot.z - OVERLAP_SHRINK and _overlap(slot.x, slot.y, slot.half,
+                                                              other.x, other.y, other.half):
+                support = max(support, z + other.height / 2)
+        z_rest = support + slot.height / 2
+        out[slot.key] = z_rest
+        done.append((slot, z_rest))
+    return out
+
+
+def _target(pos: np.ndarray, quat: np.ndarray, height: float, z_rest: float | None,
+            where: str, warn: Any) -> TargetPose:
+    z = float(pos[2]) if z_rest is None else z_rest
+    if z_rest is not None and abs(float(pos[2]) - z_rest) > Z_TOLERANCE:
+        warn(f"{where}: target z {float(pos[2]):.4f} m is not where the object would rest; "
+             f"using {z_rest:.4f} m (Ravens ignores z, factask checks it)")
+    # "Resting on the table" is left to the checker; a stacked target keeps its height.
     keep_z = z > height / 2 + Z_TOLERANCE
-    return TargetPose(x=float(pos[0]), y=float(pos[1]), z=z if keep_z else None,
-                      yaw_deg=math.degrees(yaw_of_xyzw(quat)))
+    # Round away utils.apply's float32 noise (a 1 cm gap must stay 1 cm).
+    return TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
+                      y=round(float(pos[1]), TARGET_DECIMALS),
+                      z=round(z, TARGET_DECIMALS) if keep_z else None,
+                      yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS))
 
 
 def _zone_variable(goal: _Goal, objects: list[RecordedObject], names: dict[int, str],
@@ -312,7 +400,6 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         tol = Tolerances(xy=pos_eps, yaw_deg=rot_eps_deg)
     extra: list[StateVariable] = []
     taken = set(names.values())
-    drafts: list[tuple[_Goal, Any]] = []
     for g in goals:
         rows = [i for i in range(len(g.objs)) if g.metric != "pose" or g.matches[i].any()]
         if len(rows) < len(g.objs):
@@ -320,6 +407,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                  "(a zero row of matches); they are left out")
             g.objs = [g.objs[i] for i in rows]
             g.matches = g.matches[rows, :]
+    rest = resting_heights(goals, objects, {o.obj_id for g in goals for o in g.objs})
+    drafts: list[tuple[_Goal, Any]] = []
+    for g in goals:
         if not g.objs:
             warn(f"goal {g.index} ({g.language!r}) has no objects left and is dropped")
             continue
@@ -330,9 +420,10 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                 raise Unsupported(f"goal {g.index}: {len(g.objs)} objects but only "
                                   f"{len(g.targets)} target pose(s); factask gives every "
                                   "object its own target")
-            height = {o.obj_id: o.size[2] for o in g.objs}
-            tallest = max(height.values())
-            rel: Any = AtPose(objects=objs, poses=[_target(p, q, tallest) for p, q in g.targets],
+            tallest = max(o.size[2] for o in g.objs)
+            poses = [_target(p, q, tallest, rest.get((g.index, j)), f"goal {g.index} target {j}",
+                             warn) for j, (p, q) in enumerate(g.targets)]
+            rel: Any = AtPose(objects=objs, poses=poses,
                               matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
         else:
             zone = _zone_variable(g, objects, names, extra, warn)
@@ -377,7 +468,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         variables.append(StateVariable(
             name=name, description=f"{o.urdf} (CLIPort object {o.obj_id})", kind=o.kind,
             size=o.size, color=o.color, fixed=fixed, symmetry_deg=sym_deg,
-            initial=_placement(o, objects[:k], names, warn)))
+            initial=_placement(o, objects[:k], names, moved, warn)))
     variables.extend(extra)
 
     max_steps = int(getattr(task, "max_steps", 0) or 0)

@@ -60,6 +60,7 @@ class RecordedObject:
         pos: Position (x, y, z) of the URDF origin, metres.
         quat: Orientation, x, y, z, w.
         note: Approximation note of the asset mapping ("" if exact).
+        random_start: Its pose is one ``get_random_pose`` returned (a random free spot).
     """
 
     obj_id: int
@@ -71,6 +72,7 @@ class RecordedObject:
     pos: np.ndarray
     quat: np.ndarray
     note: str = ""
+    random_start: bool = False
 
 
 @dataclass
@@ -84,6 +86,7 @@ class Session:
         templates: Token path -> what was filled.
         objects: Recorded objects by id, in the order they were added.
         warnings: Everything approximated or dropped, for the import report.
+        random_spots: Positions ``get_random_pose`` returned (rounded keys).
     """
 
     seed: int = 0
@@ -92,12 +95,18 @@ class Session:
     templates: dict[str, TemplateFill] = field(default_factory=dict)
     objects: dict[int, RecordedObject] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    random_spots: set[tuple[float, ...]] = field(default_factory=set)
     _next_id: int = FIRST_OBJECT_ID
 
     def warn(self, message: str) -> None:
         """Record a warning once."""
         if message not in self.warnings:
             self.warnings.append(message)
+
+    @staticmethod
+    def spot_key(pos: Any) -> tuple[float, ...]:
+        """Key of a position for :attr:`random_spots` (rounded to 1 micrometre)."""
+        return tuple(round(float(c), 6) for c in np.asarray(pos, dtype=float).reshape(-1)[:3])
 
     def new_id(self) -> int:
         """A fresh object id."""
@@ -247,7 +256,8 @@ class RecordingEnv:
             raise Unsupported(f"env.add_object({key!r}): bad pose {pose!r}: {exc}") from None
         oid = s.new_id()
         s.objects[oid] = RecordedObject(oid, key, spec.kind, spec.size, name, category,
-                                        pos, quat, spec.note)
+                                        pos, quat, spec.note,
+                                        s.spot_key(pos) in s.random_spots)
         self.obj_ids[category].append(oid)
         return oid
 

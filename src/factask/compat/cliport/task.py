@@ -199,7 +199,9 @@ class Task:
                    "overlaps another at the start")
         z = size[2] / 2 if len(size) >= 3 else 0.05
         yaw = float(s.rng.uniform(0, 2 * math.pi))
-        return [float(best[0]), float(best[1]), z], cutils.eulerXYZ_to_quatXYZW((0, 0, yaw))
+        pos = [float(best[0]), float(best[1]), z]
+        s.random_spots.add(s.spot_key(pos))
+        return pos, cutils.eulerXYZ_to_quatXYZW((0, 0, yaw))
 
     def get_random_size(self, min_x: float, max_x: float, min_y: float, max_y: float,
                         min_z: float, max_z: float) -> tuple[float, float, float]:

@@ -78,7 +78,7 @@ def run_file(path: str, seed: int = 0, episodes: int = 0,
         if run_episode is None:
             rec["oracle_note"] = "factask.sim.episode is not available: oracle not run"
             return rec
-        wins = 0
+        wins, failures = 0, []
         for k in range(episodes):
             try:
                 ep = run_episode(result.graph, seed=seed + k, robot="floating")
@@ -86,8 +86,11 @@ def run_file(path: str, seed: int = 0, episodes: int = 0,
                 rec["error"] = f"episode {k} failed: {exc}"
                 break
             wins += bool(getattr(ep, "success", False))
+            if getattr(ep, "failure", None):
+                failures.append(f"episode {k}: {ep.failure}")
         else:
             rec["oracle_success_rate"] = wins / episodes
+        rec["oracle_failures"] = failures
     return rec
 
 
