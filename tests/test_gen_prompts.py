@@ -86,3 +86,16 @@ def test_memory_saves_and_retrieves_verified_subtasks(tmp_path) -> None:
     assert best[0].name == "stack_blue_on_red" and best[0].source == "memory"
     assert parse_graph(best[0].payload).factors[0].weight == 1.0
     assert SubtaskMemory.from_env(None) is None or SubtaskMemory.from_env(None).directory
+
+
+def test_library_task_examples_are_valid_graphs_shown_in_the_one_shot_prompt() -> None:
+    pytest.importorskip("factask.library")
+    from factask.gen.examples import library_task_examples, render_examples
+
+    found = library_task_examples("stack the blocks on the pallet", 2)
+    assert len(found) == 2 and found[0].score >= found[1].score
+    for e in found:
+        parse_graph(e.payload)
+    text = render("one_shot", task_name="t", task_description="d",
+                  examples=render_examples(found), schema="{}")
+    assert found[0].name in text and "Step: one_shot" in text
