@@ -138,7 +138,8 @@ def test_pyramid_layers_weights_and_stacked_z():
     stand = g.variable("stand_brown_0")
     assert stand.extents == pytest.approx((0.05, 0.15, 0.005)) and stand.is_fixed
     bottom, middle, top = g.factors
-    assert [p.z for p in bottom.goal.poses] == [None, None, None]
+    # Targets resting on something other than the table keep an explicit height.
+    assert [p.z for p in bottom.goal.poses] == pytest.approx([0.025] * 3)
     # Ravens' layers are 5 cm apart for 4 cm blocks (it ignores z): the heights
     # become where the blocks rest, on the 5 mm stand.
     assert all(p.z == pytest.approx(0.065) for p in middle.goal.poses)

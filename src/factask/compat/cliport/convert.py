@@ -203,12 +203,13 @@ def _placement(o: RecordedObject, earlier: list[RecordedObject], names: dict[int
     receptacles = [c for c in holders if kind_spec(c.kind).receptacle]
     if receptacles:
         return StartInside(container=names[receptacles[-1].obj_id])
+    # A centre inside a support's footprint cannot rest on the table: it is on it.
+    below = [c for c in holders if kind_spec(c.kind).support
+             and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
+    if below:
+        support = max(below, key=lambda c: c.pos[2] + c.size[2] / 2)
+        return StartOn(support=names[support.obj_id])
     if bottom > START_ABOVE_TABLE:
-        below = [c for c in holders if kind_spec(c.kind).support
-                 and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
-        if below:
-            support = max(below, key=lambda c: c.pos[2] + c.size[2] / 2)
-            return StartOn(support=names[support.obj_id])
         warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
              "the table instead")
     if tilt_deg(np.array([o.quat[3], *o.quat[:3]])) > TILT_WARN_DEG:
@@ -301,8 +302,8 @@ def _target(pos: np.ndarray, quat: np.ndarray, height: float, z_rest: float | No
     if z_rest is not None and abs(float(pos[2]) - z_rest) > Z_TOLERANCE:
         warn(f"{where}: target z {float(pos[2]):.4f} m is not where the object would rest; "
              f"using {z_rest:.4f} m (Ravens ignores z, factask checks it)")
-    # "Resting on the table" is left to the checker; a stacked target keeps its height.
-    keep_z = z > height / 2 + Z_TOLERANCE
+    # "Resting on the table" is left to the checker; a target on something keeps its height.
+    keep_z = z > height / 2 + Z_TOLERANCE if z_rest is None else z_rest > height / 2 + 1e-6
     # Round away utils.apply's float32 noise (a 1 cm gap must stay 1 cm).
     return TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
                       y=round(float(pos[1]), TARGET_DECIMALS),
