@@ -66,6 +66,9 @@ def test_each_approach_recovers_from_a_broken_answer_and_completes(approach, tmp
     assert result.repairs >= 1
     assert _feedback_was_sent(server, result)
     assert result.usage.calls == len(server.requests) and result.usage.prompt_tokens > 0
+    llm_steps = [s for s in result.steps if not (s.step == "assembly" and s.attempt == 0)]
+    assert all(s.tokens > 0 for s in llm_steps)  # usage recorded per call
+    assert sum(s.tokens for s in result.steps) == result.usage.total_tokens
     # Verified subtasks were remembered, and later prompts can retrieve them.
     assert {e["name"] for e in memory.entries()} == {"place_red_in_zone", "stack_blue_on_red"}
     # The result survives a JSON round trip (a benchmark line).

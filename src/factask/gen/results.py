@@ -30,6 +30,8 @@ class StepRecord:
         level: Level the attempt's artefact reached (``none`` if it did not parse).
         feedback: The message sent back to the model (None if ok).
         cached: The answer came from the disk cache.
+        tokens: Tokens of this attempt's LLM call (0 if cached or no call).
+        cost_usd: Cost of this attempt's LLM call (0 if cached, unpriced or no call).
     """
 
     step: str
@@ -38,16 +40,20 @@ class StepRecord:
     level: Level = "none"
     feedback: str | None = None
     cached: bool = False
+    tokens: int = 0
+    cost_usd: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
         return {"step": self.step, "attempt": self.attempt, "ok": self.ok, "level": self.level,
-                "feedback": self.feedback, "cached": self.cached}
+                "feedback": self.feedback, "cached": self.cached, "tokens": self.tokens,
+                "cost_usd": self.cost_usd}
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> StepRecord:
         return cls(step=data["step"], attempt=int(data["attempt"]), ok=bool(data["ok"]),
                    level=data.get("level", "none"), feedback=data.get("feedback"),
-                   cached=bool(data.get("cached", False)))
+                   cached=bool(data.get("cached", False)), tokens=int(data.get("tokens", 0)),
+                   cost_usd=float(data.get("cost_usd", 0.0)))
 
 
 @dataclass

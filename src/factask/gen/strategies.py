@@ -193,7 +193,8 @@ class Generator:
             except AnswerError as exc:
                 value, level, feedback = None, "none", exc.feedback
             self._record(StepRecord(step, attempt, feedback is None, level, feedback,
-                                    reply.cached))
+                                    reply.cached, reply.usage.total_tokens,
+                                    reply.usage.cost_usd))
             if value is not None and (best is None or level_index(level) > best[0]):
                 best = (level_index(level), value, level)
             if feedback is None:
