@@ -5,8 +5,9 @@ samples a collision-free initial layout, solves every relation into target
 poses (shown by translucent goal markers), and lets the scene settle. An action
 is one pick-and-place primitive executed by the suction robot in simulated time;
 the reward is the *change* of the task's total reward (the weighted sum of
-factor progress), so the return of an episode equals its final total reward, and
-``info["total_reward"]`` carries the total itself. Every factor is re-checked
+factor progress) that the action caused, so without outside interference the
+return of an episode equals its final total reward; ``info["total_reward"]``
+carries the total itself. Every factor is re-checked
 after every action: undoing a finished subtask lowers the reward.
 
 Physics failures (NaN, MuJoCo instability warnings) end the episode with
@@ -246,9 +247,11 @@ class FactaskEnv(gym.Env):
             raise ActionError(f"action must be a dict with 'pick' and 'place', got {action!r}")
         pick = _pose4(action["pick"], "pick")
         place = _pose4(action["place"], "place")
-        prev = self._status.reward
         if self.failure is not None:
             return self._obs(), 0.0, True, False, self._info(self._status)
+        # The reward is what *this action* changed: measure the baseline now, so
+        # changes made from outside between steps are not credited to the action.
+        prev = self.status().reward
         max_steps = int(self.graph.limits.max_sim_seconds_per_action / self.model.opt.timestep)
         result = self.robot.pick_and_place(pick, place, on_step=self.frame_callback,
                                            max_steps=max_steps)

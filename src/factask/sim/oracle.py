@@ -30,12 +30,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from factask.geometry import Pose
+from factask.geometry import Pose, tilt_deg
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.sim.checks import check_factor
+from factask.sim.checks import MAX_TILT_DEG, check_factor
 from factask.sim.env import FactaskEnv
 from factask.sim.layout import SolvedFactor
 from factask.sim.objects import (
+    SPHERE_KINDS,
     SceneObject,
     bottom_z,
     footprint_corners,
@@ -219,6 +220,8 @@ class Oracle:
                 continue
             solved = env.solved[fname]
             placed = self._placed(solved, poses, fstatus.progress)
+            for name in placed:  # a success resets the object's retry budget
+                self.attempts.pop((fname, name), None)
             targets = self._targets(solved, poses, placed)
             if not targets:
                 self.failure = (f"factor {fname!r}: no free target slot for its unplaced "
@@ -228,6 +231,12 @@ class Oracle:
             # farthest-first on ties.
             name = min(targets, key=lambda n: (round(targets[n].pos[2], 3),
                                                -np.linalg.norm(poses[n].pos - targets[n].pos)))
+            if objs[name].kind not in SPHERE_KINDS and tilt_deg(poses[name].quat) > MAX_TILT_DEG:
+                # A top-down suction cup cannot turn an object back upright.
+                self.failure = (f"factor {fname!r}: {name!r} lies tilted "
+                                f"{tilt_deg(poses[name].quat):.0f} deg; a top-down suction "
+                                "cup cannot right it")
+                return None
             above = self._resting_on(name, poses)
             if above:
                 return self._move_away(above[0], poses, fname, f"uncover {name}")

@@ -104,6 +104,9 @@ _FATAL_WARNINGS = (
     mujoco.mjtWarning.mjWARN_CNSTRFULL,
     mujoco.mjtWarning.mjWARN_BADCTRL,
 )
+_FATAL_INDEX = np.array([int(w) for w in _FATAL_WARNINGS])
+#: Physics steps between health checks (NaN state, fatal MuJoCo warnings).
+HEALTH_EVERY = 10
 
 
 @dataclass(frozen=True)
@@ -217,7 +220,7 @@ class SuctionRobot(ABC):
         self._max_steps = DEFAULT_MAX_STEPS
         self._on_step: Callable[[], None] | None = None
         self._callback_every = DEFAULT_CALLBACK_EVERY
-        self._warn0: list[int] = []
+        self._warn0 = np.zeros(len(_FATAL_WARNINGS), dtype=np.int64)
 
     # ----- robot-specific hooks -----
 
@@ -305,11 +308,12 @@ class SuctionRobot(ABC):
         self._max_steps = max_steps
         self._on_step = on_step
         self._callback_every = max(1, callback_every)
-        self._warn0 = [int(self.data.warning[w].number) for w in _FATAL_WARNINGS]
+        self._warn0 = self.data.warning.number[_FATAL_INDEX].copy()
         grasped: int | None = None
         try:
             self._check_health()
             grasped = self._run(pick, place)
+            self._check_health()
         except _PrimitiveAbort as abort:
             if self.gripper.held is not None:
                 grasped = self.gripper.held
@@ -324,7 +328,7 @@ class SuctionRobot(ABC):
     def _run(self, pick: Pose, place: Pose) -> int:
         """Execute the primitive; returns the grasped body or raises _PrimitiveAbort."""
         safe_z = max(SAFE_HEIGHT, pick.pos[2] + SAFE_CLEARANCE, place.pos[2] + SAFE_CLEARANCE)
-        pick_yaw, place_yaw = pick.yaw, place.yaw
+        pick_yaw, place_yaw = self._yaw_plan(pick, place)
         if self.gripper.held is not None:
             self.gripper.release()
         # Up, over, and down to just above the pick pose.
@@ -381,7 +385,7 @@ class SuctionRobot(ABC):
         """
         start = self._cmd_pos.copy()
         goal = np.asarray(goal, dtype=float)
-        dyaw = _wrap(goal_yaw - self._cmd_yaw)
+        dyaw = goal_yaw - self._cmd_yaw  # unwrapped on purpose: see _yaw_plan
         yaw0 = self._cmd_yaw
         dist = float(np.linalg.norm(goal - start))
         duration = max(dist / speed, abs(dyaw) / YAW_RATE, MIN_MOVE_TIME)
@@ -398,6 +402,16 @@ class SuctionRobot(ABC):
                 return True
         return False
 
+    def _yaw_plan(self, pick: Pose, place: Pose) -> tuple[float, float]:
+        """Unwrapped tool yaws at the pick and at the place.
+
+        The cup is round, so only the difference matters: the object turns by the
+        shortest rotation ``place.yaw - pick.yaw``. Tool moves follow these values
+        without wrapping; this default takes the pick yaw nearest the current one.
+        """
+        pick_yaw = self._cmd_yaw + _wrap(pick.yaw - self._cmd_yaw)
+        return pick_yaw, pick_yaw + _wrap(place.yaw - pick.yaw)
+
     def _idle(self, seconds: float) -> None:
         """Hold the current command for ``seconds`` of simulated time."""
         for k in range(max(1, math.ceil(seconds / self.model.opt.timestep))):
@@ -410,19 +424,21 @@ class SuctionRobot(ABC):
             raise _PrimitiveAbort(f"step limit exceeded ({self._max_steps} physics steps)")
         mujoco.mj_step(self.model, self.data)
         self._steps += 1
-        self._check_health()
+        # Checking every step costs a quarter of a primitive's wall time; a blow-up
+        # is still caught within HEALTH_EVERY steps (MuJoCo's own NaN warnings latch).
+        if self._steps % HEALTH_EVERY == 0:
+            self._check_health()
         if self._on_step is not None and self._steps % self._callback_every == 0:
             self._on_step()
 
     def _check_health(self) -> None:
         """Raise _PrimitiveAbort on NaN/inf state or a new fatal MuJoCo warning."""
         d = self.data
-        for i, w in enumerate(_FATAL_WARNINGS):
-            if int(d.warning[w].number) > self._warn0[i]:
-                name = w.name.removeprefix("mjWARN_")
-                raise _PrimitiveAbort(
-                    f"physics failure: MuJoCo warning {name} at time {d.time:.3f}s"
-                )
+        counts = d.warning.number[_FATAL_INDEX]
+        if (counts > self._warn0).any():
+            w = _FATAL_WARNINGS[int(np.argmax(counts > self._warn0))]
+            name = w.name.removeprefix("mjWARN_")
+            raise _PrimitiveAbort(f"physics failure: MuJoCo warning {name} at time {d.time:.3f}s")
         if not (np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()):
             raise _PrimitiveAbort(f"physics failure: non-finite qpos/qvel at time {d.time:.3f}s")
 
@@ -500,6 +516,29 @@ class ArmSuctionRobot(SuctionRobot):
             if err < SETTLE_TOL and speed < 0.05:
                 return
             self._step()
+
+    def _yaw_plan(self, pick: Pose, place: Pose) -> tuple[float, float]:
+        # The last wrist joint turns by (shoulder pan change) - (tool yaw change)
+        # and has a finite range: choose the 2*pi turn of the pick yaw that keeps
+        # it closest to the middle of its range at both the pick and the place,
+        # else it winds up over successive primitives and hits its limit.
+        near, _ = super()._yaw_plan(pick, place)
+        delta = _wrap(place.yaw - pick.yaw)
+        wrist_now = float(self.data.qpos[self.qpos_adr[-1]])
+        lo, hi = JOINT_RANGES[-1]
+        mid = 0.5 * (lo + hi)
+        pan_now = math.atan2(self._cmd_pos[1], self._cmd_pos[0])
+        pan_pick = math.atan2(pick.pos[1], pick.pos[0])
+        pan_place = math.atan2(place.pos[1], place.pos[0])
+        best, best_cost = near, math.inf
+        for turns in (-2, -1, 0, 1, 2):
+            yaw = near + 2 * math.pi * turns
+            at_pick = wrist_now + _wrap(pan_pick - pan_now) - (yaw - self._cmd_yaw)
+            at_place = at_pick + _wrap(pan_place - pan_pick) - delta
+            cost = max(abs(at_pick - mid), abs(at_place - mid))
+            if cost < best_cost:
+                best, best_cost = yaw, cost
+        return best, best + delta
 
     def _check_reach(self) -> None:
         pos_err, _ = self.ik.error(top_down_pose(self._cmd_pos, self._cmd_yaw))
