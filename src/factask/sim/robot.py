@@ -105,6 +105,8 @@ _FATAL_WARNINGS = (
     mujoco.mjtWarning.mjWARN_BADCTRL,
 )
 _FATAL_INDEX = np.array([int(w) for w in _FATAL_WARNINGS])
+#: Distance (rad) the arm's last wrist joint keeps from its range limits.
+WRIST_MARGIN = 0.6
 #: Physics steps between health checks (NaN state, fatal MuJoCo warnings).
 HEALTH_EVERY = 10
 
@@ -530,12 +532,15 @@ class ArmSuctionRobot(SuctionRobot):
         pan_now = math.atan2(self._cmd_pos[1], self._cmd_pos[0])
         pan_pick = math.atan2(pick.pos[1], pick.pos[0])
         pan_place = math.atan2(place.pos[1], place.pos[0])
+        allowed = 0.5 * (hi - lo) - WRIST_MARGIN
         best, best_cost = near, math.inf
-        for turns in (-2, -1, 0, 1, 2):
+        for turns in (0, -1, 1, -2, 2):  # fewest extra turns first: they cost time
             yaw = near + 2 * math.pi * turns
             at_pick = wrist_now + _wrap(pan_pick - pan_now) - (yaw - self._cmd_yaw)
             at_place = at_pick + _wrap(pan_place - pan_pick) - delta
             cost = max(abs(at_pick - mid), abs(at_place - mid))
+            if cost <= allowed:
+                return yaw, yaw + delta
             if cost < best_cost:
                 best, best_cost = yaw, cost
         return best, best + delta
