@@ -195,9 +195,7 @@ def test_step_before_reset_raises() -> None:
     {"pick": [[0.5, 0.0], [0.02, 0.0]], "place": [0.5, 0.1, 0.02]},
     {"pick": [0.5, float("nan"), 0.02, 0.0], "place": [0.5, 0.1, 0.02, 0.0]},
     {"pick": [0.5, 0.0, 0.02, 0.0], "place": [0.5, 0.1, float("inf"), 0.0]},
-    pytest.param({"pick": "here", "place": [0.5, 0.1, 0.02, 0.0]}, marks=pytest.mark.xfail(
-        reason="bug: env._pose4 lets np.asarray's ValueError escape for non-numeric "
-               "values instead of raising ActionError", raises=ValueError, strict=True)),
+    {"pick": "here", "place": [0.5, 0.1, 0.02, 0.0]},
     [0.5, 0.0, 0.02, 0.0, 0.5, 0.1, 0.02, 0.0],
     None,
 ], ids=["no-place", "no-pick", "short-pick", "long-place", "2d-pick", "nan", "inf",

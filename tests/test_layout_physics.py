@@ -251,17 +251,7 @@ def test_relation_layouts_have_no_penetration_and_satisfy_nothing(key: str, seed
 
 
 # ------------------------------------------------------------ solved targets
-#: Three 4 cm cylinders in the default container (inner area 14 cm square): the
-#: solver's grid puts the outer two with their rims exactly on the inner walls
-#: (zero margin), so micrometre physics jitter fails the 100 % region check.
-_ZERO_MARGIN_BUG = pytest.mark.xfail(
-    reason="layout.py inside/in_zone grid: outer slots touch the inner wall with zero "
-           "margin; after 0.5 s at rest cyl__0/cyl__2 are 94% inside (needs 100%)",
-    strict=True)
-
-
-@pytest.mark.parametrize("key", [pytest.param(k, marks=_ZERO_MARGIN_BUG) if k == "inside"
-                                 else k for k in sorted(GRAPHS)])
+@pytest.mark.parametrize("key", sorted(GRAPHS))
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_objects_at_targets_satisfy_everything_and_stay(key: str, seed: int) -> None:
     """Every object put at its solved target: reward 1 and success; no penetration;

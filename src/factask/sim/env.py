@@ -69,7 +69,10 @@ class StepRecord:
 
 
 def _pose4(value: Any, what: str) -> Pose:
-    arr = np.asarray(value, dtype=float).reshape(-1)
+    try:
+        arr = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        arr = np.full(1, np.nan)  # not numbers at all: reported below
     if arr.shape != (4,) or not np.all(np.isfinite(arr)):
         raise ActionError(f"{what} must be 4 finite numbers (x, y, z, yaw in radians), "
                           f"got {value!r}")

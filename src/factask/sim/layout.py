@@ -66,6 +66,8 @@ from factask.sim.objects import (
 CLEARANCE = 0.01
 #: Extra gap in a row with no explicit spacing: widest object + this (metres).
 ROW_GAP = 0.01
+#: Distance (m) a packed grid keeps from the edge of its area when it can.
+EDGE_MARGIN = 0.004
 #: Candidate poses tried per object (or per column/row/circle) before giving up.
 MAX_TRIES_PER_OBJECT = 200
 #: Whole-layout restarts before :func:`sample_layout` gives up.
@@ -636,8 +638,13 @@ def solve_targets(graph: TaskGraph, layout: Mapping[str, Pose], rng: np.random.G
         raise LayoutError(f"layout of {graph.name!r}", f"no initial pose for {missing}",
                           retryable=False, fix="pass the dict sample_layout returns")
     ctx = _Ctx(graph, objs, dict(layout), Occupancy(), rng)
+    # Obstacles for targets: what will still stand where it started. Flat markers
+    # do not collide, and an object some factor moves vacates its start (the
+    # oracle moves it out of the way first if a target needs the spot); its own
+    # target becomes an obstacle once solved.
+    moved = {i for f in graph.factors for v in f.goal.objects for i in ctx.inst(v)}
     for name, pose in layout.items():
-        if name in objs:
+        if name in objs and objs[name].collides and name not in moved:
             ctx.occ.put(name, objs[name], pose)
     out: dict[str, SolvedFactor] = {}
     for fname in graph.factor_order():
@@ -767,14 +774,20 @@ def _grid(movers: list[SceneObject], area: Area, rng: np.random.Generator,
         if ring is not None:
             return ring, area.yaw
     half = area.packing_half()
-    length = 2 * half
     size = np.array([[o.size[0], o.size[1]] for o in movers]).max(axis=0)
     best = None
-    for turn in (0.0, math.pi / 2):
-        cell = (size if turn == 0.0 else size[::-1]) + CLEARANCE
-        cap = np.floor((length + CLEARANCE) / cell + GEOMETRY_EPS).astype(int)
-        if cap[0] * cap[1] >= n and cap.min() >= 1:
-            best = (turn, cell, cap)
+    # Keep the outer objects EDGE_MARGIN off the area's edge (a wall, a zone's
+    # border) so physics jitter cannot push them partly outside; only a grid that
+    # fits no other way touches the edge.
+    for margin in (EDGE_MARGIN, 0.0):
+        length = 2 * half - 2 * margin
+        for turn in (0.0, math.pi / 2):
+            cell = (size if turn == 0.0 else size[::-1]) + CLEARANCE
+            cap = np.floor((length + CLEARANCE) / cell + GEOMETRY_EPS).astype(int)
+            if cap[0] * cap[1] >= n and cap.min() >= 1:
+                best = (turn, cell, cap)
+                break
+        if best is not None:
             break
     if best is None:
         raise _Infeasible(f"{n} object(s) of up to {size[0]:.3f} x {size[1]:.3f} m do not fit "
