@@ -2,8 +2,8 @@
 (factask.sim.episode): library sweeps, failure reasons, re-planning, and the
 research's success definitions.
 
-Default runs sweep a quick subset of the library with the floating cup; the whole
-library (floating cup and arm) is under ``@pytest.mark.slow``.
+Default runs sweep the whole library with the floating cup (two seeds per task);
+the same sweep with the arm is under ``@pytest.mark.slow``.
 """
 
 from __future__ import annotations
@@ -29,12 +29,6 @@ from factask.sim.episode import (
 from factask.sim.objects import footprint_corners, obb_overlaps
 from factask.sim.oracle import MAX_ATTEMPTS_PER_OBJECT, Oracle
 
-#: Library tasks swept by default (each oracle episode takes about a second or
-#: less); every other task's sweep is marked slow.
-FAST_TASKS = {
-    "block-insertion", "code-cylinder-in-zone", "put-block-in-bowl", "stack-boxes-column",
-    "packing-boxes", "place-red-in-green", "put-blues-around-red",
-}
 SEEDS = (0, 1)
 
 
@@ -52,23 +46,17 @@ def _describe(name: str, seed: int, r: EpisodeResult) -> str:
             f"failure: {r.failure}; details: {r.details}")
 
 
-def _library_params(fast: set[str] | None) -> list[Any]:
-    """One param per library task; tasks outside ``fast`` are marked slow."""
-    out = []
-    for name in task_names():
-        marks = [] if fast is None or name in fast else [pytest.mark.slow]
-        out.append(pytest.param(name, marks=marks, id=name))
-    return out
+def _library_params() -> list[Any]:
+    """One param per library task."""
+    return [pytest.param(name, id=name) for name in task_names()]
 
 
 # ------------------------------------------------------------ library sweeps
-def test_fast_subset_is_in_the_library() -> None:
-    """The default sweep names real tasks (a renamed task must not silently vanish)."""
-    assert set(FAST_TASKS) <= set(task_names())
+def test_library_is_large_enough() -> None:
     assert len(task_names()) >= 30
 
 
-@pytest.mark.parametrize("name", _library_params(FAST_TASKS))
+@pytest.mark.parametrize("name", _library_params())
 def test_oracle_completes_library_task_floating(name: str) -> None:
     """The oracle solves every library task with the floating cup, seeds 0 and 1."""
     graph = get_task(name)
@@ -86,7 +74,7 @@ def test_oracle_completes_library_task_floating(name: str) -> None:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", _library_params(None))
+@pytest.mark.parametrize("name", _library_params())
 def test_oracle_completes_library_task_arm(name: str) -> None:
     """The oracle solves every library task with the arm (seed 0)."""
     graph = get_task(name)

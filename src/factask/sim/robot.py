@@ -105,6 +105,8 @@ _FATAL_WARNINGS = (
     mujoco.mjtWarning.mjWARN_BADCTRL,
 )
 _FATAL_INDEX = np.array([int(w) for w in _FATAL_WARNINGS])
+#: Simulated seconds the arm takes to return home after an aborted primitive.
+RECOVER_TIME = 1.5
 #: Distance (rad) the arm's last wrist joint keeps from its range limits.
 WRIST_MARGIN = 0.6
 #: Physics steps between health checks (NaN state, fatal MuJoCo warnings).
@@ -223,6 +225,7 @@ class SuctionRobot(ABC):
         self._on_step: Callable[[], None] | None = None
         self._callback_every = DEFAULT_CALLBACK_EVERY
         self._warn0 = np.zeros(len(_FATAL_WARNINGS), dtype=np.int64)
+        self._aborted = False
 
     # ----- robot-specific hooks -----
 
@@ -238,8 +241,11 @@ class SuctionRobot(ABC):
         """Re-command the current tip pose (after a guarded stop, to stop pushing)."""
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw = ee.yaw
+        self._cmd_yaw += _wrap(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
         self._command(self._cmd_pos, self._cmd_yaw, 0)
+
+    def _recover(self) -> None:  # noqa: B027 - optional hook, a mocap cannot get stuck
+        """Bring the robot back to a known state after an aborted primitive."""
 
     def _settle(self) -> None:  # noqa: B027 - optional hook, a mocap needs no settling
         """Step until the tip tracks its command (arm); nothing to do for a mocap."""
@@ -314,9 +320,13 @@ class SuctionRobot(ABC):
         grasped: int | None = None
         try:
             self._check_health()
+            if self._aborted:
+                self._recover()
+            self._aborted = False
             grasped = self._run(pick, place)
             self._check_health()
         except _PrimitiveAbort as abort:
+            self._aborted = True
             if self.gripper.held is not None:
                 grasped = self.gripper.held
             self.gripper.release()
@@ -506,7 +516,7 @@ class ArmSuctionRobot(SuctionRobot):
         self.data.ctrl[self.act] = self.data.qpos[self.qpos_adr]
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw = ee.yaw
+        self._cmd_yaw += _wrap(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
 
     def _settle(self) -> None:
         target = top_down_pose(self._cmd_pos, self._cmd_yaw)
@@ -516,6 +526,30 @@ class ArmSuctionRobot(SuctionRobot):
             err = float(np.linalg.norm(self.ee_pose().pos - self._cmd_pos))
             speed = float(np.abs(self.data.qvel[self.dof_adr]).max())
             if err < SETTLE_TOL and speed < 0.05:
+                return
+            self._step()
+
+    def _recover(self) -> None:
+        # An aborted primitive can leave the IK in a poor local solution it cannot
+        # leave by small steps: lift straight up, then move the joints back home.
+        up = self.ee_pose().pos.copy()
+        up[2] = max(up[2], SAFE_HEIGHT)
+        self._move(up, self._cmd_yaw)
+        start = self.data.qpos[self.qpos_adr].copy()
+        home = np.asarray(HOME_QPOS)
+        n = max(1, math.ceil(RECOVER_TIME / self.model.opt.timestep))
+        for k in range(1, n + 1):
+            self.data.ctrl[self.act] = start + _smoothstep(k / n) * (home - start)
+            self._step()
+        self.ik.set_q(home)
+        self._settle_joints()
+        ee = self.ee_pose()
+        self._cmd_pos = ee.pos.copy()
+        self._cmd_yaw += _wrap(ee.yaw - self._cmd_yaw)
+
+    def _settle_joints(self) -> None:
+        for _ in range(math.ceil(SETTLE_MAX_TIME / self.model.opt.timestep)):
+            if float(np.abs(self.data.qvel[self.dof_adr]).max()) < 0.05:
                 return
             self._step()
 
