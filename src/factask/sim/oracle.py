@@ -31,6 +31,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from factask.geometry import Pose, tilt_deg
+from factask.model.kinds import yaw_symmetry_deg
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.sim.checks import MAX_TILT_DEG, check_factor
 from factask.sim.env import FactaskEnv
@@ -191,7 +192,10 @@ class Oracle:
     def _action(self, obj: SceneObject, current: Pose, target: Pose, factor: str,
                 purpose: str) -> OracleAction:
         pick_yaw = current.yaw
-        place_yaw = _yaw_toward(target.yaw, pick_yaw, obj.symmetry_deg)
+        # Where the goal ignores yaw (symmetry 0), still turn by the object's shape
+        # symmetry: a box set down askew can hit its neighbours.
+        symmetry = obj.symmetry_deg or yaw_symmetry_deg(obj.kind, obj.size)
+        place_yaw = _yaw_toward(target.yaw, pick_yaw, symmetry)
         pick = np.array([current.pos[0], current.pos[1], top_z(obj, current), pick_yaw])
         place = np.array([target.pos[0], target.pos[1], target.pos[2] + obj.half[2],
                           place_yaw])

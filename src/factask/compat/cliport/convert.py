@@ -191,7 +191,7 @@ def _inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
     return bool(abs(local[0]) <= o.size[0] / 2 and abs(local[1]) <= o.size[1] / 2)
 
 
-def _placement(o: RecordedObject, earlier: list[RecordedObject], names: dict[int, str],
+def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int, str],
                moved: set[int], warn: Any) -> Any:
     name = names[o.obj_id]
     if o.random_start and o.obj_id in moved and o.category != "fixed":
@@ -199,8 +199,11 @@ def _placement(o: RecordedObject, earlier: list[RecordedObject], names: dict[int
         # each episode, clear of everything (objects added later included).
         return OnTable()
     bottom = float(o.pos[2]) - o.size[2] / 2
-    holders = [c for c in earlier if _inside_footprint(o.pos[:2], c)]
-    receptacles = [c for c in holders if kind_spec(c.kind).receptacle]
+    # Any other object may hold it, whatever the order the task added them in (a
+    # stack added top first); only a lower one can be its support, so no cycles.
+    holders = [c for c in others if _inside_footprint(o.pos[:2], c)]
+    receptacles = [c for c in holders if kind_spec(c.kind).receptacle
+                   and c.pos[2] - c.size[2] / 2 <= bottom + SUPPORT_SLACK]
     if receptacles:
         return StartInside(container=names[receptacles[-1].obj_id])
     # A centre inside a support's footprint cannot rest on the table: it is on it.
@@ -469,7 +472,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         variables.append(StateVariable(
             name=name, description=f"{o.urdf} (CLIPort object {o.obj_id})", kind=o.kind,
             size=o.size, color=o.color, fixed=fixed, symmetry_deg=sym_deg,
-            initial=_placement(o, objects[:k], names, moved, warn)))
+            initial=_placement(o, objects[:k] + objects[k + 1:], names, moved, warn)))
     variables.extend(extra)
 
     max_steps = int(getattr(task, "max_steps", 0) or 0)
