@@ -66,6 +66,8 @@ from factask.sim.objects import (
 CLEARANCE = 0.01
 #: Extra gap in a row with no explicit spacing: widest object + this (metres).
 ROW_GAP = 0.01
+#: Extra chord (m) between neighbours on a ring, over the clearance.
+RING_SLACK = 0.001
 #: Distance (m) a packed grid keeps from the edge of its area when it can.
 EDGE_MARGIN = 0.004
 #: Candidate poses tried per object (or per column/row/circle) before giving up.
@@ -1025,7 +1027,9 @@ def _solve_circle(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Pl
     assert isinstance(goal, Circle)
     n = len(movers)
     diag = 2 * max(_clear_radius(o) for o in movers)
-    radius = diag / (2 * math.sin(math.pi / n)) if n > 1 else 0.0
+    # RING_SLACK: neighbours exactly at the clearance fail the collision test by
+    # rounding, for some phases only (a slow, random search otherwise).
+    radius = (diag + RING_SLACK) / (2 * math.sin(math.pi / n)) if n > 1 else 0.0
     ones = np.ones((n, n), dtype=bool)
     phase = float(ctx.rng.uniform(0, 2 * math.pi / max(n, 1)))
 
