@@ -31,9 +31,8 @@ from factask.gen.loopback import LoopbackServer
 from factask.gen.strategies import Generator
 from factask.gen.verify import Verifier
 
-GENSIM = Path("/work/shared/data/gensim_tasks.json")
-if not GENSIM.exists():  # the checkout's sibling, as the CLI's default
-    GENSIM = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
+#: The benchmark task list, in ``shared/`` beside the checkout (as in CI).
+GENSIM = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
 
 TASKS = [
     {"name": "red-in-zone-then-blue-on-red", "description": "put the red block in the zone, "

@@ -33,9 +33,8 @@ from factask.model import (
 )
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 
-GENSIM = Path(__file__).resolve().parents[1] / "shared" / "data" / "gensim_tasks.json"
-if not GENSIM.exists():  # the shared folder may sit beside the checkout
-    GENSIM = Path("/work/shared/data/gensim_tasks.json")
+#: The benchmark task list, in ``shared/`` beside the checkout (as in CI).
+GENSIM = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
 
 REQUIRED = [
     "place-red-in-green", "stack-block-pyramid", "stack-block-pyramid-seq", "towers-of-hanoi",
