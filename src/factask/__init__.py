@@ -39,6 +39,18 @@ _LAZY: dict[str, tuple[str, str]] = {
     "TaskResult": ("factask.sim.episode", "TaskResult"),
     "SceneRenderer": ("factask.sim.render", "SceneRenderer"),
     "VideoRecorder": ("factask.sim.render", "VideoRecorder"),
+    # LLM generation by factorization
+    "generate": ("factask.gen", "generate"),
+    "Generator": ("factask.gen", "Generator"),
+    "GenerationResult": ("factask.gen", "GenerationResult"),
+    "LLMConfig": ("factask.gen", "LLMConfig"),
+    "LLMClient": ("factask.gen", "LLMClient"),
+    "Verifier": ("factask.gen", "Verifier"),
+    "SubtaskMemory": ("factask.gen", "SubtaskMemory"),
+    "LoopbackServer": ("factask.gen", "LoopbackServer"),
+    "run_benchmark": ("factask.evaluation.benchmark", "run_benchmark"),
+    # CLIPort / GenSim task code
+    "import_cliport": ("factask.compat.cliport", "import_cliport"),
 }
 
 __all__ = [*_model_all, *_LAZY, "__version__"]
