@@ -23,6 +23,8 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "03_run_oracle_and_rewards.py": ("03_rewards.json",),
     "04_render_scene.py": ("04_rgb_front.png", "04_rgb_top.png", "04_depth_top.png",
                            "04_segmentation_top.png", "04_episode.gif"),
+    "05_import_cliport_task.py": ("05_stack_boxes_column.py", "05_imported.json"),
+    "06_generate_with_loopback.py": ("06_generated.json", "06_results.json"),
 }
 SIGNATURES = {".png": b"\x89PNG\r\n\x1a\n", ".gif": b"GIF8"}
 
@@ -44,6 +46,8 @@ def test_example_runs(script: str, tmp_path: Path) -> None:
         assert path.is_file(), f"{script} did not write {path}"
         if path.suffix == ".json":
             json.loads(path.read_text())
+        elif path.suffix == ".py":
+            compile(path.read_text(), str(path), "exec")  # written source parses
         else:
             assert path.read_bytes().startswith(SIGNATURES[path.suffix]), \
                 f"{path} is not a {path.suffix} file"

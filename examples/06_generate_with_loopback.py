@@ -7,11 +7,13 @@
 # failure goes back to the "model" as feedback. The script's first answer of one
 # step per strategy is wrong on purpose, so each strategy shows a repair.
 #
-# Run with `python examples/generate_with_loopback.py`. For a real model, drop the
+# Run with `python examples/06_generate_with_loopback.py`. For a real model, drop the
 # server and pass e.g. `LLMConfig(model="openai/gpt-4o")` (see docs/generation.md).
 
 # %%
+import json
 import os
+from pathlib import Path
 
 os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # offline: bundled cost map
 os.environ.setdefault("MUJOCO_GL", "egl")
@@ -58,6 +60,17 @@ for approach in APPROACHES:
 graph = results["subtasks-first"].graph
 print(graph.to_json())
 print("order:", " -> ".join(graph.factor_order()))
+
+# %% [markdown]
+# ## Saved for later: the graph, and every generation's record (steps, feedback, usage)
+
+# %%
+out = Path("out/examples")
+out.mkdir(parents=True, exist_ok=True)
+(out / "06_generated.json").write_text(graph.to_json())
+(out / "06_results.json").write_text(
+    json.dumps([r.to_dict() for r in results.values()], indent=2))
+print("wrote", out / "06_generated.json")
 
 # %%
 server.stop()
