@@ -468,3 +468,144 @@ def test_gensim_habits_refill_long_names_and_short_matches():
     assert len(set(names)) == 2 and all("__" not in n for n in names)
     assert all(f.goal.matches == [[1, 1, 0, 0]] for f in g.factors)
     assert any("matches has 2 column(s) for 4 target(s)" in w for w in r.warnings)
+
+
+# ------------------------------------------------- late failures keep earlier stages
+def test_failure_while_building_the_graph_is_a_cliport_import_error():
+    with pytest.raises(CliportImportError) as info:
+        import_cliport(BAD / "none_reward.py")
+    msg = str(info.value)
+    assert "none_reward.py" in msg and "NoneReward" in msg and "step_max_reward" in msg
+
+
+def test_any_exception_of_build_graph_becomes_a_cliport_import_error(monkeypatch):
+    from factask.compat.cliport import loader
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(loader, "build_graph", broken)
+    with pytest.raises(CliportImportError, match=r"StackBoxesColumn: .*RuntimeError: boom"):
+        _imp("stack_boxes_column")
+    assert "cliport" not in sys.modules
+
+
+def test_cli_import_cliport_late_failure_has_no_traceback(tmp_path):
+    res = CliRunner().invoke(app, ["import-cliport", str(BAD / "none_reward.py"),
+                                   "--out", str(tmp_path / "x.json")])
+    assert res.exit_code == 1, res.output
+    assert isinstance(res.exception, SystemExit)
+    assert "step_max_reward" in res.output
+
+
+def test_batch_late_failure_keeps_loaded():
+    rec = run_one(BAD / "none_reward.py", timeout=60)
+    assert rec["loaded"] and rec["class"] == "NoneReward"
+    assert not rec["imported"] and "step_max_reward" in rec["error"]
+
+
+def test_worker_reports_each_stage_and_keeps_them_on_an_unexpected_error(monkeypatch):
+    from factask.compat.cliport import worker
+
+    def broken_compile(graph):
+        raise RuntimeError("mujoco exploded")
+
+    monkeypatch.setattr(worker, "_optional",
+                        lambda module, attr: broken_compile if attr == "compile_graph" else None)
+    seen = []
+    rec = worker.run_file(str(TASKS / "place_red_in_green.py"), emit=seen.append)
+    assert rec["loaded"] and rec["imported"] and rec["class"] == "PlaceRedInGreen"
+    assert rec["task"] == "place-red-in-green" and rec["compiled"] is False
+    assert "RuntimeError: mujoco exploded" in rec["error"]
+    assert [(r["loaded"], r["imported"]) for r in seen] == [(True, False), (True, True)]
+    assert seen[-1]["task"] == "place-red-in-green" and seen[-1]["error"] is None
+
+
+def _fake_worker(behaviour):
+    """A worker command whose compile step is a no-op and whose oracle ``behaviour``s."""
+    script = (
+        "import os, sys, time\n"
+        "from factask.compat.cliport import worker\n"
+        "def compile_graph(graph): return None\n"
+        "def run_episode(*a, **k):\n"
+        f"    if {behaviour!r} == 'hang': time.sleep(600)\n"
+        "    os._exit(3)\n"
+        "worker._optional = lambda m, a: compile_graph if a == 'compile_graph' else run_episode\n"
+        "worker.main(sys.argv[1:])\n"
+    )
+
+    def command(path, seed, episodes, graph_out):
+        return [sys.executable, "-c", script, str(path), "--episodes", str(episodes)]
+
+    return command
+
+
+@pytest.mark.parametrize("behaviour", ["hang", "crash"])
+def test_batch_oracle_timeout_or_crash_keeps_the_stages_done(monkeypatch, behaviour):
+    from factask.compat.cliport import batch
+
+    monkeypatch.setattr(batch, "_worker_command", _fake_worker(behaviour))
+    rec = run_one(TASKS / "place_red_in_green.py", timeout=20 if behaviour == "crash" else 4,
+                  episodes=1)
+    assert rec["loaded"] and rec["imported"] and rec["compiled"] is True
+    assert rec["class"] == "PlaceRedInGreen" and rec["task"] == "place-red-in-green"
+    assert rec["oracle_success_rate"] is None and "oracle" in rec["error"]
+    if behaviour == "hang":
+        assert rec["error"].startswith("timed out")
+    else:
+        assert "code 3" in rec["error"]
+    assert "stage" not in rec
+
+
+def test_batch_timeout_in_reset_keeps_loaded():
+    rec = run_one(BAD / "hangs.py", timeout=3)
+    assert rec["loaded"] and rec["class"] == "Hangs" and not rec["imported"]
+    assert rec["error"].startswith("timed out") and "reset" in rec["error"]
+
+
+def test_batch_cli_prints_errors_that_look_like_markup(tmp_path):
+    folder = tmp_path / "tasks"
+    folder.mkdir()
+    for name in ("markup_error.py", "no_task.py"):
+        shutil.copy(BAD / name, folder / name)
+    out = tmp_path / "r.jsonl"
+    res = CliRunner().invoke(app, ["import-cliport-batch", str(folder), "--out", str(out),
+                                   "--timeout", "60"])
+    assert res.exit_code == 0, res.output
+    assert "[/tmp/a] is missing [bold]" in res.output
+    assert len(out.read_text().splitlines()) == 2
+    assert "0/2 file(s) imported" in res.output
+
+
+def test_worker_runs_the_task_file_once(tmp_path, monkeypatch):
+    from factask.compat.cliport import worker
+
+    counter = tmp_path / "runs.txt"
+    task_file = tmp_path / "counted.py"
+    task_file.write_text(
+        "from pathlib import Path\n"
+        "from cliport.tasks.task import Task\n"
+        f"Path({str(counter)!r}).open('a').write('x')\n"
+        "class Counted(Task):\n"
+        "    def reset(self, env):\n"
+        "        super().reset(env)\n"
+        "        raise ValueError('no goals')\n")
+    monkeypatch.setattr(worker, "_optional", lambda module, attr: None)
+    rec = worker.run_file(str(task_file))
+    assert rec["loaded"] and rec["class"] == "Counted" and not rec["imported"]
+    assert counter.read_text() == "x"
+
+
+# ------------------------------------------------------------------ pybullet AABB
+def test_pybullet_aabb_follows_the_rotation():
+    from factask.compat.cliport import pybullet_stub as p
+    from factask.compat.cliport.recorder import RecordedObject, Session, session_scope
+
+    session = Session()
+    yaw90 = np.array(p.getQuaternionFromEuler((0, 0, math.pi / 2)))
+    session.objects[5] = RecordedObject(5, "box/box-template.urdf", "box", (0.1, 0.02, 0.02),
+                                        "red", "rigid", np.array([0.5, 0.0, 0.01]), yaw90)
+    with session_scope(session):
+        lo, hi = p.getAABB(5)
+    assert lo == pytest.approx((0.49, -0.05, 0.0), abs=1e-9)
+    assert hi == pytest.approx((0.51, 0.05, 0.02), abs=1e-9)

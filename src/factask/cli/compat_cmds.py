@@ -11,6 +11,7 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 
 from factask.cli.app import app
 
@@ -39,17 +40,18 @@ def import_cliport_cmd(
     try:
         result = import_cliport(file, class_name=class_name, seed=seed)
     except CliportImportError as exc:
-        err_console.print(f"[red]{file}: import failed[/red]")
+        err_console.print(f"[red]{escape(str(file))}: import failed[/red]")
         err_console.print(str(exc), markup=False, highlight=False)
         raise typer.Exit(1) from None
     try:
         out.write_text(result.graph.to_json(), encoding="utf-8")
     except OSError as exc:
-        err_console.print(f"[red]cannot write {out}: {exc.strerror or exc}[/red]")
+        err_console.print(f"[red]{escape(f'cannot write {out}: {exc.strerror or exc}')}[/red]")
         raise typer.Exit(2) from None
     g = result.graph
-    console.print(f"[green]{file}: imported[/green] {result.class_name} as {g.name!r}: "
-                  f"{len(g.variables)} variable(s), {len(g.factors)} factor(s) -> {out}")
+    console.print(f"[green]{escape(str(file))}: imported[/green] "
+                  + escape(f"{result.class_name} as {g.name!r}: {len(g.variables)} "
+                           f"variable(s), {len(g.factors)} factor(s) -> {out}"))
     if not quiet:
         for w in result.warnings:
             err_console.print(f"  warning: {w}", markup=False, highlight=False)
@@ -74,26 +76,26 @@ def import_cliport_batch_cmd(
     from factask.compat.cliport.batch import run_batch, task_files
 
     if not folder.is_dir():
-        err_console.print(f"[red]{folder} is not a folder[/red]")
+        err_console.print(f"[red]{escape(str(folder))} is not a folder[/red]")
         raise typer.Exit(2)
     n = len(task_files(folder))
     if n == 0:
-        err_console.print(f"[yellow]{folder} has no .py files[/yellow]")
+        err_console.print(f"[yellow]{escape(str(folder))} has no .py files[/yellow]")
 
     def show(rec: dict) -> None:
         ok = rec.get("imported") and not rec.get("error")
         mark = "[green]ok[/green]" if ok else "[red]failed[/red]"
-        line = f"{mark} {Path(rec['file']).name}"
+        line = Path(rec["file"]).name
         if rec.get("error"):
-            line += f": {str(rec['error']).splitlines()[0][:200]}"
-        err_console.print(line)
+            line += f": {(str(rec['error']).splitlines() or [''])[0][:200]}"
+        err_console.print(f"{mark} {escape(line)}", highlight=False)
 
     try:
         with out.open("w", encoding="utf-8") as fh:
             records = run_batch(folder, fh, timeout=timeout, seed=seed, episodes=episodes,
                                 graphs_dir=graphs, on_result=show)
     except OSError as exc:
-        err_console.print(f"[red]cannot write {out}: {exc.strerror or exc}[/red]")
+        err_console.print(f"[red]{escape(f'cannot write {out}: {exc.strerror or exc}')}[/red]")
         raise typer.Exit(2) from None
     good = sum(1 for r in records if r.get("imported") and not r.get("error"))
-    console.print(f"{good}/{len(records)} file(s) imported -> {out}")
+    console.print(escape(f"{good}/{len(records)} file(s) imported -> {out}"), highlight=False)

@@ -43,9 +43,48 @@ def _kill_group(proc: subprocess.Popen[str]) -> None:
         proc.kill()
 
 
+def _worker_command(path: Path, seed: int, episodes: int,
+                    graph_out: str | Path | None) -> list[str]:
+    cmd = [sys.executable, "-m", "factask.compat.cliport.worker", str(path),
+           "--seed", str(seed), "--episodes", str(episodes)]
+    if graph_out is not None:
+        cmd += ["--graph-out", str(graph_out)]
+    return cmd
+
+
+#: What the child was doing when it stopped, by the last stage it reported.
+_NEXT_STEP = {
+    None: "while loading the file",
+    "started": "while loading the file",
+    "loaded": "while running reset and building the graph",
+    "imported": "while compiling the graph",
+    "compiled": "during the oracle episodes",
+}
+
+
+def _last_record(out: str) -> tuple[dict[str, Any] | None, str | None]:
+    """The last record line the worker printed, and its stage (popped from it)."""
+    for line in reversed(out.splitlines()):
+        line = line.strip()
+        if not line.startswith("{"):
+            continue
+        try:
+            rec = json.loads(line)
+        except json.JSONDecodeError:
+            continue
+        if isinstance(rec, dict) and "loaded" in rec:
+            stage = rec.pop("stage", "done")
+            return rec, stage if isinstance(stage, str) else None
+    return None, None
+
+
 def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
             episodes: int = 0, graph_out: str | Path | None = None) -> dict[str, Any]:
     """Import one file in a child process; always return a result record.
+
+    The child reports each stage it finishes (loaded, imported, compiled) as it
+    goes; if it is killed for the time limit or dies, the stages it reported stay
+    true and ``error`` says what it was doing.
 
     Args:
         path: The task file.
@@ -55,33 +94,31 @@ def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
         graph_out: Where the child writes the graph JSON, if given.
 
     Returns:
-        The worker's record, or a failed record saying why the child gave none.
+        The worker's record, or one saying why the child did not finish.
     """
     p = Path(path)
-    cmd = [sys.executable, "-m", "factask.compat.cliport.worker", str(p),
-           "--seed", str(seed), "--episodes", str(episodes)]
-    if graph_out is not None:
-        cmd += ["--graph-out", str(graph_out)]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    proc = subprocess.Popen(_worker_command(p, seed, episodes, graph_out),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
+    timed_out = False
     try:
         out, err = proc.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
+        timed_out = True
         _kill_group(proc)
-        proc.communicate()
-        return _failed(p, f"timed out after {timeout:g} s (wall clock)")
-    for line in reversed(out.splitlines()):
-        line = line.strip()
-        if line.startswith("{"):
-            try:
-                rec = json.loads(line)
-            except json.JSONDecodeError:
-                continue
-            if isinstance(rec, dict) and "loaded" in rec:
-                return rec
-    tail = err.strip()[-STDERR_TAIL:]
-    return _failed(p, f"child process exited with code {proc.returncode} without a result"
-                   + (f": {tail}" if tail else ""))
+        out, err = proc.communicate()  # what the child printed before the kill
+    rec, stage = _last_record(out)
+    if rec is not None and stage == "done":
+        return rec
+    rec = rec if rec is not None else _failed(p, "")
+    when = _NEXT_STEP.get(stage, f"after stage {stage!r}")
+    if timed_out:
+        rec["error"] = f"timed out after {timeout:g} s (wall clock) {when}"
+    else:
+        tail = err.strip()[-STDERR_TAIL:]
+        rec["error"] = (f"child process exited with code {proc.returncode} {when} "
+                        "without a result" + (f": {tail}" if tail else ""))
+    return rec
 
 
 def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT_S,

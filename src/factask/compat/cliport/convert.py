@@ -166,8 +166,13 @@ def _read_goals(task: Any, session: Session) -> list[_Goal]:
                                          "[(zone_pose, zone_size)]")
         elif metric != "pose":
             raise Unsupported(f"goal {i}: metric {metric!r} (only 'pose' and 'zone' exist)")
+        try:
+            max_reward = float(max_reward)
+        except (TypeError, ValueError):
+            raise CliportImportError(f"goal {i}: step_max_reward must be a number, got "
+                                     f"{max_reward!r}") from None
         out.append(_Goal(i, recorded, syms, (m > 0).astype(int), targets, bool(replace),
-                         bool(rotations), str(metric), zones, float(max_reward),
+                         bool(rotations), str(metric), zones, max_reward,
                          _language(task, i, goal)))
     return out
 

@@ -18,7 +18,7 @@ import sys
 import traceback
 import types
 import uuid
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -220,7 +220,8 @@ def load_task_class(path: str | Path, class_name: str | None = None) -> type:
 
 
 def import_cliport(path: str | Path, class_name: str | None = None,
-                   seed: int = 0) -> ImportResult:
+                   seed: int = 0, on_loaded: Callable[[type], None] | None = None
+                   ) -> ImportResult:
     """Load a task file, run ``reset`` against a recording env, and build its graph.
 
     Args:
@@ -228,6 +229,8 @@ def import_cliport(path: str | Path, class_name: str | None = None,
         class_name: Which Task subclass (default: see :func:`load_task_class`).
         seed: Seed of every random draw of the reset (``np.random``, ``random``,
             ``get_random_pose``).
+        on_loaded: Called with the Task class once the file has run and the class
+            is picked, before ``reset`` (the batch worker reports that stage).
 
     Returns:
         The validated graph, the warnings and the Ravens goal queue.
@@ -243,6 +246,8 @@ def import_cliport(path: str | Path, class_name: str | None = None,
         with cliport_aliases(), _seeded(seed), session_scope(session):
             module = _exec_file(p)
             cls = _pick_class(module, p, class_name)
+            if on_loaded is not None:
+                on_loaded(cls)
             try:
                 instance = cls()
                 instance.set_assets_root(FAKE_ASSETS_ROOT)
@@ -257,6 +262,10 @@ def import_cliport(path: str | Path, class_name: str | None = None,
             except (FactaskError, ValidationError) as exc:
                 raise CliportImportError(f"{p}: {cls.__name__}: the recorded scene is not "
                                          f"a valid graph: {exc}") from exc
+            except Exception as exc:  # e.g. a goal field of the wrong type
+                raise CliportImportError(f"{p}: {cls.__name__}: the recorded goals could "
+                                         f"not be converted: {type(exc).__name__}: {exc}"
+                                         ) from exc
     finally:
         session.close()
     names = {v.name for v in graph.variables}

@@ -88,9 +88,15 @@ def getVisualShapeData(obj_id: int, *args: Any, **kwargs: Any
 
 def getAABB(obj_id: int, *args: Any, **kwargs: Any
             ) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """Axis-aligned box of the recorded object (its own extents about its position)."""
+    """World axis-aligned box around the recorded object's box, rotated by its pose.
+
+    The box's half extents are turned by the object's orientation (|R| times the
+    half extents: the box around its eight rotated corners), so a 0.1 x 0.02 bar
+    yawed 90 degrees spans 0.02 along x.
+    """
     o = active_session().obj(obj_id)
-    half = np.asarray(o.size) / 2
+    rot = np.abs(transforms.rotation(o.quat).as_matrix())
+    half = rot @ (np.asarray(o.size, dtype=float) / 2)
     return tuple(map(float, o.pos - half)), tuple(map(float, o.pos + half))
 
 

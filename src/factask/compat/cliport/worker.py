@@ -1,15 +1,18 @@
-"""Child-process entry of the batch import: one task file, one JSON line.
+"""Child-process entry of the batch import: one task file, one result record.
 
 Run as ``python -m factask.compat.cliport.worker FILE [--seed S] [--episodes N]
 [--graph-out PATH]``. The file **is executed**; the parent
 (:mod:`factask.compat.cliport.batch`) runs this in its own process with a time
 limit, so a crashing or hanging task never stops the batch.
 
-The JSON line has: ``file``, ``class``, ``task``, ``loaded`` (the file ran and
+A record has: ``file``, ``class``, ``task``, ``loaded`` (the file ran and
 has a Task subclass), ``imported`` (its reset produced a valid graph),
 ``compiled`` (the graph compiled to MuJoCo; null if the backend is missing),
 ``oracle_success_rate`` (null unless episodes were run), ``warnings`` and
-``error`` (null on success).
+``error`` (null on success). One JSON line is printed (and flushed) after each
+stage, with a ``stage`` key (``loaded``, ``imported``, ``compiled``), and the
+final one with ``"stage": "done"``: a parent that kills a hanging child keeps
+the stages it already reported.
 """
 
 from __future__ import annotations
@@ -18,12 +21,12 @@ import argparse
 import importlib
 import json
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from factask.compat.cliport.errors import CliportImportError
-from factask.compat.cliport.loader import import_cliport, load_task_class
-from factask.model.errors import FactaskError
+from factask.compat.cliport.loader import import_cliport
 
 
 def _optional(module: str, attr: str) -> Any:
@@ -34,56 +37,88 @@ def _optional(module: str, attr: str) -> Any:
         return None
 
 
-def run_file(path: str, seed: int = 0, episodes: int = 0,
-             graph_out: str | None = None) -> dict[str, Any]:
+def new_record(path: str) -> dict[str, Any]:
+    """The record of a file nothing has been done with yet (every stage false)."""
+    return {"file": path, "class": None, "task": None, "loaded": False,
+            "imported": False, "compiled": None, "oracle_success_rate": None,
+            "warnings": [], "error": None}
+
+
+def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None = None,
+             emit: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
     """Load, import, compile and (optionally) run one task file.
+
+    The file is executed once (:func:`import_cliport` loads it and reports the
+    loaded stage through its ``on_loaded`` callback).
 
     Args:
         path: The task file (executed).
         seed: Seed of the import and of the first episode.
         episodes: Oracle episodes to run (0: do not run the oracle).
         graph_out: Where to write the imported graph's JSON, if given.
+        emit: Called with a copy of the record after each stage that succeeded
+            (loaded, imported, compiled; not with the final record, which is
+            returned), so a parent that has to kill this process still knows how
+            far it got.
 
     Returns:
-        The result record (see the module docstring); never raises for the
-        task's own errors.
+        The result record (see the module docstring); never raises: a late
+        failure keeps the stages already done true.
     """
-    rec: dict[str, Any] = {"file": path, "class": None, "task": None, "loaded": False,
-                           "imported": False, "compiled": None, "oracle_success_rate": None,
-                           "warnings": [], "error": None}
-    try:
-        cls = load_task_class(path)
+    rec = new_record(path)
+
+    def report() -> None:
+        if emit is not None:
+            emit(dict(rec))
+
+    def loaded(cls: type) -> None:
         rec["class"], rec["loaded"] = cls.__name__, True
-        result = import_cliport(path, class_name=cls.__name__, seed=seed)
-        rec["task"], rec["imported"] = result.task_name, True
-        rec["warnings"] = result.warnings
-        if graph_out:
-            Path(graph_out).write_text(result.graph.to_json(), encoding="utf-8")
+        report()
+
+    try:
+        _run_stages(rec, path, seed, episodes, graph_out, loaded, report)
+    except Exception as exc:  # never lose the stages already done
+        rec["error"] = f"internal error: {type(exc).__name__}: {exc}"
+    return rec
+
+
+def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
+                graph_out: str | None, loaded: Callable[[type], None],
+                report: Callable[[], None]) -> None:
+    try:
+        result = import_cliport(path, seed=seed, on_loaded=loaded)
     except CliportImportError as exc:
         rec["error"] = str(exc)
-        return rec
+        return
+    rec["class"], rec["loaded"] = result.class_name, True
+    rec["task"], rec["imported"] = result.task_name, True
+    rec["warnings"] = result.warnings
+    report()
+    if graph_out:
+        Path(graph_out).write_text(result.graph.to_json(), encoding="utf-8")
     compile_graph = _optional("factask.sim.compile", "compile_graph")
     if compile_graph is None:
         rec["compile_note"] = "factask.sim.compile is not available: not compiled"
     else:
         try:
             compile_graph(result.graph)
-            rec["compiled"] = True
-        except FactaskError as exc:
+        except Exception as exc:
             rec["compiled"] = False
-            rec["error"] = f"compile failed: {exc}"
-            return rec
+            rec["error"] = f"compile failed: {type(exc).__name__}: {exc}"
+            return
+        rec["compiled"] = True
+        report()
     if episodes > 0:
         run_episode = _optional("factask.sim.episode", "run_episode")
         if run_episode is None:
             rec["oracle_note"] = "factask.sim.episode is not available: oracle not run"
-            return rec
+            return
         wins, failures = 0, []
         for k in range(episodes):
             try:
                 ep = run_episode(result.graph, seed=seed + k, robot="floating")
-            except FactaskError as exc:
-                rec["error"] = f"episode {k} failed: {exc}"
+            except Exception as exc:
+                rec["error"] = f"episode {k} failed: {type(exc).__name__}: {exc}"
                 break
             wins += bool(getattr(ep, "success", False))
             if getattr(ep, "failure", None):
@@ -91,26 +126,49 @@ def run_file(path: str, seed: int = 0, episodes: int = 0,
         else:
             rec["oracle_success_rate"] = wins / episodes
         rec["oracle_failures"] = failures
-    return rec
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Command-line entry: print one JSON line; exit 0 even when the task fails."""
+    """Command-line entry: print JSON lines; exit 0 even when the task fails.
+
+    One line (a full record with an extra ``"stage"`` key) is written and
+    flushed after each stage: ``loaded``, ``imported``, ``compiled``, and
+    ``done`` for the final record. The task's own prints go to stderr, so
+    stdout holds only these lines.
+    """
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     ap.add_argument("file")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--episodes", type=int, default=0)
     ap.add_argument("--graph-out", default=None)
     args = ap.parse_args(argv)
+    out = sys.stdout
+    sys.stdout = sys.stderr  # user code's prints must not mix with the records
+
+    def emit(rec: dict[str, Any]) -> None:
+        out.write("\n" + json.dumps({**rec, "stage": stage_of(rec)}) + "\n")
+        out.flush()
+
+    final: dict[str, Any] | None = None
     try:
-        rec = run_file(args.file, args.seed, args.episodes, args.graph_out)
+        final = run_file(args.file, args.seed, args.episodes, args.graph_out, emit=emit)
     except Exception as exc:  # the last line of defence: always report, never hang the batch
-        rec = {"file": args.file, "class": None, "task": None, "loaded": False,
-               "imported": False, "compiled": None, "oracle_success_rate": None,
-               "warnings": [], "error": f"internal error: {type(exc).__name__}: {exc}"}
-    sys.stdout.write(json.dumps(rec) + "\n")
-    sys.stdout.flush()
+        final = new_record(args.file)
+        final["error"] = f"internal error: {type(exc).__name__}: {exc}"
+    finally:
+        sys.stdout = out
+    out.write("\n" + json.dumps({**final, "stage": "done"}) + "\n")
+    out.flush()
     return 0
+
+
+def stage_of(rec: dict[str, Any]) -> str:
+    """The last stage a partial record reached: loaded, imported or compiled."""
+    if rec.get("compiled"):
+        return "compiled"
+    if rec.get("imported"):
+        return "imported"
+    return "loaded" if rec.get("loaded") else "started"
 
 
 if __name__ == "__main__":
