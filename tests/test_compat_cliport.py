@@ -609,3 +609,10 @@ def test_pybullet_aabb_follows_the_rotation():
         lo, hi = p.getAABB(5)
     assert lo == pytest.approx((0.49, -0.05, 0.0), abs=1e-9)
     assert hi == pytest.approx((0.51, 0.05, 0.02), abs=1e-9)
+
+
+def test_docs_say_rotations_false_is_more_lenient_than_ravens():
+    text = " ".join(DOCS.read_text().split())
+    assert "`rotations=False` -> `check_yaw: false` (**not** what Ravens scores" in text
+    assert "Ravens' reward (`is_match`) still checks the yaw" in text
+    assert "**whatever `rotations` is**" in text
