@@ -115,3 +115,68 @@ def test_no_module_calls_exec_eval_or_compile() -> None:
                                                                           "__import__")):
                         offenders.append(f"{path.name}:{node.lineno} {ast.unparse(fn)}")
     assert offenders == []
+
+
+# ---------------------------------------------------------------- review fixes
+def test_deeply_nested_answer_is_feedback_not_a_crash() -> None:
+    deep = '{"a":' * 1500 + "1" + "}" * 1500
+    with pytest.raises(AnswerError, match="nested too deeply"):
+        extract_json(deep)
+    with pytest.raises(AnswerError):
+        parse_answer(deep, VariablesAnswer)
+    with pytest.raises(AnswerError):
+        graph_syntax(deep)
+
+
+def test_top_level_array_is_reported_not_taken() -> None:
+    with pytest.raises(AnswerError, match="not an array"):
+        extract_json(json.dumps([GRAPH]))
+    with pytest.raises(AnswerError, match="not an array"):
+        extract_json("Here you go:\n```json\n" + json.dumps([GRAPH, GRAPH]) + "\n```")
+
+
+def test_stray_brace_in_prose_does_not_hide_the_object() -> None:
+    text = "I will use the { layout from before. Answer:\n" + json.dumps(GRAPH) + "\nbye"
+    assert extract_json(text) == GRAPH
+    # A cut-off answer is still not mistaken for one of its inner objects.
+    with pytest.raises(AnswerError, match="cut off"):
+        extract_json("Answer: " + json.dumps(GRAPH)[:-40])
+
+
+def test_several_objects_are_mentioned_in_the_feedback() -> None:
+    text = '{"objects": ["red"]}\nor maybe\n{"variables": []}'
+    with pytest.raises(AnswerError, match="2 JSON objects; only the first") as info:
+        parse_answer(text, VariablesAnswer)
+    assert "VariablesAnswer" in info.value.feedback
+    with pytest.raises(AnswerError, match="2 JSON objects"):
+        graph_syntax(json.dumps(_mutated(**{"variables.1.color": "sparkly"})) + "\n{}")
+    assert extract_json('{"a": 1} {"b": 2}') == {"a": 1}
+
+
+def test_oversized_plans_get_feedback_asking_to_merge_steps() -> None:
+    from factask.gen.schemas import (
+        MAX_FACTORS,
+        MAX_SUBTASKS,
+        SubtaskOutline,
+        SubtaskPlan,
+        check_graph_size,
+    )
+    from factask.model import parse_graph
+
+    many = [{"name": f"s{i}", "description": "d"} for i in range(MAX_SUBTASKS + 1)]
+    with pytest.raises(AnswerError, match="merge steps"):
+        parse_answer(json.dumps({"subtasks": many}), SubtaskOutline)
+    plan = [{**s, "variables": ["red_block"]} for s in many]
+    with pytest.raises(AnswerError, match="merge steps"):
+        parse_answer(json.dumps({"subtasks": plan}), SubtaskPlan)
+    assert len(parse_answer(json.dumps({"subtasks": plan[:MAX_SUBTASKS]}),
+                            SubtaskPlan).subtasks) == MAX_SUBTASKS
+    var = GRAPH["variables"][0]
+    with pytest.raises(AnswerError, match="merge steps"):
+        parse_answer(json.dumps({"variables": [{**var, "name": f"v{i}"} for i in range(33)]}),
+                     VariablesAnswer)
+    graph = parse_graph(GRAPH)
+    check_graph_size(graph)  # within limits
+    big = graph.model_copy(update={"factors": graph.factors * (MAX_FACTORS // 2 + 1)})
+    with pytest.raises(AnswerError, match="merge steps"):
+        check_graph_size(big)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import socket
 
 import pytest
@@ -86,3 +87,69 @@ def test_script_error_is_a_server_error_not_a_hang() -> None:
                                      num_retries=0, timeout=5))
         with pytest.raises(LLMError):
             client.complete(MSGS)
+
+
+# ---------------------------------------------------------------- review fixes
+def _litellm_errors():
+    import httpx
+    import litellm
+
+    e = litellm.exceptions
+    req = httpx.Request("POST", "http://x/v1/chat/completions")
+
+    def resp(code: int) -> httpx.Response:
+        return httpx.Response(code, request=req)
+
+    kw = {"llm_provider": "openai", "model": "m"}
+    from factask.gen.llm import LLMAuthError, LLMRequestError, LLMTransientError
+
+    return [
+        (e.APIConnectionError(message="refused", request=req, **kw), LLMTransientError),
+        (e.Timeout(message="slow", **kw), LLMTransientError),
+        (e.RateLimitError(message="429", response=resp(429), **kw), LLMTransientError),
+        (e.ServiceUnavailableError(message="503", response=resp(503), **kw),
+         LLMTransientError),
+        (e.InternalServerError(message="500", response=resp(500), **kw), LLMTransientError),
+        (e.ContextWindowExceededError(message="too long", response=resp(400), **kw),
+         LLMRequestError),
+        (e.BadRequestError(message="bad", response=resp(400), **kw), LLMRequestError),
+        (e.ContentPolicyViolationError(message="policy", response=resp(400), **kw),
+         LLMRequestError),
+        (e.AuthenticationError(message="bad key", response=resp(401), **kw), LLMAuthError),
+        (e.PermissionDeniedError(message="no", response=resp(403), **kw), LLMAuthError),
+    ]
+
+
+def test_provider_errors_are_classified(monkeypatch) -> None:
+    from types import SimpleNamespace
+
+    import factask.gen.llm as llm
+
+    for exc, kind in _litellm_errors():
+        assert llm.classify_llm_exception(exc) is kind, type(exc).__name__
+
+        def completion(exc=exc, **kwargs):
+            raise exc
+
+        monkeypatch.setattr(llm, "_import_litellm",
+                            lambda completion=completion: SimpleNamespace(completion=completion))
+        client = LLMClient(LLMConfig(model="openai/x", num_retries=0))
+        with pytest.raises(kind, match=type(exc).__name__):
+            client.complete(MSGS)
+    # Plain exceptions: by status code, else transient.
+    err = type("Weird", (Exception,), {"status_code": 413})("x")
+    assert llm.classify_llm_exception(err) is llm.LLMRequestError
+    assert llm.classify_llm_exception(RuntimeError("?")) is llm.LLMTransientError
+
+
+def test_cache_key_includes_the_normalised_api_base_but_no_key() -> None:
+    a = LLMConfig(model="openai/x", api_base="http://Host:8000/v1/", api_key="sk-secret")
+    b = LLMConfig(model="openai/x", api_base="http://host:8000/v1")
+    c = LLMConfig(model="openai/x", api_base="http://other:8000/v1")
+    assert a.cache_params() == b.cache_params() != c.cache_params()
+    assert a.cache_params()["api_base"] == "http://host:8000/v1"
+    assert "secret" not in json.dumps(a.cache_params())
+    d = LLMConfig(model="openai/x", api_base="http://user:pw@host:8000/v1")
+    assert "pw" not in json.dumps(d.cache_params())
+    key = ResponseCache.key
+    assert key("m", MSGS, a.cache_params(), None) != key("m", MSGS, c.cache_params(), None)

@@ -99,3 +99,39 @@ def test_library_task_examples_are_valid_graphs_shown_in_the_one_shot_prompt() -
     text = render("one_shot", task_name="t", task_description="d",
                   examples=render_examples(found), schema="{}")
     assert found[0].name in text and "Step: one_shot" in text
+
+
+def test_same_task_matches_normalised_names_and_near_duplicates() -> None:
+    from factask.gen.examples import same_task
+
+    assert same_task("build-bridge", "Build_Bridge")
+    assert same_task("stack-blocks-in-tower", "stack-block-in-tower")  # plural folded
+    assert same_task("place-red-block-in-green-zone", "place-red-blocks-in-green-zone-now")
+    assert not same_task("build-bridge", "build-car")
+    assert not same_task("build-bridge", "")
+
+
+def test_library_examples_never_show_the_task_itself() -> None:
+    pytest.importorskip("factask.library")
+    from factask.gen.examples import library_task_examples
+    from factask.library import task_names
+
+    names = task_names()
+    for name in names[:5]:
+        query = f"{name}: {name.replace('-', ' ')}"
+        assert library_task_examples(query, 2)[0].name == name  # it would be shown
+        shown = [e.name for e in library_task_examples(query, len(names), exclude=name)]
+        assert name not in shown and len(shown) == len(names) - 1
+    shown = [e.name for e in library_task_examples("x", len(names), exclude="Build_Bridges")]
+    assert "build-bridge" not in shown
+
+
+def test_memory_never_shows_entries_of_the_same_task(tmp_path) -> None:
+    graph = parse_graph(demo_graph())
+    mem = SubtaskMemory(tmp_path / "mem")
+    fragment = extract_fragment(graph, "stack_blue_on_red")
+    mem.save(fragment, task=graph.name, approach="one-shot")
+    assert mem.retrieve("stack blue on red", k=3)
+    assert mem.retrieve("stack blue on red", k=3, exclude_task=graph.name) == []
+    assert mem.retrieve("stack blue on red", k=3, exclude_task=graph.name.upper()) == []
+    assert mem.retrieve("stack blue on red", k=3, exclude_task="other-task")

@@ -26,9 +26,9 @@ def _client(server: LoopbackServer, cache=None) -> LLMClient:
 
 
 def _run(script, approach: str, max_repairs: int = 3, memory=None, cache=None,
-         verifier=None) -> tuple[GenerationResult, LoopbackServer]:
+         verifier=None, port: int = 0) -> tuple[GenerationResult, LoopbackServer]:
     responder = script if callable(script) else ScriptedResponder(script)
-    with LoopbackServer(responder) as server:
+    with LoopbackServer(responder, port=port) as server:
         gen = Generator(_client(server, cache), verifier or Verifier(episodes=EPISODES),
                         memory=memory, max_repairs=max_repairs)
         result = gen.generate(DEMO_PROPOSAL, approach)
@@ -142,8 +142,9 @@ def test_a_planning_step_that_never_parses_stops_with_a_structured_failure() -> 
 
 
 def test_rerun_from_the_cache_is_free_and_identical(tmp_path) -> None:
-    first, _ = _run(demo_responder(broken=True), "one-shot", cache=tmp_path)
-    second, s2 = _run(ScriptedResponder({}), "one-shot", cache=tmp_path)
+    first, s1 = _run(demo_responder(broken=True), "one-shot", cache=tmp_path)
+    # The same endpoint (the API base is part of the cache key).
+    second, s2 = _run(ScriptedResponder({}), "one-shot", cache=tmp_path, port=s1.port)
     assert len(s2.requests) == 0
     assert second.usage.cached_calls == second.usage.calls == first.usage.calls
     assert second.usage.total_tokens == 0

@@ -71,6 +71,7 @@ def generate(
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
 ) -> None:
     """Generate a task graph with an LLM, verify it, write it; exit 0 iff completion reached."""
+    from factask.gen.llm import LLMAuthError
     from factask.gen.results import APPROACHES
     from factask.gen.verify import BackendUnavailableError
 
@@ -85,6 +86,9 @@ def generate(
         result = gen.generate(proposal, approach)
     except BackendUnavailableError as exc:
         err_console.print(f"[red]{exc}[/red]")
+        raise typer.Exit(2) from None
+    except LLMAuthError as exc:
+        err_console.print(f"[red]the LLM provider refused the credentials: {exc}[/red]")
         raise typer.Exit(2) from None
     if result.graph is not None:
         path = out or Path(f"{result.task}.json")
@@ -109,7 +113,8 @@ def benchmark(
                                help="Task list JSON (default ../shared/data/gensim_tasks.json)."),
     limit: int = typer.Option(None, "--limit", min=1, help="Only the first N tasks."),
     out: Path = typer.Option(..., "--out", "-o", help="Run directory (resumed if it exists)."),
-    cache: Path = typer.Option(None, "--cache", help="LLM cache dir (default RUN_DIR/cache)."),
+    cache: Path = typer.Option(None, "--cache",
+                               help="LLM cache dir (default $FACTASK_CACHE, else RUN_DIR/cache)."),
     max_repairs: int = typer.Option(3, "--max-repairs", min=0, help="Repairs per step."),
     episodes: int = typer.Option(3, "--episodes", min=1, help="Oracle episodes (completion)."),
     memory: Path = typer.Option(None, "--memory", help="Subtask memory dir ($FACTASK_MEMORY)."),
@@ -129,6 +134,7 @@ def benchmark(
         run_benchmark,
         summary_table,
     )
+    from factask.gen.llm import LLMAuthError
     from factask.gen.results import APPROACHES
     from factask.gen.verify import BackendUnavailableError
 
@@ -149,7 +155,11 @@ def benchmark(
         raise typer.Exit(2) from None
     if limit:
         task_list = task_list[:limit]
-    gen = _make_generator(model, api_base, cache or out / "cache", max_repairs, episodes,
+    import os
+
+    cache_dir = cache or (Path(os.environ["FACTASK_CACHE"]) if os.environ.get("FACTASK_CACHE")
+                          else out / "cache")
+    gen = _make_generator(model, api_base, cache_dir, max_repairs, episodes,
                           memory, robot, temperature)
     done = finished_pairs(read_results(out / RESULTS_FILE))
     total = len(task_list) * len(approaches)
@@ -176,6 +186,10 @@ def benchmark(
                                           "episodes": episodes, "max_repairs": max_repairs})
         except (BenchmarkError, BackendUnavailableError) as exc:
             err_console.print(f"[red]{exc}[/red]")
+            raise typer.Exit(2) from None
+        except LLMAuthError as exc:
+            err_console.print(f"[red]the LLM provider refused the credentials; the run "
+                              f"stopped (finished pairs are kept): {exc}[/red]")
             raise typer.Exit(2) from None
     console.print(summary_table(summary), markup=False)
     console.print(f"results: {out / RESULTS_FILE}; summary: {out / 'summary.json'}, "

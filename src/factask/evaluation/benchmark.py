@@ -24,9 +24,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from factask.gen.llm import LLMAuthError
+from factask.gen.memory import SubtaskMemory
 from factask.gen.results import APPROACHES
 from factask.gen.strategies import Generator
-from factask.gen.verify import LEVELS, at_least
+from factask.gen.verify import LEVELS, BackendUnavailableError, at_least
 from factask.model.errors import FactaskError
 
 #: The research's rates in percent (syntax, runtime, completion), GPT-4, 55 tasks.
@@ -145,8 +147,9 @@ def read_results(path: str | os.PathLike[str]) -> list[dict[str, Any]]:
 
 
 def is_finished(record: Mapping[str, Any]) -> bool:
-    """A line whose pair need not run again (an LLM outage is retried)."""
-    return record.get("status") in ("done", "not_expressible")
+    """A line whose pair need not run again (an LLM outage is retried; an
+    unexpected ``error`` is a recorded failure, not retried)."""
+    return record.get("status") in ("done", "not_expressible", "error")
 
 
 def finished_pairs(records: Iterable[Mapping[str, Any]]) -> set[tuple[str, str]]:
@@ -202,6 +205,16 @@ def run_benchmark(
 
     Raises:
         BenchmarkError: an unknown approach, or an unusable run directory.
+        LLMAuthError: the provider refused the credentials (the run stops).
+        BackendUnavailableError: the simulator cannot be imported.
+
+    Any other error of one pair becomes a line with ``status: "error"`` and the
+    exception text (a failure at level none); the run goes on. In-context
+    examples never include the task itself (library tasks and remembered
+    subtasks of the same or a near-duplicate name are left out), and with a
+    subtask memory each approach reads and writes its own subdirectory
+    (``MEMORY/<approach>``), so approaches do not leak into each other and a
+    resumed run sees what an uninterrupted one would.
     """
     for a in approaches:
         if a not in APPROACHES:
@@ -214,24 +227,51 @@ def run_benchmark(
     path = out / RESULTS_FILE
     _repair_tail(path)
     done = finished_pairs(read_results(path))
-    with open(path, "a", encoding="utf-8") as fh:
-        for task in tasks:
-            reason = not_expressible_reason(task)
-            for approach in approaches:
-                if (approach, task.name) in done:
-                    continue
-                if on_start is not None:
-                    on_start(approach, task)
-                record = _run_one(generator, task, approach, reason)
-                _append(fh, record)
-                if is_finished(record):
-                    done.add((approach, task.name))
-                if on_result is not None:
-                    on_result(record)
+    base_memory = generator.memory
+    try:
+        with open(path, "a", encoding="utf-8") as fh:
+            for task in tasks:
+                reason = not_expressible_reason(task)
+                for approach in approaches:
+                    if (approach, task.name) in done:
+                        continue
+                    if on_start is not None:
+                        on_start(approach, task)
+                    if base_memory is not None:  # one memory per approach
+                        generator.memory = SubtaskMemory(base_memory.directory / approach)
+                    record = _run_guarded(generator, task, approach, reason)
+                    _append(fh, record)
+                    if is_finished(record):
+                        done.add((approach, task.name))
+                    if on_result is not None:
+                        on_result(record)
+    finally:
+        generator.memory = base_memory
     summary = summarize(read_results(path), approaches, [t.name for t in tasks])
+    summary["examples"] = {"exclude_task_itself": True,
+                           "rule": "library tasks and memory entries whose task name equals "
+                                   "the task's (normalised) or shares >= 80% of its name "
+                                   "words are never shown",
+                           "memory": "per approach" if base_memory is not None else "none"}
     summary.update(dict(meta or {}))
     write_summary(out, summary)
     return summary
+
+
+def _run_guarded(generator: Generator, task: BenchTask, approach: str,
+                 reason: str | None) -> dict[str, Any]:
+    """:func:`_run_one`, with an unexpected error recorded as a failed line."""
+    start = time.perf_counter()
+    try:
+        return _run_one(generator, task, approach, reason)
+    except (LLMAuthError, BackendUnavailableError, KeyboardInterrupt):
+        raise
+    except Exception as exc:
+        return {"approach": approach, "task": task.name, "origin": task.origin,
+                "status": "error", "level_reached": "none", "llm_error": False,
+                "failure": f"unexpected {type(exc).__name__}: {exc}",
+                "error": f"{type(exc).__name__}: {exc}", "repairs": 0,
+                "wall_s": round(time.perf_counter() - start, 3)}
 
 
 def _run_one(generator: Generator, task: BenchTask, approach: str,
@@ -261,7 +301,7 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
 
     Returns:
         ``{"approaches": {approach: {tasks, syntax, runtime, completion (rates in
-        [0, 1]), counts, not_expressible, llm_errors, tokens, cost_usd}},
+        [0, 1]), counts, not_expressible, llm_errors, errors, tokens, cost_usd}},
         "research": RESEARCH_RATES}``.
     """
     wanted = set(task_names) if task_names is not None else None
@@ -273,7 +313,8 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
     table: dict[str, Any] = {}
     for a in approaches:
         rows = [r for (ap, _), r in latest.items() if ap == a]
-        done = [r for r in rows if r.get("status") == "done"]
+        # An unexpected error is a failure at level none, counted in the rates.
+        done = [r for r in rows if r.get("status") in ("done", "error")]
         counts = {lvl: sum(1 for r in done if at_least(r.get("level_reached", "none"), lvl))
                   for lvl in RATE_LEVELS}
         n = len(done)
@@ -285,6 +326,7 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
             "counts": counts,
             "not_expressible": sum(1 for r in rows if r.get("status") == "not_expressible"),
             "llm_errors": sum(1 for r in rows if r.get("status") == "llm_error"),
+            "errors": sum(1 for r in rows if r.get("status") == "error"),
             "repairs": sum(int(r.get("repairs", 0)) for r in done),
             "tokens": tokens,
             "cost_usd": round(cost, 6),

@@ -38,6 +38,35 @@ def words(text: str) -> set[str]:
     return out
 
 
+#: Name-token overlap at or above which two task names count as the same task.
+NEAR_DUPLICATE_RATIO = 0.8
+
+
+def normalise_name(name: str) -> str:
+    """A task name reduced to lower-case letters and digits joined by ``-``."""
+    return "-".join(re.findall(r"[a-z0-9]+", name.lower()))
+
+
+def same_task(a: str, b: str) -> bool:
+    """True if task names ``a`` and ``b`` denote the same task: equal after
+    :func:`normalise_name`, or sharing at least :data:`NEAR_DUPLICATE_RATIO` of
+    their name tokens (``|A & B| / max(|A|, |B|)``, plurals folded)."""
+    if not a or not b:
+        return False
+    na, nb = normalise_name(a), normalise_name(b)
+    if na == nb:
+        return True
+    ta, tb = _name_tokens(na), _name_tokens(nb)
+    if not ta or not tb:
+        return False
+    return len(ta & tb) / max(len(ta), len(tb)) >= NEAR_DUPLICATE_RATIO
+
+
+def _name_tokens(name: str) -> set[str]:
+    return {t[:-1] if len(t) > 3 and t.endswith("s") and not t.endswith("ss") else t
+            for t in name.split("-") if t}
+
+
 def overlap(query: str, text: str) -> int:
     """Number of content words ``query`` and ``text`` share."""
     return len(words(query) & words(text))
@@ -81,8 +110,16 @@ def top_k(candidates: Iterable[Example], query: str, k: int) -> list[Example]:
     return [c for _, _, c in scored[:k]]
 
 
-def library_task_examples(query: str, k: int = 2) -> list[Example]:
-    """Whole library task graphs most similar to ``query`` (empty if no library)."""
+def library_task_examples(query: str, k: int = 2, exclude: str | None = None) -> list[Example]:
+    """Whole library task graphs most similar to ``query`` (empty if no library).
+
+    Args:
+        query: Retrieval text (the proposal).
+        k: How many.
+        exclude: The task being generated: a library task of the same name (or a
+            near-duplicate, :func:`same_task`) is never shown, so a benchmark task
+            that also exists in the library is not given its own answer.
+    """
     try:
         from factask.library import get_task, task_names
     except ImportError:
@@ -90,7 +127,11 @@ def library_task_examples(query: str, k: int = 2) -> list[Example]:
     candidates = []
     try:
         for name in task_names():
+            if exclude and same_task(name, exclude):
+                continue
             graph = get_task(name)
+            if exclude and same_task(graph.name, exclude):
+                continue
             candidates.append(Example("library-task", graph.name, graph.description,
                                       graph.to_dict()))
     except Exception:  # a broken library entry must not break generation

@@ -16,6 +16,7 @@ Configuration comes from arguments first, then environment variables:
 ``FACTASK_TEMPERATURE``  sampling temperature (default 0)
 ``FACTASK_RETRIES``      transport retries per call (default 2)
 ``FACTASK_TIMEOUT``      seconds per call (default 120)
+``FACTASK_MAX_TOKENS``   cap on the answer length (default: the provider's)
 ``FACTASK_RESPONSE_FORMAT``  ``json_schema`` (default), ``json_object`` or ``off``
 ``FACTASK_CACHE``        cache directory (default: no cache)
 =======================  =================================================
@@ -31,6 +32,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any, Literal
+from urllib.parse import urlsplit, urlunsplit
 
 from factask.model.errors import FactaskError
 
@@ -38,7 +40,7 @@ ResponseFormat = Literal["json_schema", "json_object", "off"]
 Message = dict[str, str]
 
 #: Bumped when the cache entry layout changes, so old entries are not misread.
-CACHE_VERSION = 1
+CACHE_VERSION = 2
 
 
 class LLMError(FactaskError):
@@ -47,6 +49,76 @@ class LLMError(FactaskError):
 
 class LLMConfigError(LLMError):
     """The LLM is not configured (no model given and no FACTASK_MODEL)."""
+
+
+class LLMTransientError(LLMError):
+    """The LLM could not be reached or was overloaded (connection, timeout, rate
+    limit, 5xx): an infrastructure problem, worth retrying later."""
+
+
+class LLMRequestError(LLMError):
+    """The provider rejected this request (context window exceeded, bad request,
+    content policy): retrying the same request would fail again, so it counts
+    as the model's failure."""
+
+
+class LLMAuthError(LLMError):
+    """The provider refused the credentials (authentication, permission): no
+    call can succeed, the run must stop."""
+
+
+_TRANSIENT_NAMES = frozenset([
+    "APIConnectionError", "APITimeoutError", "Timeout", "RateLimitError",
+    "ServiceUnavailableError", "InternalServerError", "ConnectionError", "TimeoutError",
+])
+_REQUEST_NAMES = frozenset([
+    "ContextWindowExceededError", "ContentPolicyViolationError", "BadRequestError",
+    "UnprocessableEntityError", "NotFoundError", "UnsupportedParamsError",
+])
+_AUTH_NAMES = frozenset(["AuthenticationError", "PermissionDeniedError"])
+
+
+def classify_llm_exception(exc: BaseException) -> type[LLMError]:
+    """Which :class:`LLMError` subclass a provider (litellm) exception maps onto.
+
+    Read from the exception's class hierarchy by name (so litellm need not be
+    imported), then from its HTTP ``status_code``: authentication/permission
+    (401, 403) -> :class:`LLMAuthError`; connection, timeout, rate limit (429),
+    service unavailable and other 5xx -> :class:`LLMTransientError`; context
+    window, bad request, content policy and other 4xx -> :class:`LLMRequestError`.
+    Anything unrecognised is taken as transient (retried on a resume).
+    """
+    names = [c.__name__ for c in type(exc).__mro__]
+    # Most specific first: ContextWindowExceededError is a BadRequestError, Timeout
+    # an APIConnectionError.
+    for name in names:
+        if name in _AUTH_NAMES:
+            return LLMAuthError
+        if name in _REQUEST_NAMES:
+            return LLMRequestError
+        if name in _TRANSIENT_NAMES:
+            return LLMTransientError
+    status = getattr(exc, "status_code", None)
+    if isinstance(status, int):
+        if status in (401, 403):
+            return LLMAuthError
+        if status == 429 or status >= 500:
+            return LLMTransientError
+        if 400 <= status < 500:
+            return LLMRequestError
+    return LLMTransientError
+
+
+def normalise_api_base(api_base: str | None) -> str | None:
+    """``api_base`` as part of a cache key: scheme and host lower case, no
+    user:password, no trailing slash (None stays None)."""
+    if not api_base:
+        return None
+    parts = urlsplit(api_base.strip())
+    host = (parts.hostname or "").lower()
+    netloc = f"{host}:{parts.port}" if parts.port else host
+    path = parts.path.rstrip("/")
+    return urlunsplit((parts.scheme.lower(), netloc, path, parts.query, ""))
 
 
 @dataclass
@@ -124,9 +196,11 @@ class LLMConfig:
         return cls(**values)
 
     def cache_params(self) -> dict[str, Any]:
-        """The parameters that change an answer (the cache key's part; no secrets)."""
+        """The parameters that change an answer (the cache key's part; no secrets:
+        the API key is never part of it, the API base only normalised)."""
         return {"temperature": self.temperature, "max_tokens": self.max_tokens,
-                "response_format": self.response_format}
+                "response_format": self.response_format,
+                "api_base": normalise_api_base(self.api_base)}
 
 
 @dataclass
@@ -304,7 +378,10 @@ class LLMClient:
             The reply with this call's usage.
 
         Raises:
-            LLMError: the call failed after ``num_retries`` retries.
+            LLMTransientError: the model could not be reached (after
+                ``num_retries`` retries).
+            LLMRequestError: the provider rejected the request.
+            LLMAuthError: the credentials were refused.
         """
         cfg = self.config
         msgs = [{"role": str(m["role"]), "content": str(m["content"])} for m in messages]
@@ -344,12 +421,14 @@ class LLMClient:
         try:
             response = litellm.completion(**kwargs)
         except Exception as exc:  # litellm maps every provider error onto its own types
-            raise LLMError(f"LLM call to {cfg.model} failed: {type(exc).__name__}: {exc}")\
+            kind = classify_llm_exception(exc)
+            raise kind(f"LLM call to {cfg.model} failed: {type(exc).__name__}: {exc}")\
                 from None
         try:
             text = response.choices[0].message.content or ""
         except (AttributeError, IndexError) as exc:
-            raise LLMError(f"LLM reply from {cfg.model} has no message: {exc}") from None
+            raise LLMTransientError(f"LLM reply from {cfg.model} has no message: {exc}")\
+                from None
         raw_usage = getattr(response, "usage", None)
         usage = Usage(
             calls=1,

@@ -14,7 +14,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from factask.gen.examples import Example, top_k
+from factask.gen.examples import Example, same_task, top_k
 from factask.model.errors import FactaskError
 from factask.model.graph import TaskGraph, parse_graph
 
@@ -83,12 +83,21 @@ class SubtaskMemory:
             out.append(entry)
         return out
 
-    def retrieve(self, query: str, k: int = 3) -> list[Example]:
-        """The ``k`` entries most similar to ``query`` as examples."""
+    def retrieve(self, query: str, k: int = 3, exclude_task: str | None = None) -> list[Example]:
+        """The ``k`` entries most similar to ``query`` as examples.
+
+        Args:
+            query: Retrieval text.
+            k: How many.
+            exclude_task: The task being generated: entries verified in that task
+                (or a near-duplicate of it, :func:`~factask.gen.examples.same_task`)
+                are left out, so a task never sees its own earlier answers.
+        """
         candidates = [
             Example("memory", e["name"], e.get("description", ""), e["fragment"],
                     note=f"verified in task {e.get('task', '?')}")
             for e in self.entries()
+            if not (exclude_task and same_task(str(e.get("task", "")), exclude_task))
         ]
         return top_k(candidates, query, k)
 

@@ -32,7 +32,7 @@ from factask.gen.examples import (
     render_examples,
     template_examples,
 )
-from factask.gen.llm import LLMClient, LLMError, Usage
+from factask.gen.llm import LLMAuthError, LLMClient, LLMError, LLMRequestError, Usage
 from factask.gen.memory import SubtaskMemory, SubtaskMemoryError
 from factask.gen.prompts import render, schema_text
 from factask.gen.results import APPROACHES, GenerationResult, StepRecord
@@ -43,11 +43,12 @@ from factask.gen.schemas import (
     SubtaskOutline,
     SubtaskPlan,
     VariablesAnswer,
+    check_graph_size,
     format_problems,
     parse_answer,
     schema_of,
 )
-from factask.gen.verify import Level, Verifier, at_least, level_index
+from factask.gen.verify import BackendUnavailableError, Level, Verifier, at_least, level_index
 from factask.model.errors import CompositionError, FactaskError, GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
@@ -79,10 +80,19 @@ class _Outcome(Generic[T]):
 _PROPOSAL_RE = re.compile(r"^\s*([a-z0-9][a-z0-9_-]{1,99})\s*[:]\s+(.+)$", re.DOTALL)
 
 
+#: Longest task name (:data:`factask.model.names.TASK_NAME_PATTERN`).
+MAX_TASK_NAME = 100
+
+
 def slugify(text: str, max_words: int = 6) -> str:
-    """A kebab-case task name from free text ("Stack the blocks!" -> "stack-the-blocks")."""
+    """A kebab-case task name from free text ("Stack the blocks!" -> "stack-the-blocks"),
+    at most :data:`MAX_TASK_NAME` characters (cut at a word boundary where possible)."""
     tokens = re.findall(r"[a-z0-9]+", text.lower())[:max_words]
-    return "-".join(tokens) or "generated-task"
+    name = "-".join(tokens)
+    if len(name) > MAX_TASK_NAME:
+        cut = name[:MAX_TASK_NAME]
+        name = cut.rsplit("-", 1)[0] if "-" in cut else cut
+    return name.strip("-") or "generated-task"
 
 
 def split_proposal(proposal: str) -> tuple[str, str]:
@@ -123,6 +133,7 @@ class Generator:
         self.on_step = on_step
         self.n_examples = n_examples
         self._result: GenerationResult | None = None
+        self._task = ""
         self._system = ""
 
     # ------------------------------------------------------------------ API
@@ -142,6 +153,7 @@ class Generator:
         Raises:
             UnknownApproachError: ``approach`` is not known.
             BackendUnavailableError: the simulator cannot be imported.
+            LLMAuthError: the provider refused the credentials (no call can work).
         """
         if approach not in APPROACHES:
             raise UnknownApproachError(f"unknown approach {approach!r}; use one of "
@@ -151,6 +163,7 @@ class Generator:
         desc = description or desc
         result = GenerationResult(approach=approach, proposal=proposal, task=task)
         self._result = result
+        self._task = task
         self._system = render("system")
         run = {"one-shot": self._one_shot, "variables-first": self._variables_first,
                "subtasks-first": self._subtasks_first}[approach]
@@ -158,6 +171,13 @@ class Generator:
             run(task, desc)
         except _Abort as exc:
             result.failure = str(exc)
+        except LLMAuthError:
+            self._result = None
+            raise
+        except LLMRequestError as exc:
+            # The provider rejected the request (context window, content policy,
+            # bad request): the model's failure, at the level reached so far.
+            result.failure = f"LLM request rejected: {exc}"
         except LLMError as exc:
             result.failure = f"LLM call failed: {exc}"
             result.llm_error = True
@@ -179,24 +199,43 @@ class Generator:
 
     def _converse(self, step: str, prompt: str, schema: dict[str, Any], schema_name: str,
                   evaluate: Callable[[str], Evaluation], first_attempt: int = 0) -> _Outcome[Any]:
-        """Ask, evaluate, feed back, up to ``max_repairs`` repairs; keep the best."""
+        """Ask, evaluate, feed back, up to ``max_repairs`` repairs; keep the best
+        artefact together with its own feedback.
+
+        A provider rejection (:class:`LLMRequestError`, e.g. the conversation
+        outgrew the context window) after a usable artefact ends the step with
+        that artefact; before one, it propagates.
+        """
         messages = [{"role": "system", "content": self._system},
                     {"role": "user", "content": prompt}]
-        best: tuple[int, Any, Level] | None = None
+        best: tuple[int, Any, Level, str | None] | None = None
         feedback: str | None = None
         last = first_attempt + self.max_repairs
         for attempt in range(first_attempt, last + 1):
-            reply = self.client.complete(messages, schema=schema, schema_name=schema_name)
+            try:
+                reply = self.client.complete(messages, schema=schema, schema_name=schema_name)
+            except LLMRequestError as exc:
+                if best is None:
+                    raise
+                return _Outcome(best[1], best[2], False,
+                                f"{best[3]}\n(then the LLM request was rejected: {exc})")
             self._usage().add(reply.usage)
             try:
                 value, level, feedback = evaluate(reply.text)
             except AnswerError as exc:
                 value, level, feedback = None, "none", exc.feedback
+            except (LLMError, BackendUnavailableError, _Abort):
+                raise
+            except Exception as exc:  # a bug or an odd answer must not kill the run
+                value, level = None, "none"
+                feedback = (f"Checking the answer failed unexpectedly "
+                            f"({type(exc).__name__}: {exc}). Send a simpler, valid answer "
+                            "following the schema.")
             self._record(StepRecord(step, attempt, feedback is None, level, feedback,
                                     reply.cached, reply.usage.total_tokens,
                                     reply.usage.cost_usd))
             if value is not None and (best is None or level_index(level) > best[0]):
-                best = (level_index(level), value, level)
+                best = (level_index(level), value, level, feedback)
             if feedback is None:
                 return _Outcome(value, level, True, None)
             if attempt < last:
@@ -206,17 +245,19 @@ class Generator:
                     feedback=feedback)})
         if best is None:
             return _Outcome(None, "none", False, feedback)
-        return _Outcome(best[1], best[2], False, feedback)
+        return _Outcome(best[1], best[2], False, best[3])
 
     def _examples(self, query: str, sources: tuple[str, ...]) -> str:
         found: list[Example] = []
         k = self.n_examples
+        # Never the task itself: a library task (or a remembered subtask) of the
+        # same or a near-duplicate name would show the model the answer.
         if "tasks" in sources:
-            found += library_task_examples(query, k)
+            found += library_task_examples(query, k, exclude=self._task or None)
         if "templates" in sources:
             found += template_examples(query, k)
         if "memory" in sources and self.memory is not None:
-            found += self.memory.retrieve(query, k)
+            found += self.memory.retrieve(query, k, exclude_task=self._task or None)
         return render_examples(found)
 
     def _remember(self, fragment: TaskGraph, task: str) -> None:
@@ -230,9 +271,11 @@ class Generator:
     def _evaluate_graph(self, task: str, desc: str) -> Callable[[str], Evaluation]:
         def evaluate(text: str) -> Evaluation:
             graph = self.verifier.syntax(text)
-            # The task's name is ours, not the model's to choose.
-            graph = graph.model_copy(update={"name": task, "description": graph.description
-                                             or desc})
+            # The task's name is ours, not the model's to choose; the renamed graph
+            # is validated again (model_copy would skip validation).
+            graph = self.verifier.syntax({**graph.to_dict(), "name": task,
+                                          "description": graph.description or desc})
+            check_graph_size(graph)
             outcome = self.verifier.check(graph)
             return graph, outcome.level, outcome.feedback
         return evaluate
@@ -270,8 +313,13 @@ class Generator:
         shown = graph.to_json(indent=None) if graph is not None else "{}"
         prompt = render("assembly", task_name=task, task_description=desc, graph=shown,
                         feedback=problem, schema=schema_text(TaskGraph.json_schema()))
-        out = self._converse(step, prompt, TaskGraph.json_schema(), "task_graph",
-                             self._evaluate_graph(task, desc), first_attempt=1)
+        try:
+            out = self._converse(step, prompt, TaskGraph.json_schema(), "task_graph",
+                                 self._evaluate_graph(task, desc), first_attempt=1)
+        except LLMRequestError as exc:  # keep the assembled graph and its level
+            self._finish(best_graph, best_level, f"assembly: {problem}\n(then the LLM "
+                         f"request was rejected: {exc})")
+            return
         if out.value is not None and level_index(out.level) >= level_index(best_level):
             best_graph, best_level = out.value, out.level
         self._finish(best_graph, best_level,

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from factask.gen.schemas import AnswerError, extract_json, format_problems
+from factask.gen.schemas import AnswerError, format_problems, read_json, several_objects_note
 from factask.model.errors import FactaskError, GraphValidationError
 from factask.model.graph import TaskGraph, parse_graph
 
@@ -73,13 +73,21 @@ def graph_syntax(text_or_data: str | dict[str, Any]) -> TaskGraph:
         AnswerError: not JSON, not a graph, or not valid as a whole; the message
             lists every problem with its node.
     """
-    data = extract_json(text_or_data) if isinstance(text_or_data, str) else text_or_data
+    note = ""
+    if isinstance(text_or_data, str):
+        data, count = read_json(text_or_data)
+        note = several_objects_note(count)
+    else:
+        data = text_or_data
     try:
         return parse_graph(data)
+    except RecursionError:
+        raise AnswerError("The answer is nested too deeply to read. Reply with one flat JSON "
+                          "object following the schema.") from None
     except GraphValidationError as exc:
         raise AnswerError(
             f"The task graph is not valid ({len(exc.problems)} problem(s)):\n"
-            f"{format_problems(exc.problems)}", exc.problems
+            f"{format_problems(exc.problems)}{note}", exc.problems
         ) from None
 
 
