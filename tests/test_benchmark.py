@@ -189,3 +189,82 @@ def test_killed_run_resumes_without_losing_or_repeating_a_task(tmp_path) -> None
     assert row["tasks"] == 2 and row["not_expressible"] == 1 and row["completion"] == 1.0
     assert (run / "summary.md").exists() and (run / "rates.png").exists()
     assert "one-shot" in done.output and "16.7" in done.output
+
+
+# ------------------------------------------------------------- review fixes
+class _Flaky(Generator):
+    """Crashes on one task; records which memory each pair was given."""
+
+    def __init__(self, crash_on: str, error: Exception | None = None, memory=None) -> None:
+        super().__init__(LLMClient(LLMConfig(model="openai/none")), Verifier(episodes=1),
+                         memory=memory)
+        self.crash_on, self.error, self.seen = crash_on, error, []
+
+    def generate(self, proposal, approach="variables-first", name=None, description=None):
+        from factask.gen.results import GenerationResult
+
+        where = self.memory.directory if self.memory is not None else None
+        self.seen.append((approach, name, where))
+        if name == self.crash_on:
+            raise self.error or KeyError("boom")
+        return GenerationResult(approach=approach, proposal=proposal, task=name,
+                                level_reached="runtime", failure="stopped at runtime")
+
+
+def test_an_unexpected_error_is_a_recorded_failure_and_the_run_goes_on(tmp_path) -> None:
+    tasks = [BenchTask(**TASKS[0]), BenchTask(**TASKS[2])]
+    gen = _Flaky(crash_on=TASKS[0]["name"])
+    summary = run_benchmark(tasks, ["one-shot"], gen, tmp_path)
+    lines = read_results(tmp_path / "results.jsonl")
+    assert [r["status"] for r in lines] == ["error", "done"]
+    assert "KeyError" in lines[0]["error"] and lines[0]["level_reached"] == "none"
+    row = summary["approaches"]["one-shot"]
+    assert row["tasks"] == 2 and row["errors"] == 1 and row["runtime"] == 0.5
+    run_benchmark(tasks, ["one-shot"], gen, tmp_path)
+    assert len(gen.seen) == 2  # an error line is finished, not retried forever
+
+
+def test_auth_error_stops_the_run(tmp_path) -> None:
+    from factask.gen.llm import LLMAuthError
+
+    gen = _Flaky(crash_on=TASKS[0]["name"], error=LLMAuthError("bad key"))
+    with pytest.raises(LLMAuthError):
+        run_benchmark([BenchTask(**TASKS[0])], ["one-shot"], gen, tmp_path)
+    assert read_results(tmp_path / "results.jsonl") == []
+
+
+def test_each_approach_has_its_own_memory_and_summary_says_examples_exclude_the_task(
+        tmp_path) -> None:
+    from factask.gen.memory import SubtaskMemory
+
+    gen = _Flaky(crash_on="", memory=SubtaskMemory(tmp_path / "mem"))
+    run_benchmark([BenchTask(**TASKS[0])], ["one-shot", "subtasks-first"], gen,
+                  tmp_path / "run")
+    assert [d for _, _, d in gen.seen] == [tmp_path / "mem" / "one-shot",
+                                           tmp_path / "mem" / "subtasks-first"]
+    assert gen.memory.directory == tmp_path / "mem"  # restored
+    saved = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert saved["examples"]["exclude_task_itself"] is True
+    assert saved["examples"]["memory"] == "per approach"
+
+
+def test_benchmark_honours_factask_cache(tmp_path, monkeypatch) -> None:
+    import factask.cli.gen_cmds as cmds
+
+    tasks_file = tmp_path / "tasks.json"
+    tasks_file.write_text(json.dumps(TASKS))
+    given = []
+
+    def fake(model, api_base, cache, *args, **kwargs):
+        given.append(cache)
+        raise SystemExit(0)
+
+    monkeypatch.setattr(cmds, "_make_generator", fake)
+    args = ["benchmark", "-a", "one-shot", "--model", "m", "--tasks", str(tasks_file),
+            "--out", str(tmp_path / "run")]
+    monkeypatch.setenv("FACTASK_CACHE", str(tmp_path / "shared-cache"))
+    CliRunner().invoke(app, args)
+    monkeypatch.setenv("FACTASK_CACHE", "")
+    CliRunner().invoke(app, args)
+    CliRunner().invoke(app, [*args, "--cache", str(tmp_path / "c")])
+    assert given == [tmp_path / "shared-cache", tmp_path / "run" / "cache", tmp_path / "c"]

@@ -192,3 +192,132 @@ def test_completion_needs_half_the_episodes_with_distinct_seeds() -> None:
     assert "factor 'stack_blue_on_red' progress 0.00" in outcome.feedback
     assert "3 cm off" in outcome.feedback and "no free spot" in outcome.feedback
     assert _ScriptedEpisodes([True, False]).check(graph).level == "completion"
+
+
+# ------------------------------------------------ review fixes (fake clients)
+class _FakeClient:
+    """Answers from a list (the last repeats); an exception in it is raised."""
+
+    def __init__(self, answers) -> None:
+        self.answers = list(answers)
+        self.prompts: list[list[dict]] = []
+
+    def complete(self, messages, schema=None, schema_name="answer"):
+        from factask.gen.llm import LLMReply, Usage
+
+        self.prompts.append([dict(m) for m in messages])
+        item = self.answers[min(len(self.prompts) - 1, len(self.answers) - 1)]
+        if isinstance(item, BaseException):
+            raise item
+        return LLMReply(text=item, usage=Usage(calls=1, prompt_tokens=1), cached=False,
+                        key="k")
+
+
+class _StubVerifier(Verifier):
+    """Levels 2 and 3 scripted: ``syntax`` with feedback, or ``completion``."""
+
+    def __init__(self, level: str = "completion", error: Exception | None = None) -> None:
+        super().__init__(episodes=1)
+        self.level, self.error = level, error
+
+    def check(self, graph, target="completion"):
+        from factask.gen.verify import VerifyOutcome
+
+        if self.error is not None:
+            raise self.error
+        if self.level == "completion":
+            return VerifyOutcome("completion")
+        return VerifyOutcome(self.level, f"Level 2 (runtime) failed: {graph.variables[0].count}"
+                             " blocks do not fit")
+
+
+def _crowded() -> str:
+    g = demo_graph()
+    g["variables"][0]["count"] = 40
+    return json.dumps(g)
+
+
+def test_transient_request_and_auth_errors_are_told_apart() -> None:
+    from factask.gen.llm import LLMAuthError, LLMRequestError, LLMTransientError
+
+    gen = Generator(_FakeClient([LLMTransientError("connection refused")]), _StubVerifier())
+    result = gen.generate(DEMO_PROPOSAL, "one-shot")
+    assert result.llm_error and "connection refused" in result.failure
+    # A rejected request is the model's failure (counted in the rates), not an outage.
+    gen = Generator(_FakeClient([LLMRequestError("ContextWindowExceededError: too long")]),
+                    _StubVerifier())
+    result = gen.generate(DEMO_PROPOSAL, "variables-first")
+    assert not result.llm_error and result.level_reached == "none"
+    assert "rejected" in result.failure and "ContextWindow" in result.failure
+    with pytest.raises(LLMAuthError):
+        Generator(_FakeClient([LLMAuthError("bad key")]), _StubVerifier()).generate(
+            DEMO_PROPOSAL, "subtasks-first")
+
+
+def test_a_rejected_repair_keeps_the_best_graph_and_its_level() -> None:
+    from factask.gen.llm import LLMRequestError
+
+    client = _FakeClient([_crowded(), LLMRequestError("ContextWindowExceededError")])
+    result = Generator(client, _StubVerifier("syntax"), max_repairs=3).generate(
+        DEMO_PROPOSAL, "one-shot")
+    assert not result.llm_error and result.level_reached == "syntax"
+    assert result.graph is not None and result.graph.variables[0].count == 40
+    assert "40 blocks do not fit" in result.failure and "rejected" in result.failure
+
+
+def test_failure_is_the_feedback_of_the_best_attempt_not_the_last() -> None:
+    client = _FakeClient([_crowded(), "junk"])
+    result = Generator(client, _StubVerifier("syntax"), max_repairs=2).generate(
+        DEMO_PROPOSAL, "one-shot")
+    assert result.level_reached == "syntax"
+    assert "40 blocks do not fit" in result.failure and "JSON" not in result.failure
+
+
+def test_long_task_names_are_cut_and_the_final_graph_is_valid() -> None:
+    long = "-".join(["stack"] * 40)  # 239 characters
+    assert len(split_proposal(f"{long}: d")[0]) <= 100
+    assert len(split_proposal(" ".join(["word"] * 30))[0]) <= 100
+    result = Generator(_FakeClient([json.dumps(demo_graph())]), _StubVerifier()).generate(
+        "stack them", "one-shot", name=long)
+    assert result.level_reached == "completion", result.failure
+    assert len(result.task) <= 100 and result.graph.name == result.task
+    parse_graph(result.graph.to_dict())
+
+
+def test_an_unexpected_error_while_checking_is_feedback_not_a_crash() -> None:
+    client = _FakeClient([json.dumps(demo_graph())])
+    result = Generator(client, _StubVerifier(error=ZeroDivisionError("boom")),
+                       max_repairs=1).generate(DEMO_PROPOSAL, "one-shot")
+    assert len(client.prompts) == 2 and result.level_reached == "none"
+    assert "ZeroDivisionError: boom" in result.steps[0].feedback
+    assert "ZeroDivisionError: boom" in client.prompts[1][-1]["content"]
+
+
+def test_prompts_never_show_the_task_itself(tmp_path) -> None:
+    pytest.importorskip("factask.library")
+    from factask.library import get_task
+
+    library = get_task("build-bridge")
+    memory = SubtaskMemory(tmp_path / "mem")
+    graph = parse_graph(demo_graph())
+    memory.save(_one_factor(graph, 0), task="build-bridge", approach="one-shot")
+    memory.save(_one_factor(graph, 1), task="another-task", approach="one-shot")
+    for approach in ("one-shot", "variables-first"):
+        client = _FakeClient(["junk"])
+        Generator(client, _StubVerifier(), memory=memory, max_repairs=0).generate(
+            f"build-bridge: {library.description}", approach)
+        prompt = client.prompts[0][1]["content"]
+        assert "(library-task) `build-bridge`" not in prompt
+        assert "verified in task build-bridge" not in prompt
+        assert "verified in task another-task" in prompt
+        # Without the exclusion the same query would show it.
+        other = _FakeClient(["junk"])
+        Generator(other, _StubVerifier(), max_repairs=0).generate(
+            f"bridge-task-x: {library.description}", approach)
+        assert "(library-task) `build-bridge`" in other.prompts[0][1]["content"]
+
+
+def _one_factor(graph, i):
+    from factask.model import extract_fragment
+
+    return extract_fragment(graph, graph.factors[i].name)
