@@ -23,7 +23,17 @@ class Pose:
         object.__setattr__(self, "pos", np.asarray(self.pos, dtype=float).reshape(3))
         q = np.asarray(self.quat, dtype=float).reshape(4)
         n = np.linalg.norm(q)
-        object.__setattr__(self, "quat", q / n if n > 0 else np.array([1.0, 0.0, 0.0, 0.0]))
+        if np.isfinite(n) and n > 0:
+            q = q / n
+        elif n == 0:
+            q = np.array([1.0, 0.0, 0.0, 0.0])  # no rotation given
+        # A non-finite quaternion stays non-finite: callers must see the NaN.
+        object.__setattr__(self, "quat", q)
+
+    @property
+    def finite(self) -> bool:
+        """True if position and orientation are finite numbers."""
+        return bool(np.isfinite(self.pos).all() and np.isfinite(self.quat).all())
 
     @staticmethod
     def from_xyz_yaw(x: float, y: float, z: float, yaw: float = 0.0) -> Pose:

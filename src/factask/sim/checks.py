@@ -87,10 +87,15 @@ class TaskStatus:
 
 def _pose(poses: Mapping[str, Pose], name: str) -> Pose:
     try:
-        return poses[name]
+        pose = poses[name]
     except KeyError:
         raise CheckError(f"no pose for object {name!r}; pass the pose of every instance "
                          "(fixed ones too)") from None
+    if not pose.finite:
+        # NaN compares False with every tolerance: it would pass every check.
+        raise CheckError(f"pose of object {name!r} is not finite ({pose.to_list()}); "
+                         "the simulation has failed")
+    return pose
 
 
 def _upright(obj: SceneObject, pose: Pose) -> float:

@@ -40,12 +40,14 @@ from factask.model.errors import FactaskError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph
 from factask.model.relations import Aligned, AtPose, Circle, Inside, InZone, On, Row, Stack
+from factask.model.tolerances import Z_TOLERANCE
 from factask.model.variables import AtFixedPose, InRegion, StartInside
-from factask.model.world import TABLE_Z, WORKSPACE_X, WORKSPACE_Y
+from factask.model.world import TABLE_Z, WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 from factask.sim.objects import (
     GEOMETRY_EPS,
     Area,
     SceneObject,
+    bottom_z,
     corner_vertex,
     floor_thickness,
     footprint_corners,
@@ -59,6 +61,7 @@ from factask.sim.objects import (
     principal_yaw,
     rest_surface_z,
     resting_pose,
+    top_z,
     yaw_rotation_2d,
 )
 
@@ -588,6 +591,12 @@ class _Plan:
     random: bool = False  # made from random choices: another attempt may differ
 
 
+def _same_variable(objs: list[SceneObject]) -> np.ndarray:
+    """Matches of an *ordered* relation: the order is between variables; the identical
+    instances of one variable are interchangeable (nobody can tell them apart)."""
+    return np.array([[a.variable == b.variable for b in objs] for a in objs], dtype=bool)
+
+
 def _same_size(objs: list[SceneObject]) -> np.ndarray:
     n = len(objs)
     return np.array([[np.allclose(objs[i].size, objs[j].size) for j in range(n)]
@@ -598,12 +607,25 @@ def _accept(ctx: _Ctx, movers: list[SceneObject], plan: _Plan) -> None:
     """Raise :class:`_Infeasible` unless every assigned slot is inside the workspace and
     free of obstacles and of the factor's other slots."""
     trial = ctx.occ.copy()
+    # The movers' own starts stay obstacles for their slots, so no object starts at
+    # a target of its own goal (starts of objects other goals move do not count:
+    # those objects are moved out of the way).
+    for obj in movers:
+        if obj.collides:
+            trial.put(f"@start:{obj.name}", obj, ctx.current[obj.name])
     for i, j in enumerate(plan.assignment):
         obj = movers[i]
         pose = _sized(plan, j, obj)
         if not in_workspace(obj, pose):
             raise _Infeasible(f"slot {j} for {obj.name} at ({pose.pos[0]:.3f}, "
                               f"{pose.pos[1]:.3f}) leaves the workspace")
+        top, bottom = top_z(obj, pose), bottom_z(obj, pose)
+        if top > WORKSPACE_Z[1] + GEOMETRY_EPS:
+            raise _Infeasible(f"slot {j} puts the top of {obj.name} at {top:.3f} m, above "
+                              f"the workspace's {WORKSPACE_Z[1]:.2f} m", retry=False)
+        if bottom < TABLE_Z - Z_TOLERANCE:
+            raise _Infeasible(f"slot {j} puts {obj.name} {TABLE_Z - bottom:.3f} m into "
+                              "the table", retry=False)
         if not trial.free_mask(obj, [pose], plan.ignore[j])[0]:
             who = trial.blockers(obj, pose, plan.ignore[j])
             raise _Infeasible(f"slot {j} for {obj.name} collides with {who}")
@@ -948,7 +970,7 @@ def _solve_stack(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Pla
     goal = f.goal
     assert isinstance(goal, Stack)
     n = len(movers)
-    matches = np.eye(n, dtype=bool) if goal.ordered else _same_size(movers)
+    matches = _same_variable(movers) if goal.ordered else _same_size(movers)
 
     def build(xy: np.ndarray, yaw: float, surface: float = TABLE_Z,
               hosts: list[str] | None = None) -> _Plan:
@@ -981,7 +1003,7 @@ def _solve_row(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Plan:
     goal = f.goal
     assert isinstance(goal, Row)
     n = len(movers)
-    matches = np.eye(n, dtype=bool) if goal.ordered else np.ones((n, n), dtype=bool)
+    matches = _same_variable(movers) if goal.ordered else np.ones((n, n), dtype=bool)
     spacing = goal.spacing or (max(o.size[0] for o in movers) + ROW_GAP)
 
     def line(centre: np.ndarray, yaw: float, surface: float, hosts: list[str]) -> _Plan:
@@ -1008,7 +1030,14 @@ def _solve_row(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Plan:
             spots = [((pts[k] + pts[k + 1]) / 2, max(tops[k], tops[k + 1]),
                       [names[k], names[k + 1]]) for k in range(n)]
         else:
-            return line(centres.mean(axis=0), yaw, max(tops), names)
+            plan = line(centres.mean(axis=0), yaw, max(tops), names)
+            areas = [placement_area(bobjs[i], bposes[i]) for i in range(len(below))]
+            for o, slot in zip(movers, plan.slots, strict=True):
+                if not any(bool(a.contains(slot.pos[:2]).all()) for a in areas):
+                    raise _Infeasible(f"a row of {n} on the {len(below)} object(s) of "
+                                      f"{goal.on!r} leaves {o.name} unsupported (use as "
+                                      "many objects as below, or one fewer)", retry=False)
+            return plan
         slots = [resting_pose(o, *c, s, yaw) for o, (c, s, _) in zip(movers, spots,
                                                                       strict=True)]
         return _plan(slots, [s for _, s, _ in spots], [h[0] for _, _, h in spots],
@@ -1017,7 +1046,20 @@ def _solve_row(ctx: _Ctx, f: SubtaskFactor, movers: list[SceneObject]) -> _Plan:
         host = ctx.inst(goal.along)[0]
         hobj, hpose = ctx.objs[host], ctx.current[host]
         yaw = hpose.yaw if hobj.size[0] >= hobj.size[1] else hpose.yaw + math.pi / 2
-        return line(hpose.pos[:2], yaw, rest_surface_z(hobj, hpose), [host])
+        # A line looks the same turned half a turn: take the direction pointing to
+        # +x (as principal_yaw does), so "first object" means the same end always.
+        yaw = math.atan2(math.sin(yaw), math.cos(yaw))
+        if yaw > math.pi / 2 + GEOMETRY_EPS:
+            yaw -= math.pi
+        elif yaw <= -math.pi / 2 + GEOMETRY_EPS:
+            yaw += math.pi
+        plan = line(hpose.pos[:2], yaw, rest_surface_z(hobj, hpose), [host])
+        area = placement_area(hobj, hpose)
+        for slot in plan.slots:
+            if not bool(area.contains(slot.pos[:2]).all()):
+                raise _Infeasible(f"a row of {n} spaced {spacing:.3f} m is longer than "
+                                  f"{goal.along!r}", retry=False)
+        return plan
     return _search(ctx, movers, lambda xy, yaw: line(xy, yaw, TABLE_Z, []),
                    f"a row of {n}")
 
