@@ -962,6 +962,8 @@ def _search(ctx: _Ctx, movers: list[SceneObject], build: object, what: str,
             _accept(ctx, movers, plan)
             return plan
         except _Infeasible as exc:
+            if not exc.retry:  # no other spot can help (too tall, too long, ...)
+                raise
             last = exc.reason
     raise _Infeasible(f"no free spot on the table for {what} ({last})")
 
