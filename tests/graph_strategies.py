@@ -38,6 +38,14 @@ lengths = st.floats(0.02, 0.09, allow_nan=False).map(lambda x: round(x, 3))
 def movable_variable(draw: st.DrawFn, name: str) -> StateVariable:
     kind = draw(st.sampled_from(MOVABLE_KINDS))
     size = draw(st.one_of(st.none(), st.tuples(lengths, lengths, lengths)))
+    if size is not None:  # the shapes each kind can have (kinds.shape_problem)
+        x, y, z = size
+        if kind == "ball":
+            size = (x, x, x)
+        elif kind == "cylinder":
+            size = (x, x, z)
+        elif kind == "ell":
+            size = (x, max(y, round(0.5 * x, 3)), z)
     return StateVariable(
         name=name,
         description=f"the {name.replace('_', ' ')}",

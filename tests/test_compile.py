@@ -119,13 +119,27 @@ def test_pose_helpers_round_trip() -> None:
     np.testing.assert_allclose(data.mocap_pos[mocap], pose.pos)
 
 
-def test_size_mujoco_cannot_build_names_the_variable() -> None:
+def test_size_the_kind_cannot_have_names_the_variable() -> None:
     graph = _graph()
     graph.variables[2].size = (0.04, 0.05, 0.06)  # a cylinder with an oval footprint
+    with pytest.raises(GraphValidationError) as info:
+        compile_graph(graph, robot=None)
+    assert info.value.nodes == {"cyl"}
+    assert "cyl.size" in str(info.value) and "fix:" in str(info.value)
+
+
+def test_fixture_too_small_for_an_ell_hollow_is_a_compile_error() -> None:
+    graph = TaskGraph.model_validate({
+        "name": "narrow-fixture",
+        "variables": [{"name": "piece", "kind": "ell", "color": "red"},
+                      {"name": "frame", "kind": "fixture", "size": [0.12, 0.034, 0.04]}],
+        "factors": [{"name": "insert", "goal": {"type": "aligned", "objects": ["piece"],
+                                                "reference": "frame"}}],
+    }).validate()  # walls fit, so the graph is valid; an ell hollow does not
     with pytest.raises(CompileError) as info:
         compile_graph(graph, robot=None)
-    assert info.value.variable == "cyl"
-    assert "cyl" in str(info.value) and "fix:" in str(info.value)
+    assert info.value.variable == "frame"
+    assert str(info.value).count("frame:") == 1 and "fix:" in str(info.value)
 
 
 @pytest.mark.parametrize(

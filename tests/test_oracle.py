@@ -15,7 +15,7 @@ import pytest
 
 from factask.geometry import Pose
 from factask.library import get_task, task_names
-from factask.model import TaskGraph
+from factask.model import GraphValidationError, TaskGraph
 from factask.model.tolerances import COMPLETION_FRACTION, SUCCESS_REWARD
 from factask.sim.compile import set_object_pose
 from factask.sim.env import FactaskEnv
@@ -101,11 +101,16 @@ def test_unreachable_target_reports_the_factor_without_raising() -> None:
 
 
 def test_target_outside_workspace_reports_the_factor_without_raising() -> None:
-    """An at_pose target off the table cannot be solved: run_episode returns the
-    reset failure naming the factor, not an exception."""
+    """An at_pose target off the table: a world-frame one is rejected by validation;
+    one given in another object's frame cannot be solved, and run_episode returns
+    the reset failure naming the factor, not an exception."""
+    with pytest.raises(GraphValidationError, match=r"far_away.*outside the workspace"):
+        make_graph([{"name": "cube", "kind": "block"}],
+                   [{"name": "far_away", "goal": {"type": "at_pose", "objects": ["cube"],
+                                                  "poses": [{"x": 1.5, "y": 0.0}]}}])
     graph = make_graph(
-        [{"name": "cube", "kind": "block"}],
-        [{"name": "far_away", "goal": {"type": "at_pose", "objects": ["cube"],
+        [{"name": "cube", "kind": "block"}, {"name": "mark", "kind": "zone"}],
+        [{"name": "far_away", "goal": {"type": "at_pose", "objects": ["cube"], "frame": "mark",
                                        "poses": [{"x": 1.5, "y": 0.0}]}}])
     r = run_episode(graph, 0)
     assert r.success is False and r.steps == 0

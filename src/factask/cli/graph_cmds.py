@@ -24,12 +24,18 @@ def validate(
     try:
         text = typer.get_text_stream("stdin").read() if str(file) == "-" else file.read_text()
     except OSError as exc:
-        err_console.print(f"[red]cannot read {file}: {exc.strerror or exc}[/red]")
+        err_console.print(f"cannot read {file}: {exc.strerror or exc}", style="red",
+                          markup=False)
         raise typer.Exit(2) from None
+    except UnicodeDecodeError:
+        err_console.print(f"{file}: invalid (not UTF-8 text; a task graph is JSON)",
+                          style="red", markup=False)
+        raise typer.Exit(1) from None
     try:
         graph = parse_graph(text)
     except GraphValidationError as exc:
-        err_console.print(f"[red]{file}: invalid[/red] ({len(exc.problems)} problem(s))")
+        err_console.print(f"{file}: invalid ({len(exc.problems)} problem(s))", style="red",
+                          markup=False)
         for p in exc.problems:
             err_console.print(f"  - {p}", markup=False, highlight=False)
         raise typer.Exit(1) from None

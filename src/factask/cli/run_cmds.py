@@ -53,8 +53,9 @@ def load_task(spec: str, seed: int = 0) -> TaskGraph:
     if spec.endswith(".json") or Path(spec).is_file():
         try:
             return parse_graph(Path(spec).read_text())
-        except OSError as exc:
-            err_console.print(f"[red]cannot read {spec}: {exc.strerror or exc}[/red]")
+        except (OSError, UnicodeDecodeError) as exc:
+            why = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
+            err_console.print(f"cannot read {spec}: {why or exc}", style="red", markup=False)
             raise typer.Exit(2) from None
         except GraphValidationError as exc:
             err_console.print(f"[red]{spec}: invalid task graph[/red]\n{exc}")

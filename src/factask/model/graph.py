@@ -20,10 +20,11 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from factask.model.errors import GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
-from factask.model.kinds import kind_spec
+from factask.model.kinds import kind_spec, shape_problem
 from factask.model.names import TaskName
 from factask.model.relations import ANCHOR_CAPABILITY, AtPose
-from factask.model.variables import StateVariable
+from factask.model.variables import StartInside, StateVariable
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
 #: Weights must sum to 1 within this absolute tolerance.
 WEIGHT_SUM_TOLERANCE = 1e-6
@@ -238,8 +239,12 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             Problem(n, "name", "a variable and a factor share this name", "rename one of them")
         )
 
-    # Variables: initial placements refer to existing, suitable variables.
+    # Variables: shapes their kind can have; initial placements refer to existing,
+    # suitable variables.
     for v in graph.variables:
+        shape = shape_problem(v.kind, v.extents)
+        if shape is not None:
+            out.append(Problem(v.name, "size", *shape))
         for ref in v.references():
             if ref == v.name:
                 out.append(Problem(v.name, "initial", "starts on/inside itself",
@@ -247,6 +252,13 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             elif ref not in variables:
                 out.append(Problem(v.name, "initial", f"starts on/inside unknown variable "
                                    f"{ref!r}", f"use one of {var_names}"))
+            else:
+                need = "receptacle" if isinstance(v.initial, StartInside) else "support"
+                host = variables[ref]
+                if not getattr(kind_spec(host.kind), need):
+                    out.append(Problem(v.name, "initial", f"starts {v.initial.type} {ref!r}, "
+                                       f"a {host.kind}, which is not a {need}",
+                                       "start it on the table or on/inside another variable"))
     starts = nx.DiGraph()
     for v in graph.variables:
         for ref in v.references():
@@ -348,6 +360,17 @@ def _at_pose_problems(
     assert isinstance(goal, AtPose)
     if any(o not in variables for o in goal.objects):
         return
+    if goal.frame is None:
+        for j, pose in enumerate(goal.poses):
+            if not (WORKSPACE_X[0] <= pose.x <= WORKSPACE_X[1]
+                    and WORKSPACE_Y[0] <= pose.y <= WORKSPACE_Y[1]):
+                out.append(Problem(f.name, f"goal.poses.{j}", f"pose ({pose.x}, {pose.y}) is "
+                                   f"outside the workspace x {WORKSPACE_X}, y {WORKSPACE_Y}",
+                                   "give a target on the table in front of the robot"))
+            if pose.z is not None and not WORKSPACE_Z[0] <= pose.z <= WORKSPACE_Z[1]:
+                out.append(Problem(f.name, f"goal.poses.{j}", f"height {pose.z} is outside "
+                                   f"the workspace z {WORKSPACE_Z}", "leave z out to rest "
+                                   "the object on whatever is below"))
     n = sum(variables[o].count for o in goal.objects)
     m = len(goal.poses)
     if m < n:
@@ -419,7 +442,11 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
     if isinstance(source, (str, bytes)):
         try:
             data = json.loads(source)
-        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        except RecursionError:
+            raise GraphValidationError(
+                [Problem("", "", "JSON nested too deeply", "send one flat task-graph object")]
+            ) from None
+        except ValueError as exc:  # JSONDecodeError, bad UTF-8, huge integers
             raise GraphValidationError(
                 [Problem("", "", f"not valid JSON: {exc}", "send one JSON object")]
             ) from None
@@ -432,4 +459,8 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
         graph = TaskGraph.model_validate(data)
     except ValidationError as exc:
         raise GraphValidationError(problems_from_pydantic(exc, data)) from None
+    except RecursionError:
+        raise GraphValidationError(
+            [Problem("", "", "input nested too deeply", "send one flat task-graph object")]
+        ) from None
     return graph.validate()

@@ -154,3 +154,36 @@ def default_mass(kind: str, size: tuple[float, float, float]) -> float:
     elif spec.round:
         volume *= math.pi / 4.0
     return max(0.01, spec.density * volume)
+
+
+#: Relative tolerance for "x equals y" of round footprints.
+ROUND_RTOL = 1e-6
+
+
+def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str] | None:
+    """Why an object of ``kind`` cannot have ``size``, as (message, fix), or None.
+
+    The rules every builder relies on: round kinds have equal x and y, a ball is
+    (d, d, d), receptacles have room inside their walls, an ell's bar fits its
+    other arm. (Sizes are already positive and finite.)
+    """
+    x, y, z = size
+    spec = kind_spec(kind)
+    if kind == "ball":
+        if not (math.isclose(x, y, rel_tol=ROUND_RTOL) and math.isclose(x, z, rel_tol=ROUND_RTOL)):
+            return (f"a ball's size must be its diameter three times, got {tuple(size)}",
+                    "give (d, d, d)")
+    elif spec.round and not math.isclose(x, y, rel_tol=ROUND_RTOL):
+        return (f"a {kind} has a round footprint but size x {x} != size y {y}",
+                "give the diameter as both size x and size y")
+    if kind in ("bowl", "container", "fixture"):
+        walls = 2 * WALL_THICKNESS
+        if not (x > walls and y > walls and z > WALL_THICKNESS):
+            return (f"a {kind} of size {tuple(size)} has no room inside its walls "
+                    f"({WALL_THICKNESS} m thick)",
+                    f"make size x and y larger than {walls:.3f} and z larger than "
+                    f"{WALL_THICKNESS}")
+    if kind == "ell" and not ELL_BAR_FRACTION * x < y:
+        return (f"an ell's bar width {ELL_BAR_FRACTION * x:.4f} m ({ELL_BAR_FRACTION} x size "
+                f"x) must be less than size y {y}", "make size y larger than the bar width")
+    return None

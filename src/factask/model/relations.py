@@ -16,7 +16,12 @@ from pydantic import BaseModel, ConfigDict, Field
 from factask.model.names import Name
 from factask.model.tolerances import Tolerances
 
-Coordinate = Annotated[float, Field(allow_inf_nan=False)]
+#: Target coordinates are bounded (metres): far beyond any table, never overflowing.
+COORDINATE_LIMIT = 10.0
+Coordinate = Annotated[float, Field(ge=-COORDINATE_LIMIT, le=COORDINATE_LIMIT,
+                                    allow_inf_nan=False)]
+#: Yaw in degrees (any finite turn up to two full turns either way).
+Angle = Annotated[float, Field(ge=-720.0, le=720.0, allow_inf_nan=False)]
 
 
 class _Relation(BaseModel):
@@ -50,7 +55,7 @@ class TargetPose(BaseModel):
     x: Coordinate
     y: Coordinate
     z: Coordinate | None = None
-    yaw_deg: Coordinate = 0.0
+    yaw_deg: Angle = 0.0
 
 
 class AtPose(_Relation):

@@ -30,6 +30,7 @@ from factask.model.kinds import (
     UnknownKindError,
     default_mass,
     kind_spec,
+    shape_problem,
 )
 from factask.model.palette import UnknownColorError, rgba
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
@@ -85,8 +86,6 @@ SHADOW_SIZE = 1024
 OFFSCREEN_SIZE = (1280, 960)
 #: Significant digits of numbers in MJCF text.
 XML_PRECISION = 10
-#: Relative tolerance of "this footprint is round" (size x == size y).
-_ROUND_RTOL = 1e-6
 
 HollowShape = Literal["ell", "square"]
 PartType = Literal["box", "cylinder", "sphere"]
@@ -100,7 +99,7 @@ class AssetError(FactaskError):
     """
 
     def __init__(self, name: str, message: str, fix: str = "") -> None:
-        self.name = name
+        self.name, self.message, self.fix = name, message, fix
         text = f"{name}: {message}"
         if fix:
             text += f" (fix: {fix})"
@@ -172,15 +171,6 @@ def _box(name: str, lo: tuple[float, float, float], hi: tuple[float, float, floa
 def _require(ok: bool, name: str, message: str, fix: str) -> None:
     if not ok:
         raise AssetError(name, message, fix)
-
-
-def _require_round(name: str, kind: str, size: tuple[float, float, float]) -> None:
-    _require(
-        math.isclose(size[0], size[1], rel_tol=_ROUND_RTOL),
-        name,
-        f"a {kind} has a round footprint but size x {size[0]} != size y {size[1]}",
-        "give the diameter as both size x and size y",
-    )
 
 
 def _walls_fit(name: str, kind: str, size: tuple[float, float, float], walls: float) -> None:
@@ -333,23 +323,18 @@ def kind_parts(
     _require(len(size) == 3 and all(math.isfinite(s) and s > 0 for s in size), name,
              f"size must be three positive lengths in metres, got {size}",
              "give full extents (x, y, z), e.g. (0.04, 0.04, 0.04)")
+    problem = shape_problem(kind, size)
+    if problem is not None:
+        raise AssetError(name, *problem)
     x, y, z = (s / 2 for s in size)
     if kind == "cylinder":
-        _require_round(name, kind, size)
         # MuJoCo cylinder size is (radius, half-height): not (half-height, radius).
         return [Part("body", "cylinder", (x, z), (0.0, 0.0, 0.0))]
     if kind == "ball":
-        _require(math.isclose(size[0], size[1], rel_tol=_ROUND_RTOL)
-                 and math.isclose(size[0], size[2], rel_tol=_ROUND_RTOL), name,
-                 f"a ball's size must be its diameter three times, got {size}",
-                 "give (d, d, d)")
         return [Part("body", "sphere", (x,), (0.0, 0.0, 0.0))]
     if kind == "bowl":
-        _require_round(name, kind, size)
-        _walls_fit(name, kind, size, 2 * WALL_THICKNESS)
         return _bowl_parts(size)
     if kind == "container":
-        _walls_fit(name, kind, size, 2 * WALL_THICKNESS)
         return _container_parts(size)
     if kind == "fixture":
         # The hollow must hold a piece of positive size after walls and clearance.
@@ -361,11 +346,7 @@ def kind_parts(
                      f"the hollow's y extent {ey:.4f} m", "make size y closer to size x")
         return _fixture_parts(size, hollow)
     if kind == "ell":
-        bar = ELL_BAR_FRACTION * size[0]
-        _require(bar < size[1], name, f"an ell's bar width {bar:.4f} m "
-                 f"({ELL_BAR_FRACTION} x size x) must be less than size y {size[1]}",
-                 "make size y larger than the bar width")
-        return _ell_parts(size, bar)
+        return _ell_parts(size, ELL_BAR_FRACTION * size[0])
     if kind == "corner":
         return _corner_parts(size)
     if kind == "pallet":

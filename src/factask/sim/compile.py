@@ -274,7 +274,7 @@ def build_mjcf(graph: TaskGraph, robot: str | None = "floating",
             build_object(root.worldbody, obj.name, obj.kind, obj.size, obj.color, obj.mass,
                          obj.fixed, hollow=hollows.get(obj.variable, "ell"), pos=pos)
         except AssetError as exc:
-            raise CompileError(obj.variable, str(exc)) from None
+            raise CompileError(obj.variable, exc.message, exc.fix) from None
     for factor, slot, inst in _marker_slots(graph):
         obj = by_name[inst]
         pos = positions[objects.index(obj)]

@@ -25,11 +25,14 @@ class EpisodeResult:
     Attributes:
         seed: Reset seed.
         reward: Final total reward in [0, 1].
-        success: ``reward >= SUCCESS_REWARD``.
+        success: ``reward >= SUCCESS_REWARD`` (the research's definition).
+        all_satisfied: Every factor satisfied at once at the end (factask's own,
+            stricter success: a factor of tiny weight can fail while reward >= 0.99).
         steps: Pick-and-place actions taken.
         factors: Factor name -> final progress.
-        failure: Why the episode did not succeed (the oracle's reason, a physics
-            failure, the action budget, a layout error), or None.
+        failure: Why the episode did not end with every factor satisfied (the
+            oracle's reason, a physics failure, the action budget, a layout
+            error), or None.
         details: Factor name -> what is still off.
         sim_seconds: Simulated seconds the actions took.
     """
@@ -42,6 +45,7 @@ class EpisodeResult:
     failure: str | None = None
     details: dict[str, str] = field(default_factory=dict)
     sim_seconds: float = 0.0
+    all_satisfied: bool = False
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
@@ -133,12 +137,13 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
         if truncated and not info.get("success"):
             failure = failure or f"action budget of {graph.max_actions()} used up"
         reward = float(info.get("total_reward", 0.0))
-        success = reward >= SUCCESS_REWARD
+        all_satisfied = bool(info.get("success"))
         return EpisodeResult(
-            seed=seed, reward=reward, success=success, steps=env.actions_taken,
-            factors=dict(info.get("factors", {})), failure=None if success else failure,
+            seed=seed, reward=reward, success=reward >= SUCCESS_REWARD,
+            steps=env.actions_taken, factors=dict(info.get("factors", {})),
+            failure=None if all_satisfied else (failure or "not every factor is satisfied"),
             details={k: v for k, v in info.get("details", {}).items() if v},
-            sim_seconds=sim_seconds,
+            sim_seconds=sim_seconds, all_satisfied=all_satisfied,
         )
     finally:
         if recorder is not None:
