@@ -11,7 +11,7 @@ SYSTEM_PACKAGES := libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6
 export MUJOCO_GL ?= egl
 export LITELLM_LOCAL_MODEL_COST_MAP := True
 
-.PHONY: setup system-deps demo test lint bench clean
+.PHONY: setup system-deps demo test test-fast lint bench clean
 
 setup: $(STAMP)
 
@@ -34,9 +34,14 @@ $(STAMP): pyproject.toml
 demo: $(STAMP)
 	$(PY) -m factask demo --out out/demo
 
+# The whole suite, the arm sweeps (marked slow) included, then the linter.
 test: $(STAMP)
-	$(PY) -m pytest -q -n 2 -m "not slow"
+	$(PY) -m pytest -q -n 2
 	$(VENV)/bin/ruff check .
+
+# Everything but the tests marked slow: for quick iterations.
+test-fast: $(STAMP)
+	$(PY) -m pytest -q -n 2 -m "not slow"
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
