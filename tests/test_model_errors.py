@@ -206,3 +206,20 @@ def test_cli_schema_is_the_graph_schema() -> None:
     schema = json.loads(result.output)
     assert schema == TaskGraph.json_schema()
     assert "StateVariable" in json.dumps(schema)
+
+
+def test_field_errors_and_graph_errors_come_in_one_round() -> None:
+    data = _graph()
+    data["variables"][0]["color"] = "ultraviolet"  # a field error on red_block
+    data["variables"].append({"name": "blue_block", "kind": "block", "color": "blue"})
+    data["factors"][0]["weight"] = 0.5
+    data["factors"].append({"name": "on_top", "weight": 0.5,
+                            "goal": {"type": "on", "objects": ["blue_block"],
+                                     "support": "ghost"}})
+    with pytest.raises(GraphValidationError) as info:
+        parse_graph(data)
+    assert info.value.nodes == {"red_block", "on_top"}
+    assert any("ghost" in p.message for p in info.value.problems)
+    # Nothing is reported only because red_block was left out of the check.
+    assert not any("red_block" in p.message for p in info.value.problems
+                   if p.node == "place")

@@ -458,9 +458,46 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
     try:
         graph = TaskGraph.model_validate(data)
     except ValidationError as exc:
-        raise GraphValidationError(problems_from_pydantic(exc, data)) from None
+        found = problems_from_pydantic(exc, data)
+        found += _problems_of_valid_parts(data)
+        raise GraphValidationError(found) from None
     except RecursionError:
         raise GraphValidationError(
             [Problem("", "", "input nested too deeply", "send one flat task-graph object")]
         ) from None
     return graph.validate()
+
+
+def _problems_of_valid_parts(data: Mapping[str, Any]) -> list[Problem]:
+    """Whole-graph problems among the variables and factors that are valid on their
+    own, when others are not: one round of feedback then lists everything.
+
+    Problems that only exist because an invalid item was left out (a scope naming
+    it, an ``after`` naming it, the weight sum) are not reported: its own field
+    errors already are.
+    """
+    def valid(items: Any, model: type[BaseModel]) -> tuple[list[Any], set[str]]:
+        ok, bad = [], set()
+        for item in items if isinstance(items, list) else []:
+            try:
+                ok.append(model.model_validate(item))
+            except (ValidationError, RecursionError):
+                if isinstance(item, Mapping) and isinstance(item.get("name"), str):
+                    bad.add(item["name"])
+        return ok, bad
+
+    variables, bad_vars = valid(data.get("variables"), StateVariable)
+    factors, bad_factors = valid(data.get("factors"), SubtaskFactor)
+    try:
+        partial = TaskGraph(name="partial", variables=variables, factors=factors)
+    except ValidationError:
+        return []
+    dropped = bad_vars | bad_factors
+    keep = []
+    for p in graph_problems(partial):
+        if p.node == "" and p.field == "factors.weight" and bad_factors:
+            continue
+        if any(f"{name!r}" in p.message for name in dropped):
+            continue
+        keep.append(p)
+    return keep
