@@ -14,6 +14,7 @@ from typing import Any
 import mujoco
 import numpy as np
 import pytest
+from helpers import free_spot
 
 from factask.geometry import Pose
 from factask.library import get_task
@@ -21,7 +22,6 @@ from factask.model import TaskGraph
 from factask.sim.compile import get_object_pose, set_object_pose
 from factask.sim.env import ActionError, FactaskEnv
 from factask.sim.episode import run_episode
-from factask.sim.objects import footprint_corners, obb_overlaps
 from factask.sim.oracle import Oracle
 
 
@@ -79,20 +79,7 @@ def _state(env: FactaskEnv) -> dict[str, np.ndarray]:
 
 
 def _free_spot(env: FactaskEnv, half: float = 0.04) -> np.ndarray:
-    """An (x, y) in the workspace with no object (nor target) within ``half`` metres."""
-    occupied = [footprint_corners(env.objects[n], p, 0.02) for n, p in env.object_poses().items()]
-    for solved in env.solved.values():
-        occupied += [footprint_corners(env.objects[n], p, 0.02)
-                     for n, p in solved.targets(env.objects).items()]
-    occ = np.array(occupied).reshape(-1, 4, 2)
-    rng = np.random.default_rng(0)
-    for _ in range(1000):
-        xy = rng.uniform([0.3, -0.45], [0.7, 0.45])
-        square = np.array([[xy[0] - half, xy[1] - half], [xy[0] + half, xy[1] - half],
-                           [xy[0] + half, xy[1] + half], [xy[0] - half, xy[1] + half]])
-        if not obb_overlaps(square[None], occ).any():
-            return xy
-    raise AssertionError("no free spot found in the workspace")
+    return free_spot(env, half, seed=0, tries=1000)
 
 
 def _noop_action(env: FactaskEnv) -> dict[str, np.ndarray]:

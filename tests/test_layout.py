@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 import sys
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pytest
+from helpers import make_graph
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -34,15 +34,6 @@ from factask.sim.objects import (
     scene_objects,
     top_z,
 )
-
-
-def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],
-               name: str = "t") -> TaskGraph:
-    """A validated graph; factor weights default to equal shares."""
-    for f in factors:
-        f.setdefault("weight", 1.0 / len(factors))
-    return TaskGraph.model_validate(
-        {"name": name, "variables": variables, "factors": factors}).validate()
 
 
 def _graphs() -> dict[str, TaskGraph]:

@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import time
 from functools import cache
-from typing import Any
 
 import mujoco
 import numpy as np
 import pytest
+from helpers import make_graph
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -42,15 +42,6 @@ DEFAULT_TASKS = [
     "packing-boxes", "align-spheres-in-colored-zones", "insertion-in-color-sequenced-zones",
     "color-coordinated-block-corner-alignment",
 ]
-
-
-def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],
-               name: str = "t") -> TaskGraph:
-    """A validated graph; factor weights default to equal shares."""
-    for f in factors:
-        f.setdefault("weight", 1.0 / len(factors))
-    return TaskGraph.model_validate(
-        {"name": name, "variables": variables, "factors": factors}).validate()
 
 
 def relation_graphs() -> dict[str, TaskGraph]:

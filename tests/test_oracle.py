@@ -12,10 +12,11 @@ from typing import Any
 
 import numpy as np
 import pytest
+from helpers import free_spot, make_graph
 
 from factask.geometry import Pose
 from factask.library import get_task, task_names
-from factask.model import GraphValidationError, TaskGraph
+from factask.model import GraphValidationError
 from factask.model.tolerances import COMPLETION_FRACTION, SUCCESS_REWARD
 from factask.sim.compile import set_object_pose
 from factask.sim.env import FactaskEnv
@@ -26,19 +27,9 @@ from factask.sim.episode import (
     evaluate_task,
     run_episode,
 )
-from factask.sim.objects import footprint_corners, obb_overlaps
 from factask.sim.oracle import MAX_ATTEMPTS_PER_OBJECT, Oracle
 
 SEEDS = (0, 1)
-
-
-def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],
-               name: str = "t") -> TaskGraph:
-    """A validated graph; factor weights default to equal shares."""
-    for f in factors:
-        f.setdefault("weight", 1.0 / len(factors))
-    return TaskGraph.model_validate(
-        {"name": name, "variables": variables, "factors": factors}).validate()
 
 
 def _describe(name: str, seed: int, r: EpisodeResult) -> str:
@@ -119,20 +110,7 @@ def test_target_outside_workspace_reports_the_factor_without_raising() -> None:
 
 # ------------------------------------------------------------ re-planning
 def _free_spot(env: FactaskEnv, half: float = 0.05) -> np.ndarray:
-    """An (x, y) clear of every object and target."""
-    occupied = [footprint_corners(env.objects[n], p, 0.02) for n, p in env.object_poses().items()]
-    for solved in env.solved.values():
-        occupied += [footprint_corners(env.objects[n], p, 0.02)
-                     for n, p in solved.targets(env.objects).items()]
-    occ = np.array(occupied).reshape(-1, 4, 2)
-    rng = np.random.default_rng(1)
-    for _ in range(2000):
-        xy = rng.uniform([0.3, -0.45], [0.7, 0.45])
-        square = np.array([[xy[0] - half, xy[1] - half], [xy[0] + half, xy[1] - half],
-                           [xy[0] + half, xy[1] + half], [xy[0] - half, xy[1] + half]])
-        if not obb_overlaps(square[None], occ).any():
-            return xy
-    raise AssertionError("no free spot")
+    return free_spot(env, half, seed=1, tries=2000)
 
 
 def test_oracle_replans_after_a_placed_object_is_displaced() -> None:

@@ -1,0 +1,38 @@
+"""Small helpers shared by several test modules."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from factask.model import TaskGraph
+from factask.sim.env import FactaskEnv
+from factask.sim.objects import footprint_corners, obb_overlaps
+
+
+def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],
+               name: str = "t") -> TaskGraph:
+    """A validated graph; factor weights default to equal shares."""
+    for f in factors:
+        f.setdefault("weight", 1.0 / len(factors))
+    return TaskGraph.model_validate(
+        {"name": name, "variables": variables, "factors": factors}).validate()
+
+
+def free_spot(env: FactaskEnv, half: float = 0.04, seed: int = 0,
+              tries: int = 1000) -> np.ndarray:
+    """An (x, y) in the workspace with no object (nor target) within ``half`` metres."""
+    occupied = [footprint_corners(env.objects[n], p, 0.02) for n, p in env.object_poses().items()]
+    for solved in env.solved.values():
+        occupied += [footprint_corners(env.objects[n], p, 0.02)
+                     for n, p in solved.targets(env.objects).items()]
+    occ = np.array(occupied).reshape(-1, 4, 2)
+    rng = np.random.default_rng(seed)
+    for _ in range(tries):
+        xy = rng.uniform([0.3, -0.45], [0.7, 0.45])
+        square = np.array([[xy[0] - half, xy[1] - half], [xy[0] + half, xy[1] - half],
+                           [xy[0] + half, xy[1] + half], [xy[0] - half, xy[1] + half]])
+        if not obb_overlaps(square[None], occ).any():
+            return xy
+    raise AssertionError("no free spot found in the workspace")
