@@ -3,7 +3,13 @@
 Pure Python + pydantic + networkx; never imports MuJoCo or litellm.
 """
 
-from factask.model.errors import CompositionError, FactaskError, GraphValidationError, Problem
+from factask.model.errors import (
+    CompositionError,
+    FactaskError,
+    GraphValidationError,
+    Problem,
+    SubjectError,
+)
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph, graph_problems, parse_graph
 from factask.model.kinds import (
@@ -55,7 +61,7 @@ __all__ = [
     "Aligned", "AssetKind", "AtFixedPose", "AtPose", "Circle", "CompositionError",
     "FactaskError", "GraphValidationError", "InRegion", "InZone", "Inside", "KindSpec",
     "Limits", "On", "OnTable", "Placement", "Problem", "Relation", "Row", "Stack",
-    "StartInside", "StartOn", "StateVariable", "SubtaskFactor", "SubtaskTemplate",
+    "StartInside", "StartOn", "StateVariable", "SubjectError", "SubtaskFactor", "SubtaskTemplate",
     "TargetPose", "TaskGraph", "TemplateSlot", "Tolerances", "UnknownColorError",
     "UnknownKindError", "compose", "empty_graph", "extract_fragment", "extract_template",
     "graph_problems", "instance_names", "kind_spec", "normalize_color", "parse_graph",

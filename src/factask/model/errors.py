@@ -58,5 +58,22 @@ class GraphValidationError(FactaskError):
         return {p.node for p in self.problems}
 
 
+class SubjectError(FactaskError):
+    """An error about one named thing, worded ``"<subject>: <message> (fix: <fix>)"``.
+
+    Attributes:
+        subject: What the error is about ("" for nothing in particular).
+        message: What is wrong.
+        fix: How to fix it ("" if there is no advice).
+    """
+
+    def __init__(self, subject: str, message: str, fix: str = "") -> None:
+        self.subject, self.message, self.fix = subject, message, fix
+        text = f"{subject}: {message}" if subject else message
+        if fix:
+            text += f" (fix: {fix})"
+        super().__init__(text)
+
+
 class CompositionError(FactaskError):
     """Graphs or templates cannot be combined as asked (name clash, bad binding)."""

@@ -23,7 +23,7 @@ from typing import Any, Literal
 import numpy as np
 from dm_control import mjcf
 
-from factask.model.errors import FactaskError
+from factask.model.errors import SubjectError
 from factask.model.kinds import (
     ELL_BAR_FRACTION,
     WALL_THICKNESS,
@@ -91,19 +91,16 @@ HollowShape = Literal["ell", "square"]
 PartType = Literal["box", "cylinder", "sphere"]
 
 
-class AssetError(FactaskError):
+class AssetError(SubjectError):
     """An object cannot be built as asked (size too small for its kind, bad colour, ...).
 
     Attributes:
         name: The object (instance) the problem is about.
     """
 
-    def __init__(self, name: str, message: str, fix: str = "") -> None:
-        self.name, self.message, self.fix = name, message, fix
-        text = f"{name}: {message}"
-        if fix:
-            text += f" (fix: {fix})"
-        super().__init__(text)
+    @property
+    def name(self) -> str:
+        return self.subject
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ import mujoco
 import numpy as np
 
 from factask.geometry import Pose
-from factask.model.errors import FactaskError
+from factask.model.errors import SubjectError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.sim.assets import (
@@ -55,19 +55,16 @@ GRID_GAP = 0.02
 MARKER_PREFIX = "goal"
 
 
-class CompileError(FactaskError):
+class CompileError(SubjectError):
     """A graph cannot be compiled into a MuJoCo scene.
 
     Attributes:
         variable: The variable (or "" for the scene as a whole) at fault.
     """
 
-    def __init__(self, variable: str, message: str, fix: str = "") -> None:
-        self.variable = variable
-        text = f"{variable}: {message}" if variable else message
-        if fix:
-            text += f" (fix: {fix})"
-        super().__init__(text)
+    @property
+    def variable(self) -> str:
+        return self.subject
 
 
 @dataclass(frozen=True)
