@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -9,6 +10,9 @@ import numpy as np
 from factask.model import TaskGraph
 from factask.sim.env import FactaskEnv
 from factask.sim.objects import footprint_corners, obb_overlaps
+
+#: The benchmark task list, in ``shared/`` beside the checkout (as in CI).
+GENSIM_TASKS = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
 
 
 def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],

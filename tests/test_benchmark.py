@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
+from helpers import GENSIM_TASKS as GENSIM
 from typer.testing import CliRunner
 
 from factask.cli import app
@@ -30,9 +31,6 @@ from factask.gen.llm import LLMClient, LLMConfig
 from factask.gen.loopback import LoopbackServer
 from factask.gen.strategies import Generator
 from factask.gen.verify import Verifier
-
-#: The benchmark task list, in ``shared/`` beside the checkout (as in CI).
-GENSIM = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
 
 TASKS = [
     {"name": "red-in-zone-then-blue-on-red", "description": "put the red block in the zone, "

@@ -8,6 +8,7 @@ from itertools import pairwise
 from pathlib import Path
 
 import pytest
+from helpers import GENSIM_TASKS as GENSIM
 from typer.testing import CliRunner
 
 from factask.cli.app import app
@@ -32,9 +33,6 @@ from factask.model import (
     parse_graph,
 )
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-
-#: The benchmark task list, in ``shared/`` beside the checkout (as in CI).
-GENSIM = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
 
 REQUIRED = [
     "place-red-in-green", "stack-block-pyramid", "stack-block-pyramid-seq", "towers-of-hanoi",
