@@ -8,8 +8,8 @@ from typing import Any
 import numpy as np
 
 from factask.model import TaskGraph
+from factask.scene.objects import footprint_corners, obb_overlaps
 from factask.sim.env import FactaskEnv
-from factask.sim.objects import footprint_corners, obb_overlaps
 
 #: The benchmark task list, in ``shared/`` beside the checkout (as in CI).
 GENSIM_TASKS = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"

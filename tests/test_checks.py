@@ -12,8 +12,9 @@ from test_layout import GRAPHS, at_targets, make_graph
 
 from factask.geometry import Pose, quat_from_yaw, quat_mul
 from factask.model import TaskGraph
+from factask.relations.solving import SolvedFactor
 from factask.sim.checks import CheckError, check_factor, check_task
-from factask.sim.layout import SolvedFactor, reset_layout
+from factask.sim.reset import reset_layout
 
 
 def _setup(graph: TaskGraph, seed: int = 0

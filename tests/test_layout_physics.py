@@ -1,4 +1,4 @@
-"""Layouts and solved targets checked in MuJoCo (factask.sim.layout + compile + checks).
+"""Layouts and solved targets checked in MuJoCo (sampling, solving, compile, checks).
 
 The pure-geometry tests of the sampler live in test_layout.py; here the compiled
 scene (``robot=None``) is the judge: sampled initial layouts have no penetrating
@@ -22,10 +22,12 @@ from hypothesis import strategies as st
 from factask.geometry import Pose
 from factask.library import get_task, task_names
 from factask.model import TaskGraph
+from factask.scene.collision import LayoutError
+from factask.scene.objects import objects_by_name
 from factask.sim.checks import check_task
 from factask.sim.compile import CompiledScene, compile_graph, get_object_pose, set_object_pose
-from factask.sim.layout import LayoutError, reset_layout, sample_layout
-from factask.sim.objects import objects_by_name
+from factask.sim.reset import reset_layout
+from factask.sim.sampling import sample_layout
 
 #: Deepest allowed penetration between two geoms (MuJoCo contact.dist, metres).
 #: Resting contacts (an object on another, on its floor, on the table) have dist ~ 0.

@@ -11,9 +11,10 @@ import pytest
 from factask.geometry import Pose
 from factask.library import get_task
 from factask.model import Row, Stack, StateVariable, SubtaskFactor, TaskGraph
+from factask.scene.collision import LayoutError
+from factask.scene.objects import objects_by_name
 from factask.sim.checks import CheckError, check_task
-from factask.sim.layout import LayoutError, reset_layout
-from factask.sim.objects import objects_by_name
+from factask.sim.reset import reset_layout
 
 
 def _at_targets(graph: TaskGraph, seed: int = 0):

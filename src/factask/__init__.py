@@ -29,7 +29,7 @@ _LAZY: dict[str, tuple[str, str]] = {
     # MuJoCo backend
     "compile_graph": ("factask.sim.compile", "compile_graph"),
     "CompileError": ("factask.sim.compile", "CompileError"),
-    "LayoutError": ("factask.sim.layout", "LayoutError"),
+    "LayoutError": ("factask.scene.collision", "LayoutError"),
     "FactaskEnv": ("factask.sim.env", "FactaskEnv"),
     "Oracle": ("factask.sim.oracle", "Oracle"),
     "run_episode": ("factask.sim.episode", "run_episode"),

@@ -5,7 +5,7 @@ template need no escaping). Every list the model sees — asset kinds, colours,
 relation types with their parameters, initial placements — is rendered from the
 code's own definitions (:data:`factask.model.kinds.ASSET_KINDS`,
 :data:`factask.model.palette.COLOR_NAMES`,
-:data:`factask.model.relations.RELATION_TYPES` with docstrings and JSON
+:data:`factask.relations.RELATION_TYPES` with docstrings and JSON
 Schemas), so a prompt can never advertise something the library lacks.
 
 The template directory is ``$FACTASK_PROMPTS`` if set, else the repository's
@@ -28,9 +28,9 @@ from pydantic import BaseModel
 from factask.model.errors import FactaskError
 from factask.model.kinds import ASSET_KINDS
 from factask.model.palette import COLOR_NAMES
-from factask.model.relations import RELATION_TYPES
 from factask.model.variables import AtFixedPose, InRegion, OnTable, StartInside, StartOn
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.relations import RELATION_TYPES
 
 _PLACEHOLDER_RE = re.compile(r"\{\{\s*([a-z_][a-z0-9_]*)\s*\}\}")
 

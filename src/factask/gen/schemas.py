@@ -19,8 +19,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from factask.model.errors import FactaskError, Problem
 from factask.model.graph import problems_from_pydantic
 from factask.model.names import Name
-from factask.model.relations import Relation
 from factask.model.variables import StateVariable
+from factask.relations import Relation
 
 T = TypeVar("T", bound=BaseModel)
 

@@ -23,19 +23,6 @@ from factask.model.kinds import (
 )
 from factask.model.names import instance_names
 from factask.model.palette import COLOR_NAMES, COLORS, UnknownColorError, normalize_color, rgba
-from factask.model.relations import (
-    RELATION_TYPES,
-    Aligned,
-    AtPose,
-    Circle,
-    Inside,
-    InZone,
-    On,
-    Relation,
-    Row,
-    Stack,
-    TargetPose,
-)
 from factask.model.templates import (
     SubtaskTemplate,
     TemplateSlot,
@@ -54,6 +41,19 @@ from factask.model.variables import (
     StartInside,
     StartOn,
     StateVariable,
+)
+from factask.relations import (
+    RELATION_TYPES,
+    Aligned,
+    AtPose,
+    Circle,
+    Inside,
+    InZone,
+    On,
+    Relation,
+    Row,
+    Stack,
+    TargetPose,
 )
 
 __all__ = [

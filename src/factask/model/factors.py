@@ -7,7 +7,7 @@ from typing import Annotated
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from factask.model.names import Name
-from factask.model.relations import Relation
+from factask.relations import Relation
 
 
 class SubtaskFactor(BaseModel):

@@ -22,9 +22,7 @@ from factask.model.errors import GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.kinds import kind_spec, shape_problem
 from factask.model.names import TaskName
-from factask.model.relations import ANCHOR_CAPABILITY, AtPose
 from factask.model.variables import StartInside, StateVariable
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
 #: Weights must sum to 1 within this absolute tolerance.
 WEIGHT_SUM_TOLERANCE = 1e-6
@@ -302,9 +300,7 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))
             movers.setdefault(name, []).append(f.name)
-        _anchor_problems(f, variables, out)
-        if isinstance(f.goal, AtPose):
-            _at_pose_problems(f, variables, out)
+        out.extend(f.goal.problems(f.name, variables))
         for a in f.after:
             if a == f.name:
                 out.append(Problem(f.name, "after", "factor is ordered after itself",
@@ -332,61 +328,6 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
     if not nx.is_directed_acyclic_graph(d):
         out.extend(_cycle_problems(d))
     return out
-
-
-def _anchor_problems(
-    f: SubtaskFactor, variables: Mapping[str, StateVariable], out: list[Problem]
-) -> None:
-    goal = f.goal
-    for (rtype, field), caps in ANCHOR_CAPABILITY.items():
-        if goal.type != rtype:
-            continue
-        name = getattr(goal, field)
-        if name is None or name not in variables:
-            continue
-        v = variables[name]
-        spec = kind_spec(v.kind)
-        if not any(getattr(spec, c) for c in caps):
-            out.append(Problem(f.name, f"goal.{field}",
-                               f"{name!r} is a {v.kind}, which cannot serve as {field} of "
-                               f"'{rtype}' (needs a kind that is {' or '.join(caps)})",
-                               "choose another variable or relation"))
-
-
-def _at_pose_problems(
-    f: SubtaskFactor, variables: Mapping[str, StateVariable], out: list[Problem]
-) -> None:
-    goal = f.goal
-    assert isinstance(goal, AtPose)
-    if any(o not in variables for o in goal.objects):
-        return
-    if goal.frame is None:
-        for j, pose in enumerate(goal.poses):
-            if not (WORKSPACE_X[0] <= pose.x <= WORKSPACE_X[1]
-                    and WORKSPACE_Y[0] <= pose.y <= WORKSPACE_Y[1]):
-                out.append(Problem(f.name, f"goal.poses.{j}", f"pose ({pose.x}, {pose.y}) is "
-                                   f"outside the workspace x {WORKSPACE_X}, y {WORKSPACE_Y}",
-                                   "give a target on the table in front of the robot"))
-            if pose.z is not None and not WORKSPACE_Z[0] <= pose.z <= WORKSPACE_Z[1]:
-                out.append(Problem(f.name, f"goal.poses.{j}", f"height {pose.z} is outside "
-                                   f"the workspace z {WORKSPACE_Z}", "leave z out to rest "
-                                   "the object on whatever is below"))
-    n = sum(variables[o].count for o in goal.objects)
-    m = len(goal.poses)
-    if m < n:
-        out.append(Problem(f.name, "goal.poses", f"{n} object(s) but only {m} pose(s)",
-                           "give every object instance its own target pose"))
-    if goal.matches is not None:
-        rows = goal.matches
-        if len(rows) != n or any(len(r) != m for r in rows):
-            shape = f"{len(rows)}x{len(rows[0]) if rows else 0}"
-            out.append(Problem(f.name, "goal.matches", f"matches is {shape}, expected {n}x{m} "
-                               "(object instances x poses)", "fix the matrix shape"))
-        else:
-            for i, r in enumerate(rows):
-                if not any(r):
-                    out.append(Problem(f.name, "goal.matches", f"object instance {i} may go to "
-                                       "no pose", "allow at least one pose per row"))
 
 
 # ---------------------------------------------------------------------------

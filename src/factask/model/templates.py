@@ -25,10 +25,11 @@ from factask.model.graph import Limits, TaskGraph, problems_from_pydantic
 from factask.model.kinds import AssetKind
 from factask.model.names import Name, TaskName
 from factask.model.variables import StateVariable
+from factask.relations import ANCHOR_FIELDS
 
-# Fields of relations and placements that hold one variable name / a list of them.
-_NAME_FIELDS = ("zone", "support", "container", "base", "along", "on", "center", "reference",
-                "frame")
+#: Fields of relations (their anchors) and of start placements that hold one
+#: variable name.
+_NAME_FIELDS = tuple(dict.fromkeys((*ANCHOR_FIELDS, "support", "container")))
 
 
 def _rename_value(value: Any, mapping: Mapping[str, str]) -> Any:

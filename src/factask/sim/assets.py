@@ -8,7 +8,7 @@ docs inspect, and then turned into geoms (:func:`build_object`).
 Frames (see ``docs/assets.md``): for every kind the body origin is the centre of
 the object's bounding box, so an object resting on the table has
 ``z = size_z / 2``. Shared conventions (floors, the corner marker's L, the
-fixture's open frame) are those of :mod:`factask.sim.objects`.
+fixture's open frame) are those of :mod:`factask.scene.objects`.
 
 Geom names are ``<instance>:<part>`` (``:`` never occurs in factask names), so a
 geom maps back to its object by name as well as by id.
@@ -34,7 +34,7 @@ from factask.model.kinds import (
 )
 from factask.model.palette import UnknownColorError, rgba
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.sim.objects import corner_arm_width
+from factask.scene.objects import corner_arm_width
 
 # ----------------------------------------------------------------- constants
 #: Separator between an instance name and a geom's part name.
@@ -269,7 +269,7 @@ def _fixture_parts(size: tuple[float, float, float], hollow: HollowShape) -> lis
 
 def _corner_parts(size: tuple[float, float, float]) -> list[Part]:
     """Two bars along the box's -y edge (arm along +x) and -x edge (arm along +y);
-    the L's inner vertex is at (-sx/2 + w, -sy/2 + w) (``factask.sim.objects``)."""
+    the L's inner vertex is at (-sx/2 + w, -sy/2 + w) (``factask.scene.objects``)."""
     w = corner_arm_width(size)
     x, y, z = (s / 2 for s in size)
     return [

@@ -25,6 +25,7 @@ from factask.geometry import Pose
 from factask.model.errors import SubjectError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.scene.objects import SceneObject, scene_objects
 from factask.sim.assets import (
     GEOM_SEPARATOR,
     MARKER_GROUP,
@@ -36,7 +37,6 @@ from factask.sim.assets import (
     build_table,
     new_root,
 )
-from factask.sim.objects import SceneObject, scene_objects
 
 #: Robot kinds :func:`compile_graph` accepts (None: no robot).
 ROBOT_KINDS = ("floating", "arm")

@@ -30,6 +30,8 @@ from factask.geometry import Pose
 from factask.model.errors import FactaskError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
+from factask.relations.solving import SolvedFactor
+from factask.scene.objects import SceneObject, objects_by_name
 from factask.sim.checks import TaskStatus, check_task
 from factask.sim.compile import (
     CompiledScene,
@@ -38,8 +40,7 @@ from factask.sim.compile import (
     set_marker,
     set_object_pose,
 )
-from factask.sim.layout import SolvedFactor, reset_layout
-from factask.sim.objects import SceneObject, objects_by_name
+from factask.sim.reset import reset_layout
 from factask.sim.robot import SuctionRobot, make_robot
 
 #: Simulated seconds the scene settles after a reset (objects placed exactly

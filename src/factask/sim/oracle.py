@@ -7,12 +7,13 @@ poses and sizes, and the solved targets of every factor. Each call to
 1. Take the factors in the graph's order; the first one that is not satisfied
    is worked on (a finished factor that becomes unsatisfied again — a knocked
    stack — is worked on again: the oracle re-plans every action).
-2. Find which of its objects are not placed (an object counts as placed when
-   taking it away lowers the factor's progress), give each a free target slot
-   the relation allows (optimal assignment), and choose the one whose target is
-   lowest (supports before what rests on them), farthest first on ties (Ravens).
+2. Read the factor's status (:class:`~factask.relations.status.FactorStatus`):
+   which objects are placed, and the free slot each unplaced object should take.
+   Choose the one whose target is lowest (supports before what rests on them),
+   farthest first on ties (Ravens).
 3. If something rests on that object, or stands where it must go, move that
-   obstacle to a free spot of the table first.
+   obstacle to a free spot of the table first (the collision model's
+   :func:`~factask.scene.collision.parking_spot`).
 4. Pick at the top of the object (tool yaw = object yaw) and place so the object
    ends at its target, turned to the target yaw modulo the object's symmetry by
    the shortest rotation.
@@ -28,22 +29,13 @@ from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from factask.geometry import Pose, tilt_deg
 from factask.model.kinds import yaw_symmetry_deg
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.sim.checks import MAX_TILT_DEG, check_factor
+from factask.relations.status import MAX_TILT_DEG, FactorStatus
+from factask.scene.collision import occupying, parking_spot, resting_on
+from factask.scene.objects import SPHERE_KINDS, SceneObject, top_z
 from factask.sim.env import FactaskEnv
-from factask.sim.layout import SolvedFactor
-from factask.sim.objects import (
-    SPHERE_KINDS,
-    SceneObject,
-    bottom_z,
-    footprint_corners,
-    obb_overlaps,
-    top_z,
-)
 
 #: Attempts at placing one object for one factor before the oracle gives up.
 MAX_ATTEMPTS_PER_OBJECT = 3
@@ -51,10 +43,6 @@ MAX_ATTEMPTS_PER_OBJECT = 3
 PARKING_CLEARANCE = 0.015
 #: Random candidate spots tried when parking an obstacle.
 PARKING_SAMPLES = 400
-#: Vertical slack (m) when deciding that one object rests on another.
-REST_EPS = 0.01
-#: How far away (m) an object is moved when testing whether it counts as placed.
-_AWAY = 100.0
 
 
 @dataclass(frozen=True)
@@ -96,98 +84,13 @@ class Oracle:
         self.attempts: Counter[tuple[str, str]] = Counter()
         self.failure: str | None = None
 
-    # ---------------------------------------------------------------- helpers
-    def _placed(self, solved: SolvedFactor, poses: dict[str, Pose], base: float) -> set[str]:
-        """Objects of the factor that count towards its progress now."""
-        placed = set()
-        for name in solved.objects:
-            moved = dict(poses)
-            p = poses[name]
-            moved[name] = Pose(p.pos + np.array([_AWAY, _AWAY, 0.0]), p.quat)
-            if check_factor(self.env.graph, solved, moved, (), self.env.objects).progress < base:
-                placed.add(name)
-        return placed
-
-    def _targets(self, solved: SolvedFactor, poses: dict[str, Pose], placed: set[str]
-                 ) -> dict[str, Pose]:
-        """A target pose for every unplaced object, on slots placed objects do not take."""
+    def _targets(self, fname: str, status: FactorStatus) -> dict[str, Pose]:
+        """Target pose of every unplaced object of a factor: the free slot its status
+        gives it."""
+        solved = self.env.solved[fname]
         objs = self.env.objects
-        n_slots = len(solved.slots)
-        taken: set[int] = set()
-        for name in placed:
-            i = solved.objects.index(name)
-            allowed = [j for j in range(n_slots) if solved.matches[i, j] and j not in taken]
-            if allowed:
-                d = [np.linalg.norm(poses[name].pos - solved.target_pose(objs[name], j).pos)
-                     for j in allowed]
-                taken.add(allowed[int(np.argmin(d))])
-        todo = [n for n in solved.objects if n not in placed]
-        free = [j for j in range(n_slots) if j not in taken]
-        if not todo or not free:
-            return {}
-        cost = np.full((len(todo), len(free)), 1e6)
-        for a, name in enumerate(todo):
-            i = solved.objects.index(name)
-            for b, j in enumerate(free):
-                if solved.matches[i, j]:
-                    cost[a, b] = float(np.linalg.norm(
-                        poses[name].pos - solved.target_pose(objs[name], j).pos))
-        rows, cols = linear_sum_assignment(cost)
-        return {todo[r]: solved.target_pose(objs[todo[r]], free[c])
-                for r, c in zip(rows, cols, strict=True) if cost[r, c] < 1e6}
-
-    def _resting_on(self, name: str, poses: dict[str, Pose]) -> list[str]:
-        """Free objects resting on top of ``name`` (directly), highest first."""
-        objs = self.env.objects
-        me = objs[name]
-        top = top_z(me, poses[name])
-        mine = footprint_corners(me, poses[name])
-        out = []
-        for other, obj in objs.items():
-            if other == name or obj.fixed or not obj.collides:
-                continue
-            if abs(bottom_z(obj, poses[other]) - top) < REST_EPS and obb_overlaps(
-                    mine, footprint_corners(obj, poses[other]))[0, 0]:
-                out.append(other)
-        return sorted(out, key=lambda o: -poses[o].pos[2])
-
-    def _blocking_target(self, name: str, target: Pose, poses: dict[str, Pose],
-                         keep: set[str]) -> list[str]:
-        """Free objects (not in ``keep``) occupying the space ``name`` goes to."""
-        objs = self.env.objects
-        me = objs[name]
-        lo, hi = target.pos[2] - me.half[2], target.pos[2] + me.half[2]
-        corners = footprint_corners(me, target, margin=-0.002)
-        out = []
-        for other, obj in objs.items():
-            if other == name or other in keep or obj.fixed or not obj.collides:
-                continue
-            p = poses[other]
-            if bottom_z(obj, p) < hi - REST_EPS and top_z(obj, p) > lo + REST_EPS and \
-                    obb_overlaps(corners, footprint_corners(obj, p))[0, 0]:
-                out.append(other)
-        return out
-
-    def _parking_spot(self, name: str, poses: dict[str, Pose]) -> Pose | None:
-        """A free table spot for ``name`` away from every object and every target."""
-        objs = self.env.objects
-        obj = objs[name]
-        others = [footprint_corners(o, poses[n], PARKING_CLEARANCE)
-                  for n, o in objs.items() if n != name and o.collides]
-        for solved in self.env.solved.values():
-            for inst, pose in solved.targets(objs).items():
-                others.append(footprint_corners(objs[inst], pose, PARKING_CLEARANCE))
-        # Regions (zones, lines) are not collisions but parking there would count.
-        occupied = np.array(others + [footprint_corners(o, poses[n]) for n, o in objs.items()
-                                      if not o.collides]).reshape(-1, 4, 2)
-        margin = float(np.linalg.norm(obj.half_xy)) + 0.01
-        for _ in range(PARKING_SAMPLES):
-            x = self.rng.uniform(WORKSPACE_X[0] + margin, WORKSPACE_X[1] - margin)
-            y = self.rng.uniform(WORKSPACE_Y[0] + margin, WORKSPACE_Y[1] - margin)
-            pose = Pose.from_xyz_yaw(x, y, obj.half[2], poses[name].yaw)
-            if not obb_overlaps(footprint_corners(obj, pose), occupied).any():
-                return pose
-        return None
+        return {name: solved.target_pose(objs[name], slot)
+                for name, slot in status.targets.items()}
 
     def _action(self, obj: SceneObject, current: Pose, target: Pose, factor: str,
                 purpose: str) -> OracleAction:
@@ -203,7 +106,11 @@ class Oracle:
 
     def _move_away(self, name: str, poses: dict[str, Pose], factor: str,
                    why: str) -> OracleAction | None:
-        spot = self._parking_spot(name, poses)
+        objs = self.env.objects
+        targets = [(objs[inst], pose) for solved in self.env.solved.values()
+                   for inst, pose in solved.targets(objs).items()]
+        spot = parking_spot(name, objs, poses, targets, self.rng, PARKING_CLEARANCE,
+                            PARKING_SAMPLES)
         if spot is None:
             self.failure = f"factor {factor!r}: no free spot to move {name!r} out of the way"
             return None
@@ -222,11 +129,9 @@ class Oracle:
             fstatus = status.factors[fname]
             if fstatus.satisfied:
                 continue
-            solved = env.solved[fname]
-            placed = self._placed(solved, poses, fstatus.progress)
-            for name in placed:  # a success resets the object's retry budget
+            for name in fstatus.placed:  # a success resets the object's retry budget
                 self.attempts.pop((fname, name), None)
-            targets = self._targets(solved, poses, placed)
+            targets = self._targets(fname, fstatus)
             if not targets:
                 self.failure = (f"factor {fname!r}: no free target slot for its unplaced "
                                 f"objects ({fstatus.detail})")
@@ -241,10 +146,10 @@ class Oracle:
                                 f"{tilt_deg(poses[name].quat):.0f} deg; a top-down suction "
                                 "cup cannot right it")
                 return None
-            above = self._resting_on(name, poses)
+            above = resting_on(name, objs, poses)
             if above:
                 return self._move_away(above[0], poses, fname, f"uncover {name}")
-            blockers = self._blocking_target(name, targets[name], poses, placed)
+            blockers = occupying(name, targets[name], objs, poses, keep=fstatus.placed)
             if blockers:
                 return self._move_away(blockers[0], poses, fname, f"clear the target of {name}")
             self.attempts[(fname, name)] += 1

@@ -33,10 +33,10 @@ from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
 from factask.model.kinds import kind_spec
-from factask.model.relations import AtPose, InZone, TargetPose
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Z_TOLERANCE, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.relations import AtPose, InZone, TargetPose
 
 #: An object whose bottom is this far above the table starts on something.
 START_ABOVE_TABLE = 0.01

@@ -28,13 +28,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from factask.geometry import Pose
-from factask.model.graph import TaskGraph
 from factask.model.kinds import WALL_THICKNESS, KindSpec, kind_spec
 from factask.model.world import TABLE_Z
+
+if TYPE_CHECKING:  # the graph model sits above this module (it imports the relations)
+    from factask.model.graph import TaskGraph
 
 #: Small slack (metres) for "inside" tests so a point on a boundary counts as inside.
 GEOMETRY_EPS = 1e-9

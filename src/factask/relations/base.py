@@ -1,0 +1,113 @@
+"""The relation unit: one goal relation's schema, solving and checking in one class.
+
+Every relation kind is one module of this package with one subclass of
+:class:`RelationBase` (modelled on mink's ``tasks/``: one task type per file, a
+small base class with the few methods every task implements):
+
+* its **schema** — pydantic fields, pure data, the ``type`` literal that is its
+  kind, and :attr:`RelationBase.anchor_fields` (which fields name the variables
+  the goal is relative to, and what those variables must be able to do);
+* :meth:`RelationBase.problems` — what validation checks beyond the schema;
+* :meth:`RelationBase.solve` — target slots from the scene (a
+  :class:`~factask.relations.solving.Plan`);
+* :meth:`RelationBase.check` — which objects are placed, on which slot, and why
+  the others are not (a :class:`~factask.relations.status.Verdict`);
+  :meth:`RelationBase.status` turns it into the factor's
+  :class:`~factask.relations.status.FactorStatus`, which is all the oracle needs.
+
+Register a new kind in :mod:`factask.relations` (one line). A relation's
+docstring is shown to LLMs verbatim in the prompts: keep it exact and short.
+"""
+
+from __future__ import annotations
+
+import abc
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, ClassVar
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from factask.model.errors import Problem
+from factask.model.kinds import kind_spec
+from factask.model.names import Name
+from factask.model.tolerances import Tolerances
+from factask.relations.solving import Plan, SolveContext, SolvedFactor
+from factask.relations.status import CheckScene, FactorStatus, Verdict, factor_status
+from factask.scene.objects import SceneObject
+
+if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
+    from factask.model.variables import StateVariable
+
+
+class RelationBase(BaseModel, abc.ABC):
+    """A goal relation: the objects it moves, the anchors it is relative to, its
+    tolerances, and how it is solved and checked."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    #: Anchor field -> the kind capabilities (:class:`~factask.model.kinds.KindSpec`
+    #: flags) its variable needs, any one of them; ``()`` accepts every kind.
+    anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {}
+
+    objects: list[Name] = Field(
+        min_length=1, description="Variables this goal moves (all instances of each)."
+    )
+    tolerances: Tolerances = Field(default_factory=Tolerances)
+
+    @classmethod
+    def kind(cls) -> str:
+        """The relation's kind: the value of its ``type`` field."""
+        return str(cls.model_fields["type"].default)
+
+    def anchors(self) -> list[str]:
+        """Variables the goal is relative to (never moved by this goal)."""
+        names = (getattr(self, f) for f in self.anchor_fields)
+        return [n for n in names if n]
+
+    def variable_names(self) -> list[str]:
+        """Every variable the relation mentions: objects first, then anchors."""
+        seen: dict[str, None] = dict.fromkeys(self.objects)
+        seen.update(dict.fromkeys(self.anchors()))
+        return list(seen)
+
+    def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
+        """What is wrong with this goal in a graph with these ``variables`` (beyond its
+        schema): by default, anchors whose kind cannot serve their field.
+
+        Args:
+            factor: Name of the factor whose goal this is (the problems' node).
+            variables: The graph's variables by name.
+        """
+        out = []
+        for fname, caps in self.anchor_fields.items():
+            name = getattr(self, fname)
+            if not caps or name is None or name not in variables:
+                continue
+            v = variables[name]
+            spec = kind_spec(v.kind)
+            if not any(getattr(spec, c) for c in caps):
+                out.append(Problem(factor, f"goal.{fname}",
+                                   f"{name!r} is a {v.kind}, which cannot serve as {fname} of "
+                                   f"'{self.kind()}' (needs a kind that is {' or '.join(caps)})",
+                                   "choose another variable or relation"))
+        return out
+
+    @abc.abstractmethod
+    def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
+        """Target slots for ``movers`` (the instances of :attr:`objects`, in order).
+
+        Raises:
+            Infeasible: no slots from these choices (``retry`` says if others may help).
+        """
+
+    @abc.abstractmethod
+    def check(self, solved: SolvedFactor, scene: CheckScene) -> Verdict:
+        """Which objects are placed (on which slot), and why the others are not."""
+
+    def status(self, solved: SolvedFactor, scene: CheckScene) -> FactorStatus:
+        """The factor's status from the current scene (see :func:`factor_status`).
+
+        Raises:
+            CheckError: a needed pose is missing or not finite.
+        """
+        return factor_status(solved, scene, self.check(solved, scene))

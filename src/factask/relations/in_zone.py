@@ -1,0 +1,20 @@
+"""``in_zone``: objects inside the footprint of a region variable."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import ClassVar, Literal
+
+from factask.model.names import Name
+from factask.relations.region import RegionRelation
+
+
+class InZone(RegionRelation):
+    """Put every object inside the footprint of the region variable ``zone``
+    (a zone, pallet, kit, stand, line, bowl, container or fixture)."""
+
+    anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"zone": ("region",)}
+    region_field: ClassVar[str] = "zone"
+
+    type: Literal["in_zone"] = "in_zone"
+    zone: Name

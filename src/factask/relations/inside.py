@@ -1,0 +1,21 @@
+"""``inside``: objects within a receptacle's inner walls, below its rim."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import ClassVar, Literal
+
+from factask.model.names import Name
+from factask.relations.region import RegionRelation
+
+
+class Inside(RegionRelation):
+    """Put the objects inside the receptacle ``container`` (a container, bowl or
+    fixture): within its inner walls, below its rim."""
+
+    anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"container": ("receptacle",)}
+    region_field: ClassVar[str] = "container"
+    between_floor_and_rim: ClassVar[bool] = True
+
+    type: Literal["inside"] = "inside"
+    container: Name

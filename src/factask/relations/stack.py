@@ -1,0 +1,68 @@
+"""``stack``: one column of objects, first at the bottom, on a base or the table."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import ClassVar, Literal
+
+import numpy as np
+
+from factask.model.names import Name
+from factask.model.world import TABLE_Z
+from factask.relations.base import RelationBase
+from factask.relations.solving import (
+    Plan,
+    SolveContext,
+    SolvedFactor,
+    make_plan,
+    same_size,
+    same_variable,
+)
+from factask.relations.status import CheckScene, Verdict, check_slots
+from factask.scene.collision import MAX_TRIES_PER_OBJECT, TABLE
+from factask.scene.objects import GEOMETRY_EPS, SceneObject, resting_pose, yaw_rotation_2d
+
+
+class Stack(RelationBase):
+    """Stack the objects into one column, first object at the bottom. The column
+    stands on ``base`` if given, else on a free spot of the table. With ``ordered``
+    false any order of the objects counts."""
+
+    anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"base": ("support", "region")}
+
+    type: Literal["stack"] = "stack"
+    base: Name | None = None
+    ordered: bool = True
+
+    def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
+        n = len(movers)
+        matches = same_variable(movers) if self.ordered else same_size(movers)
+
+        def build(xy: np.ndarray, yaw: float, surface: float = TABLE_Z,
+                  hosts: list[str] | None = None) -> Plan:
+            slots, surfaces, supports = [], [], []
+            z = surface
+            for k, o in enumerate(movers):
+                slots.append(resting_pose(o, float(xy[0]), float(xy[1]), z, yaw))
+                surfaces.append(z)
+                supports.append(movers[k - 1].name if k else (hosts[0] if hosts else TABLE))
+                z += o.height
+            return make_plan(slots, list(surfaces), supports, [set(hosts or [])] * n, matches,
+                             chain=True, support_group=list(hosts or []))
+
+        if self.base:
+            area, surface, hosts = ctx.anchor(self.base)
+            fits = bool(np.all(movers[0].half_xy <= area.packing_half() + GEOMETRY_EPS))
+            if len(hosts) > 1 or not fits:
+                return build(area.center, area.yaw, surface, hosts)
+            # Centred on the base if free there, else another spot of its top face.
+            room = np.maximum(area.packing_half() - movers[0].half_xy, 0.0)
+            local = ctx.rng.uniform(-room, room, size=(MAX_TRIES_PER_OBJECT, 2))
+            local[0] = 0.0
+            spots = [(area.center + yaw_rotation_2d(area.yaw) @ p, area.yaw) for p in local]
+            return ctx.search(movers, lambda xy, yaw: build(xy, yaw, surface, hosts),
+                              f"a stack of {n} on {self.base!r}", spots)
+        return ctx.search(movers, build, f"a stack of {n}")
+
+    def check(self, solved: SolvedFactor, scene: CheckScene) -> Verdict:
+        return check_slots(solved, scene, self.tolerances)

@@ -1,0 +1,331 @@
+"""The collision model of a scene and the free-spot searches built on it (pure numpy).
+
+One rule decides whether objects collide, for the initial layout, for solved
+targets and for the oracle's parking spots: two objects collide when their
+footprints (grown by half the clearance each) overlap in XY **and** their height
+intervals overlap; an object whose footprint lies inside a receptacle's inner
+area only meets the receptacle's floor. Flat markers (zones, lines, corners) have
+a height interval too, so nothing starts on top of them.
+
+* :class:`Occupancy`: the objects in the scene as obstacles.
+* :func:`first_free`, :func:`area_candidates`, :func:`table_spots`: bounded
+  searches for a free pose (every search tries at most
+  :data:`MAX_TRIES_PER_OBJECT` candidates).
+* :func:`resting_on`, :func:`occupying`, :func:`parking_spot`: the questions a
+  robot asks before it moves an object (what rests on it, what stands where it
+  must go, where it can be put out of the way).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from factask.geometry import Pose
+from factask.model.errors import FactaskError
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.scene.objects import (
+    Area,
+    SceneObject,
+    bottom_z,
+    floor_thickness,
+    footprint_corners,
+    footprint_corners_batch,
+    footprint_points,
+    footprint_radius,
+    obb_overlaps,
+    placement_area,
+    resting_pose,
+    top_z,
+    yaw_rotation_2d,
+)
+
+#: Gap kept between footprints (metres): objects never start or land touching.
+CLEARANCE = 0.01
+#: Candidate poses tried per object (or per column/row/circle) before giving up.
+MAX_TRIES_PER_OBJECT = 200
+#: Height intervals overlapping by less than this (metres) do not collide (resting).
+Z_CONTACT_EPS = 1e-4
+#: Candidates tested together (vectorised) before looking at the next ones.
+_CHUNK = 25
+#: Support name used for slots resting directly on the table.
+TABLE = "table"
+
+WORKSPACE_CENTER = np.array([(WORKSPACE_X[0] + WORKSPACE_X[1]) / 2,
+                             (WORKSPACE_Y[0] + WORKSPACE_Y[1]) / 2])
+WORKSPACE_HALF = np.array([(WORKSPACE_X[1] - WORKSPACE_X[0]) / 2,
+                           (WORKSPACE_Y[1] - WORKSPACE_Y[0]) / 2])
+#: The workspace as an area (what every object's footprint must stay inside).
+WORKSPACE_AREA = Area(WORKSPACE_CENTER, 0.0, WORKSPACE_HALF)
+
+#: Vertical slack (m) when deciding that one object rests on another.
+REST_EPS = 0.01
+
+
+# ============================================================== occupancy
+@dataclass
+class _Body:
+    obj: SceneObject
+    pose: Pose
+    raw: np.ndarray  # footprint sample points (k, 2): what must fit in a receptacle
+    grown: np.ndarray  # footprint corners grown by half the clearance
+    z0: float
+    z1: float
+
+
+def _body(obj: SceneObject, pose: Pose, clearance: float) -> _Body:
+    z = float(pose.pos[2])
+    return _Body(obj, pose, footprint_points(obj, pose), footprint_corners(obj, pose,
+                 clearance / 2), z - obj.half[2], z + obj.half[2])
+
+
+class Occupancy:
+    """The objects in the scene as obstacles, with the collision rule of this module.
+
+    Args:
+        clearance: Gap kept between footprints, metres.
+    """
+
+    def __init__(self, clearance: float = CLEARANCE) -> None:
+        self.clearance = clearance
+        self._bodies: dict[str, _Body] = {}
+        self._cache: tuple[list[str], np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    def copy(self) -> Occupancy:
+        other = Occupancy(self.clearance)
+        other._bodies = dict(self._bodies)
+        return other
+
+    def put(self, name: str, obj: SceneObject, pose: Pose) -> None:
+        """Add (or move) body ``name``."""
+        self._bodies[name] = _body(obj, pose, self.clearance)
+        self._cache = None
+
+    def remove(self, name: str) -> None:
+        self._bodies.pop(name, None)
+        self._cache = None
+
+    def names(self) -> list[str]:
+        return list(self._bodies)
+
+    def body(self, name: str) -> _Body:
+        return self._bodies[name]
+
+    def _arrays(self) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
+        if self._cache is None:
+            names = list(self._bodies)
+            grown = np.array([self._bodies[n].grown for n in names]).reshape(-1, 4, 2)
+            z0 = np.array([self._bodies[n].z0 for n in names])
+            z1 = np.array([self._bodies[n].z1 for n in names])
+            self._cache = (names, grown, z0, z1)
+        return self._cache
+
+    def free_mask(self, obj: SceneObject, poses: list[Pose],
+                  ignore: Iterable[str] = ()) -> np.ndarray:
+        """Bool (k,): which candidate poses of ``obj`` collide with no body.
+
+        Args:
+            obj: The object to place.
+            poses: Candidate poses.
+            ignore: Body names not to test against (e.g. the support it rests on).
+        """
+        k = len(poses)
+        if k == 0:
+            return np.zeros(0, dtype=bool)
+        names, grown, z0, z1 = self._arrays()
+        if not names:
+            return np.ones(k, dtype=bool)
+        ignored = set(ignore)
+        skip = np.array([n in ignored for n in names])
+        cand = footprint_corners_batch(obj, np.array([p.pos[:2] for p in poses]),
+                                       np.array([p.yaw for p in poses]), self.clearance / 2)
+        xy = obb_overlaps(cand, grown) & ~skip[None, :]
+        cz = np.array([float(p.pos[2]) for p in poses])
+        c0, c1 = cz - obj.half[2], cz + obj.half[2]
+        zover = (np.minimum(c1[:, None], z1[None, :])
+                 - np.maximum(c0[:, None], z0[None, :])) > Z_CONTACT_EPS
+        hit = xy & zover
+        # Receptacle pairs: an object inside the inner area only meets the floor.
+        for ki, pi in zip(*np.nonzero(hit), strict=True):
+            if not self._pair_collides(obj, poses[ki], self._bodies[names[pi]]):
+                hit[ki, pi] = False
+        return ~hit.any(axis=1)
+
+    def _pair_collides(self, obj: SceneObject, pose: Pose, other: _Body) -> bool:
+        mine = _body(obj, pose, self.clearance)
+        if obj.is_round and other.obj.is_round:  # disks: exact, boxes are too coarse
+            gap = float(np.linalg.norm(pose.pos[:2] - other.pose.pos[:2]))
+            if gap >= footprint_radius(obj) + footprint_radius(other.obj) + self.clearance:
+                return False
+        if other.obj.is_receptacle:
+            return _receptacle_pair(other, mine)
+        if obj.is_receptacle:
+            return _receptacle_pair(mine, other)
+        return True
+
+    def blockers(self, obj: SceneObject, pose: Pose, ignore: Iterable[str] = ()) -> list[str]:
+        """Names of the bodies ``obj`` at ``pose`` collides with."""
+        ignored = set(ignore)
+        out = []
+        for name, b in self._bodies.items():
+            if name in ignored:
+                continue
+            alone = Occupancy(self.clearance)
+            alone._bodies = {name: b}
+            if not bool(alone.free_mask(obj, [pose])[0]):
+                out.append(name)
+        return out
+
+
+def _receptacle_pair(rec: _Body, other: _Body) -> bool:
+    """Collision of a receptacle with another body (which may sit inside it)."""
+    area = placement_area(rec.obj, rec.pose)
+    if bool(area.contains(other.raw).all()):
+        floor_top = rec.z0 + floor_thickness(rec.obj)
+        return (min(other.z1, floor_top) - max(other.z0, rec.z0)) > Z_CONTACT_EPS
+    return True
+
+
+def in_workspace(obj: SceneObject, pose: Pose) -> bool:
+    """True if the object's footprint lies inside the workspace."""
+    return bool(WORKSPACE_AREA.contains(footprint_corners(obj, pose)).all())
+
+
+# ============================================================ free-spot search
+def random_yaws(rng: np.random.Generator, k: int) -> np.ndarray:
+    """``k`` yaws uniform in [-pi, pi)."""
+    return rng.uniform(-math.pi, math.pi, size=k)
+
+
+def first_free(occ: Occupancy, obj: SceneObject, poses: list[Pose],
+               ignore: Iterable[str] = (), within: Area | None = None) -> Pose | None:
+    """The first candidate inside the workspace (and ``within``) that is free."""
+    if not poses:
+        return None
+    corners = footprint_corners_batch(obj, np.array([p.pos[:2] for p in poses]),
+                                      np.array([p.yaw for p in poses]))
+    ok = WORKSPACE_AREA.contains(corners.reshape(-1, 2)).reshape(len(poses), 4).all(axis=1)
+    for start in range(0, len(poses), _CHUNK):  # chunks: most objects fit early
+        idx = [i for i in range(start, min(start + _CHUNK, len(poses))) if ok[i]]
+        if within is not None:
+            idx = [i for i in idx if bool(within.contains(footprint_points(obj, poses[i])).all())]
+        if not idx:
+            continue
+        free = occ.free_mask(obj, [poses[i] for i in idx], ignore)
+        hits = np.flatnonzero(free)
+        if len(hits):
+            return poses[idx[int(hits[0])]]
+    return None
+
+
+def area_candidates(obj: SceneObject, area: Area, surface: float, rng: np.random.Generator,
+                    k: int, yaws: np.ndarray | None = None) -> list[Pose]:
+    """``k`` random poses of ``obj`` resting at height ``surface`` inside ``area``."""
+    local = rng.uniform(-1.0, 1.0, size=(k, 2)) * area.half
+    xy = area.center + local @ yaw_rotation_2d(area.yaw).T
+    yaw = random_yaws(rng, k) if yaws is None else yaws
+    return [resting_pose(obj, x, y, surface, a) for (x, y), a in zip(xy, yaw, strict=True)]
+
+
+
+def table_spots(rng: np.random.Generator, k: int) -> list[tuple[np.ndarray, float]]:
+    """``k`` random (centre, yaw) spots over the whole workspace, yaw in [-pi/2, pi/2)."""
+    xy = rng.uniform(WORKSPACE_CENTER - WORKSPACE_HALF, WORKSPACE_CENTER + WORKSPACE_HALF,
+                     size=(k, 2))
+    yaw = rng.uniform(-math.pi / 2, math.pi / 2, size=k)
+    return list(zip(xy, yaw, strict=True))
+
+
+# ===================================================== questions before a move
+def resting_on(name: str, objects: Mapping[str, SceneObject],
+               poses: Mapping[str, Pose]) -> list[str]:
+    """Free objects resting directly on top of ``name``, highest first."""
+    me = objects[name]
+    top = top_z(me, poses[name])
+    mine = footprint_corners(me, poses[name])
+    out = []
+    for other, obj in objects.items():
+        if other == name or obj.fixed or not obj.collides:
+            continue
+        if abs(bottom_z(obj, poses[other]) - top) < REST_EPS and obb_overlaps(
+                mine, footprint_corners(obj, poses[other]))[0, 0]:
+            out.append(other)
+    return sorted(out, key=lambda o: -poses[o].pos[2])
+
+
+def occupying(name: str, target: Pose, objects: Mapping[str, SceneObject],
+              poses: Mapping[str, Pose], keep: Iterable[str] = ()) -> list[str]:
+    """Free objects (other than ``name`` and ``keep``) in the space ``name`` takes at
+    ``target``."""
+    kept = set(keep)
+    me = objects[name]
+    lo, hi = target.pos[2] - me.half[2], target.pos[2] + me.half[2]
+    corners = footprint_corners(me, target, margin=-0.002)
+    out = []
+    for other, obj in objects.items():
+        if other == name or other in kept or obj.fixed or not obj.collides:
+            continue
+        p = poses[other]
+        if bottom_z(obj, p) < hi - REST_EPS and top_z(obj, p) > lo + REST_EPS and \
+                obb_overlaps(corners, footprint_corners(obj, p))[0, 0]:
+            out.append(other)
+    return out
+
+
+def parking_spot(name: str, objects: Mapping[str, SceneObject], poses: Mapping[str, Pose],
+                 reserved: Iterable[tuple[SceneObject, Pose]], rng: np.random.Generator,
+                 clearance: float, samples: int) -> Pose | None:
+    """A free table spot for ``name``, ``clearance`` away from every object and every
+    ``reserved`` (object, pose) footprint (e.g. targets), off every flat marker.
+
+    Args:
+        name: The object to put out of the way.
+        objects: Every scene object by instance name.
+        poses: Current pose of every instance.
+        reserved: Footprints to keep clear of besides the objects (targets).
+        rng: Random generator for the candidates.
+        clearance: Gap kept to everything, metres.
+        samples: Candidates tried at most.
+
+    Returns:
+        The pose (same yaw, resting on the table), or None if none was free.
+    """
+    obj = objects[name]
+    others = [footprint_corners(o, poses[n], clearance)
+              for n, o in objects.items() if n != name and o.collides]
+    others += [footprint_corners(o, p, clearance) for o, p in reserved]
+    # Regions (zones, lines) are not collisions but parking there would count.
+    occupied = np.array(others + [footprint_corners(o, poses[n]) for n, o in objects.items()
+                                  if not o.collides]).reshape(-1, 4, 2)
+    margin = float(np.linalg.norm(obj.half_xy)) + 0.01
+    for _ in range(samples):
+        x = rng.uniform(WORKSPACE_X[0] + margin, WORKSPACE_X[1] - margin)
+        y = rng.uniform(WORKSPACE_Y[0] + margin, WORKSPACE_Y[1] - margin)
+        pose = Pose.from_xyz_yaw(x, y, obj.half[2], poses[name].yaw)
+        if not obb_overlaps(footprint_corners(obj, pose), occupied).any():
+            return pose
+    return None
+
+
+class LayoutError(FactaskError):
+    """No layout or no target poses could be found.
+
+    Attributes:
+        what: The variable, instance or factor that could not be placed.
+        reason: Why.
+        tries: How many attempts were made.
+        retryable: Another initial layout might succeed.
+    """
+
+    def __init__(self, what: str, reason: str, tries: int = 0, retryable: bool = True,
+                 fix: str = "") -> None:
+        self.what, self.reason, self.tries, self.retryable = what, reason, tries, retryable
+        text = f"cannot place {what}: {reason}"
+        if tries:
+            text += f" (after {tries} attempt(s))"
+        if fix:
+            text += f"; fix: {fix}"
+        super().__init__(text)

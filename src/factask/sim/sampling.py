@@ -1,0 +1,267 @@
+"""The initial-layout sampler: where every object starts (pure numpy).
+
+:func:`sample_layout` gives every object instance an initial pose that honours
+its variable's ``initial`` placement, with footprints that never overlap (the
+collision rule of :mod:`factask.scene.collision`) except where an object
+deliberately rests on or inside another. Every search is bounded
+(:data:`~factask.scene.collision.MAX_TRIES_PER_OBJECT` candidates per object,
+:data:`MAX_LAYOUT_RESTARTS` whole layouts); failure raises
+:class:`~factask.scene.collision.LayoutError` naming what could not be placed
+and why.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+
+from factask.geometry import Pose
+from factask.model.graph import TaskGraph
+from factask.model.variables import AtFixedPose, InRegion, StartInside
+from factask.model.world import TABLE_Z
+from factask.scene.collision import (
+    CLEARANCE,
+    MAX_TRIES_PER_OBJECT,
+    WORKSPACE_CENTER,
+    WORKSPACE_HALF,
+    LayoutError,
+    Occupancy,
+    area_candidates,
+    first_free,
+    in_workspace,
+    random_yaws,
+)
+from factask.scene.objects import (
+    GEOMETRY_EPS,
+    SceneObject,
+    objects_by_name,
+    placement_area,
+    rest_surface_z,
+    resting_pose,
+)
+
+#: Whole-layout restarts before :func:`sample_layout` gives up.
+MAX_LAYOUT_RESTARTS = 8
+#: Footprints (grown by the clearance) may cover at most this fraction of the
+#: workspace: above it a random layout is hopeless and sampling fails at once.
+MAX_FILL_FRACTION = 0.9
+
+
+class _Placement(Exception):
+    """One layout attempt failed at instance ``what``; ``retry``: another may work."""
+
+    def __init__(self, what: str, reason: str, retry: bool = True) -> None:
+        super().__init__(reason)
+        self.what, self.reason, self.retry = what, reason, retry
+
+
+def _placement_priority(graph: TaskGraph) -> list[str]:
+    """Table-level variables in placement order: fixed poses, fixed objects,
+    supports/containers others start on, then larger footprints first."""
+    referenced = {r for v in graph.variables for r in v.references()}
+    table = [v for v in graph.variables if not v.references()]
+    index = {v.name: i for i, v in enumerate(graph.variables)}
+
+    def key(v: object) -> tuple[int, int, int, float, int]:
+        assert hasattr(v, "name")
+        var = graph.variable(v.name)  # type: ignore[attr-defined]
+        ex = var.extents
+        return (0 if isinstance(var.initial, AtFixedPose) else 1,
+                0 if var.is_fixed else 1,
+                0 if var.name in referenced else 1,
+                -ex[0] * ex[1], index[var.name])
+
+    return [v.name for v in sorted(table, key=key)]
+
+
+def _fill_check(graph: TaskGraph) -> None:
+    area = 0.0
+    for v in graph.variables:
+        if v.references():
+            continue
+        ex = v.extents
+        area += v.count * (ex[0] + CLEARANCE) * (ex[1] + CLEARANCE)
+    ws = 4.0 * float(WORKSPACE_HALF[0] * WORKSPACE_HALF[1])
+    if area > MAX_FILL_FRACTION * ws:
+        raise LayoutError(
+            f"task {graph.name!r}",
+            f"the objects on the table cover {area:.3f} m^2 with clearance, more than "
+            f"{MAX_FILL_FRACTION:.0%} of the {ws:.2f} m^2 workspace",
+            retryable=False, fix="use fewer or smaller objects",
+        )
+
+
+def _table_candidates(obj: SceneObject, placement: object, rng: np.random.Generator,
+                      k: int) -> list[Pose]:
+    if isinstance(placement, InRegion):
+        lo = np.array([placement.x[0], placement.y[0]])
+        hi = np.array([placement.x[1], placement.y[1]])
+    else:
+        inset = float(obj.half_xy.min())
+        lo = WORKSPACE_CENTER - WORKSPACE_HALF + inset
+        hi = WORKSPACE_CENTER + WORKSPACE_HALF - inset
+    xy = rng.uniform(lo, hi, size=(k, 2))
+    yaw = random_yaws(rng, k)
+    return [resting_pose(obj, x, y, TABLE_Z, a) for (x, y), a in zip(xy, yaw, strict=True)]
+
+
+def sample_layout(graph: TaskGraph, rng: np.random.Generator,
+                  max_attempts: int = MAX_TRIES_PER_OBJECT,
+                  max_restarts: int = MAX_LAYOUT_RESTARTS) -> dict[str, Pose]:
+    """Sample an initial pose for every object instance of ``graph``.
+
+    Args:
+        graph: The task graph.
+        rng: Random generator (same seed, same layout).
+        max_attempts: Candidate poses tried per object.
+        max_restarts: Whole layouts tried.
+
+    Returns:
+        Instance name -> pose (centre of its box), for fixed and free objects.
+
+    Raises:
+        LayoutError: the objects clearly cannot fit (raised before sampling), a
+            fixed pose collides, or no layout was found within the bounds; names
+            the variable and the reason.
+    """
+    objs = objects_by_name(graph)
+    _fill_check(graph)
+    last: _Placement | None = None
+    what = graph.name
+    for _ in range(max_restarts):
+        try:
+            return _sample_once(graph, objs, rng, max_attempts)
+        except _Placement as exc:
+            last, what = exc, exc.what
+            if not exc.retry:
+                break
+    assert last is not None
+    raise LayoutError(what, last.reason, tries=max_restarts,
+                      retryable=last.retry, fix="give the objects more room")
+
+
+def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.random.Generator,
+                 tries: int) -> dict[str, Pose]:
+    occ = Occupancy()
+    poses: dict[str, Pose] = {}
+    for vname in _placement_priority(graph):
+        var = graph.variable(vname)
+        for inst in var.instances:
+            obj = objs[inst]
+            if isinstance(var.initial, AtFixedPose):
+                p = var.initial
+                pose = resting_pose(obj, p.x, p.y, TABLE_Z, math.radians(p.yaw_deg))
+                if not in_workspace(obj, pose):
+                    raise _Placement(inst, f"its fixed pose ({p.x}, {p.y}) puts it partly "
+                                     "outside the workspace", retry=False)
+                blocked = occ.blockers(obj, pose)
+                if blocked:
+                    raise _Placement(inst, f"its fixed pose overlaps {blocked}", retry=False)
+            else:
+                pose = first_free(occ, obj, _table_candidates(obj, var.initial, rng, tries))
+                if pose is None:
+                    where = "its region" if isinstance(var.initial, InRegion) else "the table"
+                    raise _Placement(inst, f"no free spot on {where} in {tries} tries")
+            poses[inst] = pose
+            occ.put(inst, obj, pose)
+    _place_dependents(graph, objs, rng, tries, occ, poses)
+    return poses
+
+
+def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
+                      rng: np.random.Generator, tries: int, occ: Occupancy,
+                      poses: dict[str, Pose]) -> None:
+    """Place objects that start on / inside another, hosts first."""
+    pending = [v for v in graph.variables if v.references()]
+    while pending:
+        ready = {v.references()[0] for v in pending
+                 if all(i in poses for i in graph.variable(v.references()[0]).instances)}
+        if not ready:  # validation forbids cycles; guard against an endless loop anyway
+            raise _Placement(pending[0].name, "its initial placement refers in a cycle",
+                             retry=False)
+        host_var = next(h for h in (v.references()[0] for v in pending) if h in ready)
+        group = [v for v in pending if v.references()[0] == host_var]
+        pending = [v for v in pending if v.references()[0] != host_var]
+        hosts = graph.variable(host_var).instances
+        by_host: dict[str, list[tuple[str, bool]]] = {}
+        for v in group:
+            inside = isinstance(v.initial, StartInside)
+            for inst in v.instances:
+                host = hosts[int(rng.integers(len(hosts)))]
+                by_host.setdefault(host, []).append((inst, inside))
+        for host, members in by_host.items():
+            _place_on_host(objs, rng, tries, occ, poses, host, members)
+
+
+def _place_on_host(objs: Mapping[str, SceneObject], rng: np.random.Generator, tries: int,
+                   occ: Occupancy, poses: dict[str, Pose], host: str,
+                   members: list[tuple[str, bool]]) -> None:
+    hobj, hpose = objs[host], poses[host]
+    area = placement_area(hobj, hpose)
+    surface = rest_surface_z(hobj, hpose)
+    placed: list[str] = []
+    for inst, _ in members:
+        obj = objs[inst]
+        pose = first_free(occ, obj, area_candidates(obj, area, surface, rng, tries),
+                           ignore=[host], within=area)
+        if pose is None:
+            break
+        poses[inst] = pose
+        occ.put(inst, obj, pose)
+        placed.append(inst)
+    if len(placed) == len(members):
+        return
+    if any(inside for _, inside in members):
+        raise _Placement(members[len(placed)][0], f"does not fit inside {host!r} next to "
+                         f"{placed or 'nothing'} in {tries} tries")
+    # Side by side failed: stack every member on the host in listed order.
+    for inst in placed:
+        occ.remove(inst)
+        del poses[inst]
+    _stack_on_host(objs, rng, tries, occ, poses, host, [m for m, _ in members])
+
+
+def _stack_on_host(objs: Mapping[str, SceneObject], rng: np.random.Generator, tries: int,
+                   occ: Occupancy, poses: dict[str, Pose], host: str,
+                   members: list[str]) -> None:
+    hobj, hpose = objs[host], poses[host]
+    area = placement_area(hobj, hpose)
+    surface = rest_surface_z(hobj, hpose)
+    bottom = objs[members[0]]
+    fits = bool(np.all(bottom.half_xy <= area.packing_half() + GEOMETRY_EPS))
+    if fits:
+        candidates = area_candidates(bottom, area, surface, rng, tries)
+    else:  # larger than the top face: centred on it
+        candidates = [resting_pose(bottom, *area.center, surface, a)
+                      for a in random_yaws(rng, tries)]
+    for cand in candidates:
+        column = _column(objs, members, cand.pos[:2], cand.yaw, surface)
+        trial = occ.copy()
+        ok = True
+        for inst, pose in column:
+            obj = objs[inst]
+            if not in_workspace(obj, pose) or not trial.free_mask(obj, [pose], [host])[0]:
+                ok = False
+                break
+            trial.put(inst, obj, pose)
+        if ok:
+            for inst, pose in column:
+                poses[inst] = pose
+                occ.put(inst, objs[inst], pose)
+            return
+    raise _Placement(members[0], f"no room for a stack of {members} on {host!r} "
+                     f"in {tries} tries")
+
+
+def _column(objs: Mapping[str, SceneObject], members: list[str], xy: np.ndarray, yaw: float,
+            surface: float) -> list[tuple[str, Pose]]:
+    out = []
+    z = surface
+    for inst in members:
+        obj = objs[inst]
+        out.append((inst, resting_pose(obj, float(xy[0]), float(xy[1]), z, yaw)))
+        z += obj.height
+    return out
+
