@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import ClassVar, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
@@ -31,6 +31,12 @@ class Aligned(RelationBase):
     type: Literal["aligned"] = "aligned"
     reference: Name
     mode: Literal["center", "corner"] = "center"
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], Aligned]:
+        return ([{"name": "ell", "kind": "ell", "color": "purple"},
+                 {"name": "fixture", "kind": "fixture"}],
+                cls(objects=["ell"], reference="fixture"))
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         refs = ctx.inst(self.reference)

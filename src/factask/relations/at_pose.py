@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Annotated, ClassVar, Literal
+from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
@@ -105,6 +105,11 @@ class AtPose(RelationBase):
                         out.append(Problem(factor, "goal.matches", f"object instance {i} may "
                                            "go to no pose", "allow at least one pose per row"))
         return out
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], AtPose]:
+        return ([{"name": "red_block", "kind": "block", "color": "red"}],
+                cls(objects=["red_block"], poses=[TargetPose(x=0.5, y=0.1, yaw_deg=30.0)]))
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         n, m = len(movers), len(self.poses)

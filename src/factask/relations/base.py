@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import abc
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -91,6 +91,15 @@ class RelationBase(BaseModel, abc.ABC):
                                    f"'{self.kind()}' (needs a kind that is {' or '.join(caps)})",
                                    "choose another variable or relation"))
         return out
+
+    @classmethod
+    @abc.abstractmethod
+    def example(cls) -> tuple[list[dict[str, Any]], RelationBase]:
+        """A small scene and goal that use this relation: (variable dicts, goal).
+
+        Docs and the test that walks every registered relation through solve ->
+        place -> check use it; it must solve from any seed's initial layout.
+        """
 
     @abc.abstractmethod
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:

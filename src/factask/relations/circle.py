@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Annotated, ClassVar, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field
@@ -32,6 +32,11 @@ class Circle(RelationBase):
     type: Literal["circle"] = "circle"
     radius: Annotated[float, Field(gt=0, le=0.4, allow_inf_nan=False)] | None = None
     center: Name | None = None
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], Circle]:
+        return ([{"name": "blocks", "kind": "block", "count": 4, "color": "orange"}],
+                cls(objects=["blocks"]))
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         n = len(movers)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import ClassVar, Literal
+from typing import Any, ClassVar, Literal
 
 from factask.model.names import Name
 from factask.relations.region import RegionRelation
@@ -18,3 +18,9 @@ class InZone(RegionRelation):
 
     type: Literal["in_zone"] = "in_zone"
     zone: Name
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], InZone]:
+        return ([{"name": "blocks", "kind": "block", "count": 2},
+                 {"name": "green_zone", "kind": "zone", "color": "green"}],
+                cls(objects=["blocks"], zone="green_zone"))

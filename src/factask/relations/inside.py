@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import ClassVar, Literal
+from typing import Any, ClassVar, Literal
 
 from factask.model.names import Name
 from factask.relations.region import RegionRelation
@@ -19,3 +19,9 @@ class Inside(RegionRelation):
 
     type: Literal["inside"] = "inside"
     container: Name
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], Inside]:
+        return ([{"name": "ball", "kind": "ball", "color": "red"},
+                 {"name": "box", "kind": "container", "size": [0.15, 0.15, 0.06]}],
+                cls(objects=["ball"], container="box"))

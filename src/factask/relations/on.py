@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import ClassVar, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
@@ -37,6 +37,12 @@ class On(RelationBase):
 
     type: Literal["on"] = "on"
     support: Name
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], On]:
+        return ([{"name": "block", "kind": "block", "color": "blue"},
+                 {"name": "pallet", "kind": "pallet"}],
+                cls(objects=["block"], support="pallet"))
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         hosts = ctx.inst(self.support)

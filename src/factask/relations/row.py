@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Annotated, ClassVar, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field
@@ -51,6 +51,11 @@ class Row(RelationBase):
     along: Name | None = None
     on: Name | None = None
     ordered: bool = True
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], Row]:
+        return ([{"name": "blocks", "kind": "block", "count": 3, "color": "yellow"}],
+                cls(objects=["blocks"]))
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         """A row runs along its yaw, first object at the -x end."""

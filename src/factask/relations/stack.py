@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import ClassVar, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
@@ -33,6 +33,13 @@ class Stack(RelationBase):
     type: Literal["stack"] = "stack"
     base: Name | None = None
     ordered: bool = True
+
+    @classmethod
+    def example(cls) -> tuple[list[dict[str, Any]], Stack]:
+        return ([{"name": "bottom", "kind": "block", "color": "red"},
+                 {"name": "middle", "kind": "block", "color": "green"},
+                 {"name": "top", "kind": "block", "color": "blue"}],
+                cls(objects=["bottom", "middle", "top"]))
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         n = len(movers)
