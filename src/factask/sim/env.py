@@ -178,6 +178,10 @@ class FactaskEnv(gym.Env):
             "factors": {n: s.progress for n, s in status.factors.items()},
             "satisfied": {n: s.satisfied for n, s in status.factors.items()},
             "details": {n: s.detail for n, s in status.factors.items()},
+            # Each factor's status as the checks found it: placed objects with their
+            # slots, and the free slot each object still to place should take.
+            "placed": {n: dict(s.placed) for n, s in status.factors.items()},
+            "next_slots": {n: dict(s.targets) for n, s in status.factors.items()},
             "language_goals": {f.name: f.description for f in self.graph.factors},
             "language_goal": self.graph.description,
             "actions": self.actions_taken,
