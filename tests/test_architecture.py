@@ -1,0 +1,125 @@
+"""The package map (docs/architecture.md) against the code: every module named,
+imports only downwards through the layers, no import cycle."""
+
+from __future__ import annotations
+
+import ast
+import re
+from pathlib import Path
+
+import networkx as nx
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "src" / "factask"
+MAP = ROOT / "docs" / "architecture.md"
+
+
+def _modules() -> dict[str, Path]:
+    out = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+MODULES = _modules()
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+
+
+def _imports(path: Path) -> set[str]:
+    """factask modules a module imports when it runs (``TYPE_CHECKING`` blocks excluded)."""
+    found: set[str] = set()
+
+    def visit(node: ast.AST) -> None:
+        if isinstance(node, ast.If) and _is_type_checking(node.test):
+            for child in node.orelse:
+                visit(child)
+            return
+        if isinstance(node, ast.Import):
+            found.update(a.name for a in node.names if a.name.startswith("factask"))
+        elif isinstance(node, ast.ImportFrom) and node.module and \
+                node.module.startswith("factask"):
+            for a in node.names:
+                sub = f"{node.module}.{a.name}"
+                found.add(sub if sub in MODULES else node.module)
+        for child in ast.iter_child_nodes(node):
+            visit(child)
+
+    visit(ast.parse(path.read_text()))
+    return found
+
+
+def import_graph() -> nx.DiGraph:
+    g = nx.DiGraph()
+    for name, path in MODULES.items():
+        g.add_node(name)
+        for target in _imports(path):
+            assert target in MODULES, f"{name} imports {target}, which does not exist"
+            if target != name:
+                g.add_edge(name, target)
+    return g
+
+
+def _layer_table() -> dict[str, int]:
+    table: dict[str, int] = {}
+    for line in MAP.read_text().splitlines():
+        m = re.match(r"^\|\s*(\d+)\s*\|(.*)\|\s*$", line)
+        if m:
+            for name in re.findall(r"`([\w.]+)`", m.group(2)):
+                table[name] = int(m.group(1))
+    return table
+
+
+def layer_of(module: str, table: dict[str, int]) -> int:
+    """The layer of the most specific table entry naming the module or a parent."""
+    parts = module.split(".")
+    for k in range(len(parts), 0, -1):
+        prefix = ".".join(parts[:k])
+        if prefix in table:
+            return table[prefix]
+    raise AssertionError(f"{module} is in no layer of docs/architecture.md")
+
+
+def test_the_map_names_every_module_and_no_other() -> None:
+    named = set(re.findall(r"^- `([\w.]+)` — ", MAP.read_text(), flags=re.MULTILINE))
+    missing = sorted(set(MODULES) - named)
+    stale = sorted(named - set(MODULES))
+    assert not missing, f"docs/architecture.md does not name: {missing}"
+    assert not stale, f"docs/architecture.md names modules that do not exist: {stale}"
+
+
+def test_there_is_no_import_cycle() -> None:
+    g = import_graph()
+    cycles = list(nx.simple_cycles(g))
+    assert not cycles, f"import cycles: {cycles[:5]}"
+
+
+def test_imports_run_downwards_through_the_layers() -> None:
+    table = _layer_table()
+    assert table, "docs/architecture.md has no layer table"
+    upward = []
+    for a, b in import_graph().edges:
+        la, lb = layer_of(a, table), layer_of(b, table)
+        if lb > la:
+            upward.append(f"{a} (layer {la}) imports {b} (layer {lb})")
+    assert not upward, "\n".join(upward)
+
+
+def test_the_graph_model_relations_and_scene_import_no_simulator_or_llm() -> None:
+    """Layers 1-5 stay pure: no MuJoCo, dm_control or litellm import anywhere in them."""
+    table = _layer_table()
+    heavy = ("mujoco", "dm_control", "litellm")
+    for name, path in MODULES.items():
+        if layer_of(name, table) > 5:
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            roots = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+            bad = [r for r in roots if r.split(".")[0] in heavy]
+            assert not bad, f"{name} imports {bad}"
