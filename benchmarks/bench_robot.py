@@ -18,7 +18,7 @@ from dm_control import mjcf
 from factask.geometry import Pose
 from factask.sim.ik import TopDownIK, top_down_pose
 from factask.sim.robot import attach_robot, make_robot
-from factask.sim.robot_arm import UR5E, UR10E
+from factask.sim.robots import UR5E, UR10E
 
 BLOCK = 0.04
 #: (pick xy, place xy) pairs spread over the workspace.

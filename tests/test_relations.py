@@ -29,7 +29,7 @@ def _example_graph(kind: str) -> TaskGraph:
                      factors=[factor]).validate()
 
 
-def _solved_scene(kind: str, seed: int):  # noqa: ANN202 - test helper
+def _solved_scene(kind: str, seed: int):
     graph = _example_graph(kind)
     layout, solved = reset_layout(graph, np.random.default_rng(seed))
     objs = objects_by_name(graph)
@@ -40,8 +40,8 @@ def _solved_scene(kind: str, seed: int):  # noqa: ANN202 - test helper
 
 
 def test_registry_is_keyed_by_each_units_kind() -> None:
-    assert KINDS == sorted(["at_pose", "in_zone", "on", "inside", "stack", "row", "circle",
-                            "aligned"])
+    assert sorted(["at_pose", "in_zone", "on", "inside", "stack", "row", "circle",
+                            "aligned"]) == KINDS
     for kind, cls in RELATION_TYPES.items():
         assert issubclass(cls, RelationBase)
         assert cls.kind() == kind
@@ -62,7 +62,7 @@ def test_example_round_trips_through_json(kind: str) -> None:
 @pytest.mark.parametrize("seed", SEEDS)
 @pytest.mark.parametrize("kind", KINDS)
 def test_objects_on_their_slots_satisfy_the_relation(kind: str, seed: int) -> None:
-    graph, solved, objs, poses = _solved_scene(kind, seed)
+    graph, solved, _, poses = _solved_scene(kind, seed)
     status = check_task(graph, solved, poses)
     assert status.success, {n: s.detail for n, s in status.factors.items()}
     for name, fs in status.factors.items():

@@ -14,8 +14,8 @@ from factask.geometry import Pose, tilt_deg, yaw_error_deg, yaw_of
 from factask.model.errors import FactaskError
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.sim.ik import TopDownIK, top_down_pose
-from factask.sim.robot import ROBOT_KINDS, RobotError, attach_robot, make_robot
-from factask.sim.robot_arm import UR5E, UR10E
+from factask.sim.robot import RobotError, attach_robot, make_robot
+from factask.sim.robots import ROBOT_NAMES, UR5E, UR10E
 
 BLOCK = 0.04  # full extent of the test block (m)
 TIMESTEP = 0.002
@@ -63,7 +63,7 @@ def test_unknown_kind_lists_kinds():
     with pytest.raises(RobotError) as err:
         attach_robot(mjcf.RootElement(), "gripper")
     assert isinstance(err.value, FactaskError)
-    for kind in ROBOT_KINDS:
+    for kind in ROBOT_NAMES:
         assert kind in str(err.value)
     with pytest.raises(RobotError):
         make_robot("gripper", mujoco.MjModel.from_xml_string("<mujoco/>"), None)
@@ -75,7 +75,7 @@ def test_make_robot_on_model_without_robot_raises():
         make_robot("floating", model, mujoco.MjData(model))
 
 
-@pytest.mark.parametrize("kind", ROBOT_KINDS)
+@pytest.mark.parametrize("kind", ROBOT_NAMES)
 def test_both_robots_have_tip_site_and_inactive_weld(kind):
     model, data, robot = build_scene(kind)
     assert model.site("suction_tip").id >= 0

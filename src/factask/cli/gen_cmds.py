@@ -67,7 +67,8 @@ def generate(
     max_repairs: int = typer.Option(3, "--max-repairs", min=0, help="Repairs per step."),
     episodes: int = typer.Option(3, "--episodes", min=1, help="Oracle episodes (completion)."),
     memory: Path = typer.Option(None, "--memory", help="Subtask memory dir ($FACTASK_MEMORY)."),
-    robot: str = typer.Option("floating", "--robot", help="Robot of the oracle episodes."),
+    robot: str = typer.Option("floating", "--robot",
+                              help="Robot of the oracle episodes (see factask run --help)."),
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
 ) -> None:
     """Generate a task graph with an LLM, verify it, write it; exit 0 iff completion reached."""
@@ -118,7 +119,8 @@ def benchmark(
     max_repairs: int = typer.Option(3, "--max-repairs", min=0, help="Repairs per step."),
     episodes: int = typer.Option(3, "--episodes", min=1, help="Oracle episodes (completion)."),
     memory: Path = typer.Option(None, "--memory", help="Subtask memory dir ($FACTASK_MEMORY)."),
-    robot: str = typer.Option("floating", "--robot", help="Robot of the oracle episodes."),
+    robot: str = typer.Option("floating", "--robot",
+                              help="Robot of the oracle episodes (see factask run --help)."),
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
 ) -> None:
     """Run a task list through generation + verification; write JSONL, summary, chart."""

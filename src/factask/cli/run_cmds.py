@@ -14,11 +14,20 @@ from rich.table import Table
 
 from factask.cli.app import app
 from factask.model import FactaskError, GraphValidationError, TaskGraph, parse_graph
+from factask.sim.robots import ROBOT_NAMES, describe_robots
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
 
-ROBOT_HELP = "Robot: 'floating' (mocap suction cup, fast) or 'arm' (UR-type suction arm)."
+ROBOT_HELP = f"Robot, one of the registry's: {describe_robots()}."
+
+
+def _check_robot(robot: str) -> None:
+    """Exit with status 2 and the registry's names unless ``robot`` is registered."""
+    if robot not in ROBOT_NAMES:
+        err_console.print(f"unknown robot {robot!r} (use one of {', '.join(ROBOT_NAMES)})",
+                          markup=False)
+        raise typer.Exit(2)
 
 
 def _progress(quiet: bool) -> Progress:
@@ -99,9 +108,7 @@ def run(
     from factask.sim.env import FactaskEnv
     from factask.sim.episode import TaskResult, run_episode
 
-    if robot not in ("floating", "arm"):
-        err_console.print(f"[red]unknown robot {robot!r}[/red] (use floating or arm)")
-        raise typer.Exit(2)
+    _check_robot(robot)
     graph = load_task(task, seed)
     try:
         env = FactaskEnv(graph, robot=robot)
@@ -153,6 +160,7 @@ def eval_library(
     from factask.library import task_names
     from factask.sim.episode import evaluate_task, summarize
 
+    _check_robot(robot)
     names = tasks or task_names()
     results = []
     with _progress(as_json) as progress:
@@ -193,6 +201,7 @@ def demo(
     from factask.sim.episode import run_episode
     from factask.viz import draw_graph
 
+    _check_robot(robot)
     graph = load_task(task)
     out.mkdir(parents=True, exist_ok=True)
     console.rule(f"[bold]{graph.name}[/bold]: {graph.description}")

@@ -12,7 +12,6 @@ are rounded, and nothing global is cached.
 
 from __future__ import annotations
 
-import importlib
 import math
 import re
 from dataclasses import dataclass, field
@@ -37,9 +36,9 @@ from factask.sim.assets import (
     build_table,
     new_root,
 )
+from factask.sim.robot import attach_robot
+from factask.sim.robots import ROBOT_NAMES
 
-#: Robot kinds :func:`compile_graph` accepts (None: no robot).
-ROBOT_KINDS = ("floating", "arm")
 #: Largest timestep (s) that keeps the contacts of small objects stable.
 MAX_TIMESTEP = 0.01
 #: Earth's gravity (m/s^2), straight down.
@@ -142,9 +141,9 @@ def _check_args(graph: TaskGraph, robot: str | None, timestep: float) -> None:
     if not graph.factors:
         raise CompileError("", f"graph {graph.name!r} has no factors",
                            "add at least one subtask factor")
-    if robot is not None and robot not in ROBOT_KINDS:
+    if robot is not None and robot not in ROBOT_NAMES:
         raise CompileError("", f"unknown robot {robot!r}",
-                           f"use one of {', '.join(ROBOT_KINDS)} or None")
+                           f"use one of {', '.join(ROBOT_NAMES)} or None")
     if not (isinstance(timestep, (int, float)) and math.isfinite(timestep)
             and 0 < timestep <= MAX_TIMESTEP):
         raise CompileError("", f"timestep {timestep!r} must be in (0, {MAX_TIMESTEP}] s",
@@ -214,15 +213,6 @@ def _marker_slots(graph: TaskGraph) -> list[tuple[str, int, str]]:
     return slots
 
 
-def _attach_robot(root: Any, robot: str) -> None:
-    try:
-        module = importlib.import_module("factask.sim.robot")
-    except ImportError as exc:
-        raise CompileError("", f"robot {robot!r} is not available ({exc})",
-                           "compile with robot=None") from None
-    module.attach_robot(root, robot)
-
-
 _NAME_IN_ERROR = re.compile(r"name '([^']+)'")
 
 
@@ -243,7 +233,7 @@ def build_mjcf(graph: TaskGraph, robot: str | None = "floating",
 
     Args:
         graph: A task graph; it is validated first.
-        robot: "floating", "arm" or None.
+        robot: A name of the robot registry (:mod:`factask.sim.robots`) or None.
         timestep: Physics timestep in seconds.
 
     Returns:
@@ -281,7 +271,7 @@ def build_mjcf(graph: TaskGraph, robot: str | None = "floating",
                      pos=(pos[0], pos[1], -TABLE_HEIGHT / 2), visual_only=True,
                      alpha=MARKER_ALPHA, group=MARKER_GROUP)
     if robot is not None:
-        _attach_robot(root, robot)
+        attach_robot(root, robot)
     return root, objects
 
 
@@ -291,7 +281,8 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
 
     Args:
         graph: A task graph with at least one factor; validated first.
-        robot: "floating" (mocap suction cup), "arm" (suction arm) or None.
+        robot: A name of the robot registry (:mod:`factask.sim.robots`: "floating",
+            "ur10e" alias "arm", "ur5e"), or None for no robot.
         timestep: Physics timestep in seconds, in (0, 0.01].
 
     Returns:

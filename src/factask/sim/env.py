@@ -85,7 +85,8 @@ class FactaskEnv(gym.Env):
 
     Args:
         graph: The task (validated and compiled here).
-        robot: "floating" (mocap suction cup, fast) or "arm" (UR5e-like arm).
+        robot: A name of the robot registry (:mod:`factask.sim.robots`): "floating"
+            (mocap suction cup, fast), "ur10e" (alias "arm") or "ur5e".
         render_mode: None or "rgb_array" (``render()`` returns an RGB image).
         render_size: (width, height) of rendered images.
         camera: Camera name for ``render()`` ("front" or "top").

@@ -83,7 +83,7 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
     Args:
         graph: The task.
         seed: Reset seed.
-        robot: "floating" or "arm".
+        robot: A name of the robot registry (:mod:`factask.sim.robots`).
         video: Write a GIF/MP4 of the episode here (front camera).
         on_action: Called after each action with (action index, planned action, info).
         env: Reuse this :class:`~factask.sim.env.FactaskEnv` (must be of ``graph``).

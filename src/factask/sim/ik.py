@@ -17,7 +17,8 @@ import numpy as np
 from dm_control import mjcf
 
 from factask.geometry import Pose, quat_from_yaw
-from factask.sim.robot_arm import DEFAULT_ARM, HOME_QPOS, DHArm, build_arm
+from factask.sim.robot_arm import HOME_QPOS, build_arm
+from factask.sim.robots import DEFAULT_ARM, DHArm
 from factask.sim.suction import TIP_SITE
 
 #: QP solver bundled with mink's dependencies.

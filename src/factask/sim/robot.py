@@ -4,8 +4,11 @@ Two robots share one contract (see docs/robot.md):
 
 - ``"floating"``: a mocap-driven suction cup (the cup body IS the mocap body; a
   held object is welded to it). Fast mode, no arm dynamics.
-- ``"arm"``: a UR-type 6-DoF arm (UR10e kinematics by default, ``"arm_ur5e"`` for
-  the UR5e) with position servos; the tip follows Cartesian paths through mink IK.
+- an arm (``"ur10e"``, alias ``"arm"``; ``"ur5e"``, alias ``"arm_ur5e"``): a
+  UR-type 6-DoF arm with position servos; the tip follows Cartesian paths through
+  mink IK.
+
+Which names exist is the registry's business (:mod:`factask.sim.robots`).
 
 Both carry a ``suction_tip`` site and a ``suction`` weld (factask.sim.suction).
 Everything runs in simulated time (``mujoco.mj_step``); nothing reads the clock.
@@ -24,18 +27,10 @@ from dm_control import mjcf
 
 from factask.geometry import Pose, quat_from_yaw
 from factask.sim.ik import TopDownIK, top_down_pose
-from factask.sim.robot_arm import (
-    DEFAULT_ARM,
-    HOME_QPOS,
-    JOINT_NAMES,
-    JOINT_RANGES,
-    UR5E,
-    DHArm,
-    build_arm,
-)
+from factask.sim.robot_arm import HOME_QPOS, JOINT_NAMES, JOINT_RANGES, build_arm
+from factask.sim.robots import DEFAULT_ARM, DHArm, RobotError, robot_entry
 from factask.sim.suction import (
     TIP_SITE,
-    RobotError,
     SuctionGripper,
     add_suction_weld,
     add_tool,
@@ -43,7 +38,6 @@ from factask.sim.suction import (
 )
 
 __all__ = [
-    "ROBOT_KINDS",
     "ArmSuctionRobot",
     "FloatingSuctionRobot",
     "PrimitiveResult",
@@ -52,11 +46,6 @@ __all__ = [
     "attach_robot",
     "make_robot",
 ]
-
-#: Robot kinds accepted by :func:`attach_robot` and :func:`make_robot`.
-ROBOT_KINDS = ("floating", "arm", "arm_ur5e")
-#: DH parameters of each arm kind.
-_ARMS: dict[str, DHArm] = {"arm": DEFAULT_ARM, "arm_ur5e": UR5E}
 
 #: Name of the floating cup's mocap body.
 FLOATING_BODY = "suction_cup_body"
@@ -143,20 +132,20 @@ def attach_robot(root: mjcf.RootElement, kind: str) -> None:
 
     Args:
         root: The scene's MJCF root; the robot base sits at the world origin.
-        kind: One of :data:`ROBOT_KINDS`.
+        kind: A name of the robot registry (:data:`factask.sim.robots.ROBOT_NAMES`).
 
     Raises:
         RobotError: Unknown kind.
     """
-    _check_kind(kind)
-    if kind == "floating":
+    entry = robot_entry(kind)
+    if entry.arm is None:
         cup = root.worldbody.add(
             "body", name=FLOATING_BODY, mocap=True, pos=list(FLOATING_HOME),
         )
         add_tool(cup, down=False)
         add_suction_weld(root, cup)
     else:
-        build_arm(root, _ARMS[kind])
+        build_arm(root, entry.arm)
 
 
 def make_robot(kind: str, model: mujoco.MjModel, data: mujoco.MjData) -> SuctionRobot:
@@ -175,21 +164,14 @@ def make_robot(kind: str, model: mujoco.MjModel, data: mujoco.MjData) -> Suction
     Raises:
         RobotError: Unknown kind or a robot element missing from the model.
     """
-    _check_kind(kind)
+    entry = robot_entry(kind)
     robot: SuctionRobot
-    if kind == "floating":
+    if entry.arm is None:
         robot = FloatingSuctionRobot(model, data)
     else:
-        robot = ArmSuctionRobot(model, data, _ARMS[kind])
+        robot = ArmSuctionRobot(model, data, entry.arm)
     robot.reset()
     return robot
-
-
-def _check_kind(kind: str) -> None:
-    if kind not in ROBOT_KINDS:
-        raise RobotError(
-            f"unknown robot kind {kind!r} (fix: use one of {', '.join(ROBOT_KINDS)})"
-        )
 
 
 def _wrap(angle: float) -> float:

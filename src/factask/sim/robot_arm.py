@@ -10,56 +10,12 @@ does) and a high-gain position actuator with velocity damping.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from dm_control import mjcf
 
+from factask.sim.robots import DEFAULT_ARM, DHArm
 from factask.sim.suction import ROBOT_CONAFFINITY, ROBOT_CONTYPE, add_suction_weld, add_tool
-
-
-@dataclass(frozen=True)
-class DHArm:
-    """Standard DH parameters of a 6-DoF UR-type arm (metres, radians).
-
-    Attributes:
-        name: Label used in docs and reports.
-        d: Link offsets d1..d6.
-        a: Link lengths a1..a6.
-        alpha: Link twists alpha1..alpha6.
-        radii: Capsule radius of each of the 6 links.
-    """
-
-    name: str
-    d: tuple[float, ...]
-    a: tuple[float, ...]
-    alpha: tuple[float, ...]
-    radii: tuple[float, ...]
-
-
-_HALF_PI = math.pi / 2
-
-#: UR5e, from Universal Robots' published DH table.
-UR5E = DHArm(
-    name="ur5e",
-    d=(0.1625, 0.0, 0.0, 0.1333, 0.0997, 0.0996),
-    a=(0.0, -0.425, -0.3922, 0.0, 0.0, 0.0),
-    alpha=(_HALF_PI, 0.0, 0.0, _HALF_PI, -_HALF_PI, 0.0),
-    radii=(0.06, 0.054, 0.045, 0.04, 0.04, 0.035),
-)
-
-#: UR10e, from Universal Robots' published DH table (the arm that reaches the whole
-#: Ravens workspace top-down from the origin; see docs/robot.md).
-UR10E = DHArm(
-    name="ur10e",
-    d=(0.1807, 0.0, 0.0, 0.17415, 0.11985, 0.11655),
-    a=(0.0, -0.6127, -0.57155, 0.0, 0.0, 0.0),
-    alpha=(_HALF_PI, 0.0, 0.0, _HALF_PI, -_HALF_PI, 0.0),
-    radii=(0.075, 0.065, 0.055, 0.045, 0.045, 0.04),
-)
-
-#: The arm ``attach_robot(root, "arm")`` builds.
-DEFAULT_ARM = UR10E
 
 #: Joint names, base to wrist.
 JOINT_NAMES = (

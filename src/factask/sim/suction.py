@@ -20,7 +20,7 @@ import mujoco
 import numpy as np
 from dm_control import mjcf
 
-from factask.model.errors import FactaskError
+from factask.sim.robots import RobotError
 
 #: Name of the site at the cup's contact face (z axis points up the tool, x = tool yaw).
 TIP_SITE = "suction_tip"
@@ -46,10 +46,6 @@ WELD_SOLIMP = (0.95, 0.99, 0.001, 0.5, 2.0)
 #: not with each other (no self-collision among the simplified link shapes).
 ROBOT_CONTYPE = 2
 ROBOT_CONAFFINITY = 1
-
-
-class RobotError(FactaskError):
-    """A robot cannot be built or bound (unknown kind, missing element in a model)."""
 
 
 def add_tool(body: mjcf.Element, down: bool) -> None:
