@@ -510,8 +510,7 @@ def test_worker_reports_each_stage_and_keeps_them_on_an_unexpected_error(monkeyp
     def broken_compile(graph):
         raise RuntimeError("mujoco exploded")
 
-    monkeypatch.setattr(worker, "_optional",
-                        lambda module, attr: broken_compile if attr == "compile_graph" else None)
+    monkeypatch.setattr(worker, "compile_graph", broken_compile)
     seen = []
     rec = worker.run_file(str(TASKS / "place_red_in_green.py"), emit=seen.append)
     assert rec["loaded"] and rec["imported"] and rec["class"] == "PlaceRedInGreen"
@@ -530,7 +529,7 @@ def _fake_worker(behaviour):
         "def run_episode(*a, **k):\n"
         f"    if {behaviour!r} == 'hang': time.sleep(600)\n"
         "    os._exit(3)\n"
-        "worker._optional = lambda m, a: compile_graph if a == 'compile_graph' else run_episode\n"
+        "worker.compile_graph, worker.run_episode = compile_graph, run_episode\n"
         "worker.main(sys.argv[1:])\n"
     )
 
@@ -590,7 +589,6 @@ def test_worker_runs_the_task_file_once(tmp_path, monkeypatch):
         "    def reset(self, env):\n"
         "        super().reset(env)\n"
         "        raise ValueError('no goals')\n")
-    monkeypatch.setattr(worker, "_optional", lambda module, attr: None)
     rec = worker.run_file(str(task_file))
     assert rec["loaded"] and rec["class"] == "Counted" and not rec["imported"]
     assert counter.read_text() == "x"

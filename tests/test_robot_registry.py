@@ -23,7 +23,7 @@ GRAPH = make_graph([{"name": "red_block", "kind": "block", "color": "red"},
 
 def test_names_and_aliases() -> None:
     assert set(ROBOTS) == {"floating", "ur10e", "ur5e"}
-    assert ROBOT_NAMES == (*ROBOTS, *ALIASES)
+    assert (*ROBOTS, *ALIASES) == ROBOT_NAMES
     for alias, target in ALIASES.items():
         assert robot_entry(alias) is ROBOTS[target]
     for name, entry in ROBOTS.items():
@@ -48,7 +48,7 @@ def test_every_robot_compiles_and_runs_in_the_env(name: str) -> None:
     assert scene.model.site("suction_tip").id >= 0
     env = FactaskEnv(GRAPH, robot=name)
     try:
-        obs, info = env.reset(seed=0)
+        _, info = env.reset(seed=0)
         assert info["failure"] is None
         assert env.robot.grasped() is None
     finally:

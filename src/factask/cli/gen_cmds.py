@@ -74,7 +74,6 @@ def generate(
     """Generate a task graph with an LLM, verify it, write it; exit 0 iff completion reached."""
     from factask.gen.llm import LLMAuthError
     from factask.gen.results import APPROACHES
-    from factask.gen.verify import BackendUnavailableError
 
     if approach not in APPROACHES:
         err_console.print(f"[red]unknown approach {approach!r}; use {', '.join(APPROACHES)}")
@@ -85,9 +84,6 @@ def generate(
                   f"{proposal}")
     try:
         result = gen.generate(proposal, approach)
-    except BackendUnavailableError as exc:
-        err_console.print(f"[red]{exc}[/red]")
-        raise typer.Exit(2) from None
     except LLMAuthError as exc:
         err_console.print(f"[red]the LLM provider refused the credentials: {exc}[/red]")
         raise typer.Exit(2) from None
@@ -138,7 +134,6 @@ def benchmark(
     )
     from factask.gen.llm import LLMAuthError
     from factask.gen.results import APPROACHES
-    from factask.gen.verify import BackendUnavailableError
 
     approaches: list[str] = []
     for a in approach:
@@ -186,7 +181,7 @@ def benchmark(
                                     meta={"model": gen.client.config.model,
                                           "tasks_file": str(tasks_path),
                                           "episodes": episodes, "max_repairs": max_repairs})
-        except (BenchmarkError, BackendUnavailableError) as exc:
+        except BenchmarkError as exc:
             err_console.print(f"[red]{exc}[/red]")
             raise typer.Exit(2) from None
         except LLMAuthError as exc:

@@ -28,7 +28,7 @@ from factask.gen.llm import LLMAuthError
 from factask.gen.memory import SubtaskMemory
 from factask.gen.results import APPROACHES
 from factask.gen.strategies import Generator
-from factask.gen.verify import LEVELS, BackendUnavailableError, at_least
+from factask.gen.verify import LEVELS, at_least
 from factask.model.errors import FactaskError
 
 #: The research's rates in percent (syntax, runtime, completion), GPT-4, 55 tasks.
@@ -206,7 +206,6 @@ def run_benchmark(
     Raises:
         BenchmarkError: an unknown approach, or an unusable run directory.
         LLMAuthError: the provider refused the credentials (the run stops).
-        BackendUnavailableError: the simulator cannot be imported.
 
     Any other error of one pair becomes a line with ``status: "error"`` and the
     exception text (a failure at level none); the run goes on. In-context
@@ -264,7 +263,7 @@ def _run_guarded(generator: Generator, task: BenchTask, approach: str,
     start = time.perf_counter()
     try:
         return _run_one(generator, task, approach, reason)
-    except (LLMAuthError, BackendUnavailableError, KeyboardInterrupt):
+    except (LLMAuthError, KeyboardInterrupt):
         raise
     except Exception as exc:
         return {"approach": approach, "task": task.name, "origin": task.origin,

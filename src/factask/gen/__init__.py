@@ -17,12 +17,25 @@ Main entry points:
 from factask.gen.llm import LLMClient, LLMConfig, LLMError, ResponseCache, Usage
 from factask.gen.loopback import LoopbackServer, ScriptedResponder
 from factask.gen.memory import SubtaskMemory
-from factask.gen.results import APPROACHES, GenerationResult, StepRecord
+from factask.gen.results import APPROACHES, AttemptRecord, GenerationResult
 from factask.gen.strategies import Generator, generate
 from factask.gen.verify import LEVELS, Verifier, VerifyOutcome
 
 __all__ = [
-    "APPROACHES", "LEVELS", "GenerationResult", "Generator", "LLMClient", "LLMConfig",
-    "LLMError", "LoopbackServer", "ResponseCache", "ScriptedResponder", "StepRecord",
-    "SubtaskMemory", "Usage", "Verifier", "VerifyOutcome", "generate",
+    "APPROACHES",
+    "LEVELS",
+    "AttemptRecord",
+    "GenerationResult",
+    "Generator",
+    "LLMClient",
+    "LLMConfig",
+    "LLMError",
+    "LoopbackServer",
+    "ResponseCache",
+    "ScriptedResponder",
+    "SubtaskMemory",
+    "Usage",
+    "Verifier",
+    "VerifyOutcome",
+    "generate",
 ]

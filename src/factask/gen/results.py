@@ -20,7 +20,7 @@ APPROACHES: tuple[Approach, ...] = ("one-shot", "variables-first", "subtasks-fir
 
 
 @dataclass
-class StepRecord:
+class AttemptRecord:
     """One attempt at one step.
 
     Attributes:
@@ -49,7 +49,7 @@ class StepRecord:
                 "cost_usd": self.cost_usd}
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any]) -> StepRecord:
+    def from_dict(cls, data: Mapping[str, Any]) -> AttemptRecord:
         return cls(step=data["step"], attempt=int(data["attempt"]), ok=bool(data["ok"]),
                    level=data.get("level", "none"), feedback=data.get("feedback"),
                    cached=bool(data.get("cached", False)), tokens=int(data.get("tokens", 0)),
@@ -79,7 +79,7 @@ class GenerationResult:
     task: str
     graph: TaskGraph | None = None
     level_reached: Level = "none"
-    steps: list[StepRecord] = field(default_factory=list)
+    steps: list[AttemptRecord] = field(default_factory=list)
     usage: Usage = field(default_factory=Usage)
     failure: str | None = None
     llm_error: bool = False
@@ -111,7 +111,7 @@ class GenerationResult:
             task=data.get("task", ""),
             graph=TaskGraph.model_validate(graph) if graph else None,
             level_reached=data.get("level_reached", "none"),
-            steps=[StepRecord.from_dict(s) for s in data.get("steps", [])],
+            steps=[AttemptRecord.from_dict(s) for s in data.get("steps", [])],
             usage=Usage.from_dict(data.get("usage", {})), failure=data.get("failure"),
             llm_error=bool(data.get("llm_error", False)),
         )

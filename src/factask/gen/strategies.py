@@ -35,7 +35,7 @@ from factask.gen.examples import (
 from factask.gen.llm import LLMAuthError, LLMClient, LLMError, LLMRequestError, Usage
 from factask.gen.memory import SubtaskMemory, SubtaskMemoryError
 from factask.gen.prompts import render, schema_text
-from factask.gen.results import APPROACHES, GenerationResult, StepRecord
+from factask.gen.results import APPROACHES, AttemptRecord, GenerationResult
 from factask.gen.schemas import (
     AnswerError,
     GoalAnswer,
@@ -48,15 +48,16 @@ from factask.gen.schemas import (
     parse_answer,
     schema_of,
 )
-from factask.gen.verify import BackendUnavailableError, Level, Verifier, at_least, level_index
+from factask.gen.verify import Level, Verifier, at_least, level_index
 from factask.model.errors import CompositionError, FactaskError, GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
+from factask.model.names import slugify
 from factask.model.templates import compose, extract_fragment
 from factask.model.variables import StateVariable
 
 T = TypeVar("T")
-StepCallback = Callable[[StepRecord], None]
+StepCallback = Callable[[AttemptRecord], None]
 #: An evaluation turns answer text into (artefact or None, level, feedback or None).
 Evaluation = tuple[Any, Level, "str | None"]
 
@@ -84,23 +85,19 @@ _PROPOSAL_RE = re.compile(r"^\s*([a-z0-9][a-z0-9_-]{1,99})\s*[:]\s+(.+)$", re.DO
 MAX_TASK_NAME = 100
 
 
-def slugify(text: str, max_words: int = 6) -> str:
+def task_slug(text: str, max_words: int = 6) -> str:
     """A kebab-case task name from free text ("Stack the blocks!" -> "stack-the-blocks"),
-    at most :data:`MAX_TASK_NAME` characters (cut at a word boundary where possible)."""
-    tokens = re.findall(r"[a-z0-9]+", text.lower())[:max_words]
-    name = "-".join(tokens)
-    if len(name) > MAX_TASK_NAME:
-        cut = name[:MAX_TASK_NAME]
-        name = cut.rsplit("-", 1)[0] if "-" in cut else cut
-    return name.strip("-") or "generated-task"
+    at most :data:`MAX_TASK_NAME` characters."""
+    return slugify(text, "-", MAX_TASK_NAME, "generated-task", max_words=max_words,
+                   letter_first=False)
 
 
 def split_proposal(proposal: str) -> tuple[str, str]:
     """``"name: description"`` -> (name, description); free text -> (slug, text)."""
     m = _PROPOSAL_RE.match(proposal)
     if m:
-        return slugify(m.group(1).replace("_", "-"), max_words=20), m.group(2).strip()
-    return slugify(proposal), proposal.strip()
+        return task_slug(m.group(1).replace("_", "-"), max_words=20), m.group(2).strip()
+    return task_slug(proposal), proposal.strip()
 
 
 class Generator:
@@ -111,7 +108,7 @@ class Generator:
         verifier: The ladder's checks (default :class:`Verifier`).
         memory: Subtask memory to read examples from and save verified subtasks to.
         max_repairs: Repairs per step after the first answer.
-        on_step: Called with every :class:`StepRecord` as it happens.
+        on_step: Called with every :class:`AttemptRecord` as it happens.
         n_examples: In-context examples per prompt (per source).
     """
 
@@ -152,14 +149,13 @@ class Generator:
 
         Raises:
             UnknownApproachError: ``approach`` is not known.
-            BackendUnavailableError: the simulator cannot be imported.
             LLMAuthError: the provider refused the credentials (no call can work).
         """
         if approach not in APPROACHES:
             raise UnknownApproachError(f"unknown approach {approach!r}; use one of "
                                        f"{', '.join(APPROACHES)}")
         task, desc = split_proposal(proposal)
-        task = slugify(name.replace("_", "-"), max_words=20) if name else task
+        task = task_slug(name.replace("_", "-"), max_words=20) if name else task
         desc = description or desc
         result = GenerationResult(approach=approach, proposal=proposal, task=task)
         self._result = result
@@ -187,7 +183,7 @@ class Generator:
         return result
 
     # ------------------------------------------------------------ machinery
-    def _record(self, rec: StepRecord) -> None:
+    def _record(self, rec: AttemptRecord) -> None:
         assert self._result is not None
         self._result.steps.append(rec)
         if self.on_step is not None:
@@ -224,14 +220,14 @@ class Generator:
                 value, level, feedback = evaluate(reply.text)
             except AnswerError as exc:
                 value, level, feedback = None, "none", exc.feedback
-            except (LLMError, BackendUnavailableError, _Abort):
+            except (LLMError, _Abort):
                 raise
             except Exception as exc:  # a bug or an odd answer must not kill the run
                 value, level = None, "none"
                 feedback = (f"Checking the answer failed unexpectedly "
                             f"({type(exc).__name__}: {exc}). Send a simpler, valid answer "
                             "following the schema.")
-            self._record(StepRecord(step, attempt, feedback is None, level, feedback,
+            self._record(AttemptRecord(step, attempt, feedback is None, level, feedback,
                                     reply.cached, reply.usage.total_tokens,
                                     reply.usage.cost_usd))
             if value is not None and (best is None or level_index(level) > best[0]):
@@ -302,7 +298,7 @@ class Generator:
             level, problem = outcome.level, outcome.feedback
         else:
             level = "none"
-        self._record(StepRecord(step, 0, problem is None, level, problem))
+        self._record(AttemptRecord(step, 0, problem is None, level, problem))
         if problem is None:
             self._finish(graph, level, None)
             return

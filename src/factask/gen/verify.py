@@ -7,7 +7,7 @@ Level 3, *completion*: the scripted oracle reaches reward >= 0.99 in at least ha
 of several episodes with different seeds (the research's definition).
 
 :class:`Verifier` is pluggable: the default calls the MuJoCo backend
-(:func:`factask.sim.episode.check_runtime` / ``run_episode``), imported lazily.
+(:func:`factask.sim.episode.check_runtime` / ``run_episode``).
 """
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ from typing import Any, Literal
 from factask.gen.schemas import AnswerError, format_problems, read_json, several_objects_note
 from factask.model.errors import FactaskError, GraphValidationError
 from factask.model.graph import TaskGraph, parse_graph
+from factask.sim.episode import check_runtime, run_episode
 
 Level = Literal["none", "syntax", "runtime", "completion"]
 #: The ladder, lowest first.
@@ -34,10 +35,6 @@ def level_index(level: str) -> int:
 def at_least(level: str, wanted: str) -> bool:
     """True if ``level`` is ``wanted`` or higher."""
     return level_index(level) >= level_index(wanted)
-
-
-class BackendUnavailableError(FactaskError):
-    """The simulation backend needed for runtime/completion checks is missing."""
 
 
 @dataclass
@@ -185,12 +182,7 @@ class Verifier:
         return self.completion(graph, completion_seeds(self.episodes, self.base_seed))
 
     def _backend(self) -> tuple[Any, Any]:
-        try:
-            from factask.sim.episode import check_runtime, run_episode
-        except ImportError as exc:
-            raise BackendUnavailableError(
-                f"the simulation backend (factask.sim.episode) cannot be imported: {exc}"
-            ) from None
+        """The runtime check and the episode runner (a seam: tests script episodes)."""
         return check_runtime, run_episode
 
 
@@ -220,7 +212,6 @@ def completion_feedback(episodes: Sequence[dict[str, Any]], wins: int, needed: i
 __all__ = [
     "LEVELS",
     "AnswerError",
-    "BackendUnavailableError",
     "Level",
     "Verifier",
     "VerifyOutcome",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from typing import Annotated
 
 from pydantic import AfterValidator, StringConstraints
@@ -14,7 +15,6 @@ INSTANCE_SEPARATOR = "__"
 NAME_PATTERN = r"^[a-z][a-z0-9_]{0,63}$"
 #: Pattern of task names: kebab-case as in GenSim's task list (snake_case accepted).
 TASK_NAME_PATTERN = r"^[a-z0-9][a-z0-9_-]{0,99}$"
-
 
 
 def _no_double_underscore(value: str) -> str:
@@ -35,3 +35,30 @@ def instance_names(variable: str, count: int) -> list[str]:
     if count == 1:
         return [variable]
     return [f"{variable}{INSTANCE_SEPARATOR}{i}" for i in range(count)]
+
+
+def slugify(text: str, separator: str, max_length: int, fallback: str,
+            max_words: int | None = None, letter_first: bool = True) -> str:
+    """An identifier from free text: its lower-case words of letters and digits joined
+    by ``separator`` ("Stack the blocks!" -> "stack-the-blocks" or "stack_the_blocks").
+
+    Args:
+        text: Any text.
+        separator: ``"-"`` for task names, ``"_"`` for variable and factor names.
+        max_length: Longest result; longer names are cut at a word boundary where
+            possible.
+        fallback: The name when the text has no word, and the prefix of a name that
+            must start with a letter but does not.
+        max_words: Keep at most this many words.
+        letter_first: The name must start with a letter (variable and factor names).
+    """
+    words = re.findall(r"[a-z0-9]+", text.lower())
+    name = separator.join(words[:max_words] if max_words is not None else words)
+    if len(name) > max_length:
+        cut = name[:max_length]
+        name = cut.rsplit(separator, 1)[0] if separator in cut else cut
+    if not name:
+        return fallback
+    if letter_first and not name[0].isalpha():
+        name = f"{fallback}{separator}{name}"[:max_length].rstrip(separator)
+    return name

@@ -59,7 +59,7 @@ class ActionError(FactaskError):
 
 
 @dataclass(frozen=True)
-class StepRecord:
+class ActionRecord:
     """What one action did (kept in ``env.history``)."""
 
     action: int
@@ -138,7 +138,7 @@ class FactaskEnv(gym.Env):
         })
         self.solved: dict[str, SolvedFactor] = {}
         self.initial_layout: dict[str, Pose] = {}
-        self.history: list[StepRecord] = []
+        self.history: list[ActionRecord] = []
         self.actions_taken = 0
         self.failure: str | None = None
         self._status: TaskStatus | None = None
@@ -268,7 +268,7 @@ class FactaskEnv(gym.Env):
         self.failure = self.physics_failure()
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
         self._status = status
-        self.history.append(StepRecord(self.actions_taken, result.ok, result.reason,
+        self.history.append(ActionRecord(self.actions_taken, result.ok, result.reason,
                                        result.sim_steps, status.reward))
         info = self._info(status)
         info["action_ok"] = result.ok

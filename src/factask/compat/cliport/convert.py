@@ -33,6 +33,7 @@ from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
 from factask.model.kinds import kind_spec
+from factask.model.names import slugify
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Z_TOLERANCE, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
@@ -69,15 +70,6 @@ class _Goal:
     zones: list[tuple[np.ndarray, np.ndarray, tuple[float, float]]]
     max_reward: float
     language: str
-
-
-def slugify(text: str, fallback: str) -> str:
-    """A snake_case name from free text (graph-model name rules)."""
-    slug = re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")
-    slug = re.sub(r"_+", "_", slug)[:MAX_NAME].strip("_")
-    if not slug or not slug[0].isalpha():
-        slug = f"{fallback}_{slug}".strip("_")
-    return slug
 
 
 def kebab(class_name: str) -> str:
@@ -452,7 +444,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         warn(f"step_max_reward values sum to {total:.4g}{why}, not 1; rescaled to sum to 1")
     factors = []
     for (g, rel), w in zip(drafts, weights, strict=True):
-        name = _unique(slugify(g.language, "goal"), taken)
+        name = _unique(slugify(g.language, "_", MAX_NAME, "goal"), taken)
         factors.append(SubtaskFactor(name=name, description=g.language, goal=rel,
                                      weight=w / total))
     # Fix rounding so the weights sum to exactly 1.

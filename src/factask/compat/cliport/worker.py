@@ -18,7 +18,6 @@ the stages it already reported.
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
 import sys
 from collections.abc import Callable
@@ -27,14 +26,8 @@ from typing import Any
 
 from factask.compat.cliport.errors import CliportImportError
 from factask.compat.cliport.loader import import_cliport
-
-
-def _optional(module: str, attr: str) -> Any:
-    """``module.attr`` if that part of factask exists yet, else None."""
-    try:
-        return getattr(importlib.import_module(module), attr)
-    except (ImportError, AttributeError):
-        return None
+from factask.sim.compile import compile_graph
+from factask.sim.episode import run_episode
 
 
 def new_record(path: str) -> dict[str, Any]:
@@ -96,23 +89,15 @@ def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
     report()
     if graph_out:
         Path(graph_out).write_text(result.graph.to_json(), encoding="utf-8")
-    compile_graph = _optional("factask.sim.compile", "compile_graph")
-    if compile_graph is None:
-        rec["compile_note"] = "factask.sim.compile is not available: not compiled"
-    else:
-        try:
-            compile_graph(result.graph)
-        except Exception as exc:
-            rec["compiled"] = False
-            rec["error"] = f"compile failed: {type(exc).__name__}: {exc}"
-            return
-        rec["compiled"] = True
-        report()
+    try:
+        compile_graph(result.graph)
+    except Exception as exc:
+        rec["compiled"] = False
+        rec["error"] = f"compile failed: {type(exc).__name__}: {exc}"
+        return
+    rec["compiled"] = True
+    report()
     if episodes > 0:
-        run_episode = _optional("factask.sim.episode", "run_episode")
-        if run_episode is None:
-            rec["oracle_note"] = "factask.sim.episode is not available: oracle not run"
-            return
         wins, failures = 0, []
         for k in range(episodes):
             try:
