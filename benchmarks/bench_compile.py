@@ -65,7 +65,7 @@ def blocks_in_zone(n: int, layout: str = "group") -> ft.TaskGraph:
     else:
         raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
     return ft.TaskGraph(name=f"blocks-{layout}-{n}", description=f"{n} blocks into a zone",
-                        variables=[*blocks, zone], factors=factors).validate()
+                        variables=[*blocks, zone], factors=factors).ensure_valid()
 
 
 @dataclass(frozen=True)

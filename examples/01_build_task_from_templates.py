@@ -47,7 +47,7 @@ for frag in (column, park):
 # %% Compose the fragments into one task and validate the whole graph
 task = ft.compose(column, park, name="stack-and-park",
                   description="Stack the red then the blue block on the pallet and put both "
-                              "yellow cylinders in the green zone.").validate()
+                              "yellow cylinders in the green zone.").ensure_valid()
 print("variables:", task.variable_names())
 print("factor order:", task.factor_order())
 print("weights:", {f.name: round(f.weight, 3) for f in task.factors})
@@ -58,7 +58,7 @@ extra = ft.SubtaskFactor(name="also_zone", description="put the red block in a p
 broken = task.model_copy(update={"factors": [
     task.factors[0].model_copy(update={"weight": 0.9}), task.factors[1], extra]})
 try:
-    broken.validate()
+    broken.ensure_valid()
 except ft.GraphValidationError as exc:
     print(exc)
 

@@ -44,7 +44,7 @@ except ft.CompositionError as exc:
 
 # %% renames keep them apart: the bridge's block becomes `top_block`
 keep_apart = [None, {"blue_block": "top_block"}]
-both = ft.compose(bowl_task, bridge_task, name="bowl-and-bridge", renames=keep_apart).validate()
+both = ft.compose(bowl_task, bridge_task, name="bowl-and-bridge", renames=keep_apart).ensure_valid()
 print("kept apart:", both.variable_names())
 # Default shares are proportional to the number of factors: 1/4 for the bowl task,
 # 3/4 for the bridge, so the bridge's weights go from 1/3 to 1/4 each.
@@ -52,7 +52,7 @@ print("default shares:", weights(both), "sum", round(sum(f.weight for f in both.
 
 # %% Explicit shares: the bowl is worth as much as the whole bridge
 weighted = ft.compose(bowl_task, bridge_task, name="bowl-and-bridge", renames=keep_apart,
-                      shares=[0.5, 0.5]).validate()
+                      shares=[0.5, 0.5]).ensure_valid()
 print("shares 0.5 / 0.5:", weights(weighted))
 print("factor order:", weighted.factor_order())
 
@@ -77,7 +77,7 @@ print("identified by rename:", identified.variable_names())
 # factor that moves the red block, even though it is declared first.
 on_top = TEMPLATES["place_on_top"].instantiate(objects=blue, support=red)
 red_in_zone = TEMPLATES["place_in_zone"].instantiate(objects=red, zone=zone)
-ordered = ft.compose(on_top, red_in_zone, name="red-in-zone-blue-on-top").validate()
+ordered = ft.compose(on_top, red_in_zone, name="red-in-zone-blue-on-top").ensure_valid()
 print("declared:", ordered.factor_names(), "-> order:", ordered.factor_order())
 
 # %% The composed library tasks compile and the oracle solves them

@@ -21,7 +21,7 @@ def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],
     for f in factors:
         f.setdefault("weight", 1.0 / len(factors))
     return TaskGraph.model_validate(
-        {"name": name, "variables": variables, "factors": factors}).validate()
+        {"name": name, "variables": variables, "factors": factors}).ensure_valid()
 
 
 def free_spot(env: FactaskEnv, half: float = 0.04, seed: int = 0,

@@ -66,7 +66,7 @@ def test_there_are_at_least_twelve_example_tasks():
 def test_every_example_imports_into_a_valid_graph(path):
     result = import_cliport(path)
     graph = result.graph
-    assert graph.validate() is graph
+    assert graph.ensure_valid() is graph
     assert math.isclose(sum(f.weight for f in graph.factors), 1.0, abs_tol=1e-9)
     again = parse_graph(graph.to_json())
     assert again.to_dict() == graph.to_dict()

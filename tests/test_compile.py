@@ -135,7 +135,7 @@ def test_fixture_too_small_for_an_ell_hollow_is_a_compile_error() -> None:
                       {"name": "frame", "kind": "fixture", "size": [0.12, 0.034, 0.04]}],
         "factors": [{"name": "insert", "goal": {"type": "aligned", "objects": ["piece"],
                                                 "reference": "frame"}}],
-    }).validate()  # walls fit, so the graph is valid; an ell hollow does not
+    }).ensure_valid()  # walls fit, so the graph is valid; an ell hollow does not
     with pytest.raises(CompileError) as info:
         compile_graph(graph, robot=None)
     assert info.value.variable == "frame"

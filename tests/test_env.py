@@ -33,7 +33,7 @@ def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],
     data: dict[str, Any] = {"name": name, "variables": variables, "factors": factors}
     if limits is not None:
         data["limits"] = limits
-    return TaskGraph.model_validate(data).validate()
+    return TaskGraph.model_validate(data).ensure_valid()
 
 
 def stack_graph(limits: dict[str, Any] | None = None) -> TaskGraph:

@@ -46,7 +46,7 @@ def test_order_between_variables_still_matters() -> None:
     red = StateVariable(name="red", kind="block", color="red")
     blue = StateVariable(name="blue", kind="block", color="blue")
     g = TaskGraph(name="t", variables=[red, blue], factors=[
-        SubtaskFactor(name="s", goal=Stack(objects=["red", "blue"]))]).validate()
+        SubtaskFactor(name="s", goal=Stack(objects=["red", "blue"]))]).ensure_valid()
     solved, poses = _at_targets(g)
     poses["red"], poses["blue"] = poses["blue"], poses["red"]
     assert not check_task(g, solved, poses).success
@@ -80,7 +80,7 @@ def test_row_that_cannot_rest_on_the_row_below_is_infeasible() -> None:
     g = TaskGraph(name="t", variables=[base, top], factors=[
         SubtaskFactor(name="b", weight=0.5, goal=Row(objects=["base"])),
         SubtaskFactor(name="r", weight=0.5, goal=Row(objects=["top"], on="base")),
-    ]).validate()
+    ]).ensure_valid()
     with pytest.raises(LayoutError, match="unsupported"):
         reset_layout(g, np.random.default_rng(0))
 
@@ -88,7 +88,7 @@ def test_row_that_cannot_rest_on_the_row_below_is_infeasible() -> None:
 def test_targets_above_the_workspace_are_infeasible() -> None:
     blocks = StateVariable(name="blocks", kind="block", count=10)
     g = TaskGraph(name="t", variables=[blocks], factors=[
-        SubtaskFactor(name="s", goal=Stack(objects=["blocks"]))]).validate()
+        SubtaskFactor(name="s", goal=Stack(objects=["blocks"]))]).ensure_valid()
     with pytest.raises(LayoutError, match="above the workspace"):
         reset_layout(g, np.random.default_rng(0))
     assert math.isclose(10 * 0.04, 0.4)  # 40 cm > the 30 cm workspace height

@@ -251,7 +251,7 @@ def test_match_pairs_sequential_chain_composes() -> None:
     zones = [var(f"{c}_zone", "zone", c, (0.12, 0.12, 0.001)) for c in ("red", "blue")]
     frags = match_pairs("place_in_zone", list(zip(blocks, zones, strict=True)),
                         sequential=True)
-    g = compose(*frags, name="sort-two").validate()
+    g = compose(*frags, name="sort-two").ensure_valid()
     assert g.factor_order() == ["in_zone_red_block", "in_zone_blue_block"]
     assert g.factors[1].after == ["in_zone_red_block"]
     assert sum(f.weight for f in g.factors) == pytest.approx(1.0)

@@ -125,7 +125,7 @@ def test_implied_order_puts_support_first() -> None:
     g = TaskGraph(name="t", variables=[red, blue, zone], factors=[
         SubtaskFactor(name="top", weight=0.5, goal=On(objects=["blue"], support="red")),
         SubtaskFactor(name="bottom", weight=0.5, goal=InZone(objects=["red"], zone="zone")),
-    ]).validate()
+    ]).ensure_valid()
     assert g.factor_order() == ["bottom", "top"]
 
 
@@ -142,8 +142,8 @@ def test_one_template_used_by_two_tasks_with_different_bindings() -> None:
     red = StateVariable(name="red", kind="block", color="red")
     blue = StateVariable(name="blue", kind="block", color="blue")
     boxes = StateVariable(name="boxes", kind="box", count=3, size=(0.07, 0.07, 0.07))
-    t1 = compose(STACK.instantiate(layers=[red, blue]), name="two-blocks").validate()
-    t2 = compose(STACK.instantiate(layers=boxes), name="three-boxes").validate()
+    t1 = compose(STACK.instantiate(layers=[red, blue]), name="two-blocks").ensure_valid()
+    t2 = compose(STACK.instantiate(layers=boxes), name="three-boxes").ensure_valid()
     assert t1.factors[0].goal.objects == ["red", "blue"]
     assert t1.factors[0].description == "stack the red and blue into a column"
     assert t2.factors[0].goal.objects == ["boxes"]
@@ -223,3 +223,29 @@ def test_field_errors_and_graph_errors_come_in_one_round() -> None:
     # Nothing is reported only because red_block was left out of the check.
     assert not any("red_block" in p.message for p in info.value.problems
                    if p.node == "place")
+
+
+def test_every_public_error_class_of_the_package_is_a_factask_error() -> None:
+    """Callers catch ``FactaskError`` for anything factask raises on purpose."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    import factask
+    from factask.model.errors import FactaskError
+
+    stray = []
+    for info in pkgutil.walk_packages(factask.__path__, "factask."):
+        if info.name.endswith("__main__"):
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if (inspect.isclass(obj) and issubclass(obj, BaseException)
+                    and obj.__module__ == module.__name__ and not name.startswith("_")
+                    and not issubclass(obj, FactaskError)):
+                stray.append(f"{info.name}.{name}")
+    assert not stray, f"not FactaskError subclasses: {stray}"
+    from factask.model.kinds import UnknownKindError
+    from factask.model.palette import UnknownColorError
+
+    assert issubclass(UnknownKindError, ValueError) and issubclass(UnknownColorError, ValueError)

@@ -32,7 +32,7 @@ def test_json_round_trip_is_identity(graph: TaskGraph) -> None:
 @given(task_graphs())
 def test_validation_accepts_every_generated_graph(graph: TaskGraph) -> None:
     assert graph.problems() == []
-    graph.validate()
+    graph.ensure_valid()
 
 
 @given(task_graphs())
@@ -65,7 +65,7 @@ def test_composition_preserves_bipartiteness_and_scope_integrity(
     a: TaskGraph, b: TaskGraph
 ) -> None:
     c = compose(a, b, name="composed")
-    c.validate()
+    c.ensure_valid()
     g = c.to_networkx()
     assert nx.is_bipartite(g)
     names = set(c.variable_names())
@@ -123,12 +123,12 @@ def test_extracted_factor_is_a_valid_reusable_fragment(graph: TaskGraph, data) -
         return
     name = data.draw(st.sampled_from(graph.factor_names()))
     frag = extract_fragment(graph, name)
-    frag.validate()
+    frag.ensure_valid()
     template = extract_template(graph, name)
     bound = {v: graph.variable(v) for v in graph.factor(name).scope_names}
     inst = template.instantiate(prefix="", **bound)
     assert inst.factors[0].goal == graph.factor(name).goal
-    inst.validate()
+    inst.ensure_valid()
 
 
 # ---------------------------------------------------------------- corruptions

@@ -26,7 +26,7 @@ def _example_graph(kind: str) -> TaskGraph:
     variables, goal = RELATION_TYPES[kind].example()
     factor = SubtaskFactor(name=f"{kind}_goal", description=f"an example of {kind}", goal=goal)
     return TaskGraph(name=f"example-{kind.replace('_', '-')}", variables=variables,
-                     factors=[factor]).validate()
+                     factors=[factor]).ensure_valid()
 
 
 def _solved_scene(kind: str, seed: int):

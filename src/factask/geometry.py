@@ -47,6 +47,11 @@ class Pose:
         return [*map(float, self.pos), *map(float, self.quat)]
 
 
+def wrap_angle(angle: float) -> float:
+    """``angle`` (radians) wrapped into (-pi, pi]."""
+    return math.atan2(math.sin(angle), math.cos(angle))
+
+
 def quat_from_yaw(yaw: float) -> np.ndarray:
     """Quaternion (w, x, y, z) of a rotation by ``yaw`` radians about z."""
     return np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
@@ -88,6 +93,16 @@ def compose(a: Pose, b: Pose) -> Pose:
 def inverse(a: Pose) -> Pose:
     qi = quat_conj(a.quat)
     return Pose(-rotate(qi, a.pos), qi)
+
+
+def rotation_matrix(quat: np.ndarray) -> np.ndarray:
+    """3x3 rotation matrix of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = (float(c) for c in np.asarray(quat, dtype=float))
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+    ])
 
 
 def tilt_deg(quat: np.ndarray) -> float:

@@ -597,7 +597,7 @@ def _fragment(task: str, factor: SubtaskFactor, variables: list[StateVariable]) 
     graph = TaskGraph(name=name, description=factor.description, variables=variables,
                       factors=[factor.model_copy(update={"weight": 1.0, "after": []})])
     try:
-        graph.validate()
+        graph.ensure_valid()
     except GraphValidationError as exc:
         raise AnswerError(f"The subtask is not valid on its own ({len(exc.problems)} "
                           f"problem(s)):\n{format_problems(exc.problems)}",

@@ -1,6 +1,6 @@
 """The verification ladder: syntax -> runtime -> completion, each failure a message.
 
-Level 1, *syntax*: the answer parses and validates (pydantic + ``graph.validate()``).
+Level 1, *syntax*: the answer parses and validates (pydantic + ``graph.ensure_valid()``).
 Level 2, *runtime*: the graph compiles, a seeded reset succeeds (layout sampled,
 relations solved) and the environment steps without error.
 Level 3, *completion*: the scripted oracle reaches reward >= 0.99 in at least half

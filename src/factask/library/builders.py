@@ -84,4 +84,4 @@ def assemble(name: str, description: str, *fragments: TaskGraph | Sequence[TaskG
         flat.extend([f] if isinstance(f, TaskGraph) else list(f))
     if extra:
         flat.append(TaskGraph(name=name, variables=list(extra)))
-    return _compose(*flat, name=name, description=description).validate()
+    return _compose(*flat, name=name, description=description).ensure_valid()

@@ -81,7 +81,7 @@ def get_task(name: str) -> TaskGraph:
         builder = TASKS[name]
     except KeyError:
         raise UnknownTaskError(name) from None
-    return builder().validate()
+    return builder().ensure_valid()
 
 
 def templates_used(graph: TaskGraph) -> tuple[str, ...]:

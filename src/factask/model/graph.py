@@ -1,7 +1,7 @@
 """The task graph: variables, factors, edges — and its validation.
 
 A :class:`TaskGraph` is plain data (pydantic). Constructing one checks each field
-on its own (types, patterns, ranges, known kinds and colours); :meth:`TaskGraph.validate`
+on its own (types, patterns, ranges, known kinds and colours); :meth:`TaskGraph.ensure_valid`
 checks the graph as a whole (names resolve, weights sum to 1, order is acyclic, ...)
 and reports **every** problem at once as one :class:`GraphValidationError`.
 :func:`parse_graph` does both for outside input (JSON text, dicts) and turns every
@@ -180,8 +180,10 @@ class TaskGraph(BaseModel):
         """Every whole-graph problem (empty if the graph is valid)."""
         return graph_problems(self)
 
-    def validate(self) -> TaskGraph:  # type: ignore[override]
+    def ensure_valid(self) -> TaskGraph:
         """Check the graph as a whole; return it unchanged if valid.
+
+        (Not called ``validate``: that name is pydantic's.)
 
         Raises:
             GraphValidationError: listing every problem found.
@@ -221,7 +223,7 @@ def _duplicates(names: Iterable[str]) -> list[str]:
 
 
 def graph_problems(graph: TaskGraph) -> list[Problem]:
-    """All whole-graph problems of ``graph`` (see :meth:`TaskGraph.validate`)."""
+    """All whole-graph problems of ``graph`` (see :meth:`TaskGraph.ensure_valid`)."""
     out: list[Problem] = []
     var_names = graph.variable_names()
     fac_names = graph.factor_names()
@@ -378,7 +380,7 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
             every problem is listed and names its node.
     """
     if isinstance(source, TaskGraph):
-        return source.validate()
+        return source.ensure_valid()
     data: Any = source
     if isinstance(source, (str, bytes)):
         try:
@@ -406,7 +408,7 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
         raise GraphValidationError(
             [Problem("", "", "input nested too deeply", "send one flat task-graph object")]
         ) from None
-    return graph.validate()
+    return graph.ensure_valid()
 
 
 def _problems_of_valid_parts(data: Mapping[str, Any]) -> list[Problem]:

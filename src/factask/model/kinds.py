@@ -19,6 +19,8 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Literal, get_args
 
+from factask.model.errors import FactaskError
+
 AssetKind = Literal[
     "block",
     "box",
@@ -111,7 +113,7 @@ ELL_BAR_FRACTION = 0.375
 WALL_THICKNESS = 0.01
 
 
-class UnknownKindError(ValueError):
+class UnknownKindError(FactaskError, ValueError):
     """An asset kind that factask does not have."""
 
 

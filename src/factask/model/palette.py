@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from types import MappingProxyType
 
+from factask.model.errors import FactaskError
+
 # RGB in [0, 1]. The first eleven follow the Ravens/CLIPort palette (Tableau
 # colours), so tasks ported from there look the same; the rest extend it for the
 # colours GenSim's task list mentions.
@@ -49,7 +51,7 @@ COLOR_NAMES: tuple[str, ...] = tuple(_RGB)
 COLOR_ALIASES = MappingProxyType({"grey": "gray", "violet_purple": "violet"})
 
 
-class UnknownColorError(ValueError):
+class UnknownColorError(FactaskError, ValueError):
     """A colour name that is not in the palette."""
 
 

@@ -93,7 +93,7 @@ def compose(
 
     Returns:
         The composed graph. It is not validated as a whole (a fragment may still
-        lack variables another fragment brings); call ``validate()`` on the result.
+        lack variables another fragment brings); call ``ensure_valid()`` on the result.
 
     Raises:
         CompositionError: two inputs define the same variable differently, two

@@ -9,6 +9,7 @@ from typing import Annotated, Any, ClassVar, Literal
 import numpy as np
 from pydantic import Field
 
+from factask.geometry import wrap_angle
 from factask.model.names import Name
 from factask.model.world import TABLE_Z
 from factask.relations.base import RelationBase
@@ -105,7 +106,7 @@ class Row(RelationBase):
             yaw = hpose.yaw if hobj.size[0] >= hobj.size[1] else hpose.yaw + math.pi / 2
             # A line looks the same turned half a turn: take the direction pointing to
             # +x (as principal_yaw does), so "first object" means the same end always.
-            yaw = math.atan2(math.sin(yaw), math.cos(yaw))
+            yaw = wrap_angle(yaw)
             if yaw > math.pi / 2 + GEOMETRY_EPS:
                 yaw -= math.pi
             elif yaw <= -math.pi / 2 + GEOMETRY_EPS:

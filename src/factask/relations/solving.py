@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from factask.geometry import Pose
+from factask.model.errors import FactaskError
 from factask.model.tolerances import Z_TOLERANCE
 from factask.model.world import TABLE_Z, WORKSPACE_Z
 from factask.scene.collision import (
@@ -41,7 +42,7 @@ if TYPE_CHECKING:  # the graph model sits above the relations (it imports their 
     from factask.model.graph import TaskGraph
 
 
-class Infeasible(Exception):
+class Infeasible(FactaskError):
     """One solving attempt failed; ``retry`` says whether other random choices may help.
 
     The solver driver turns it into a :class:`~factask.model.errors.LayoutError`.

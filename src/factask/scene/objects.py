@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from factask.geometry import Pose
+from factask.geometry import Pose, rotation_matrix
 from factask.model.kinds import WALL_THICKNESS, KindSpec, kind_spec
 from factask.model.world import TABLE_Z
 
@@ -139,16 +139,6 @@ def objects_by_name(graph: TaskGraph) -> dict[str, SceneObject]:
 
 
 # --------------------------------------------------------------------- frames
-def rotation_matrix(quat: np.ndarray) -> np.ndarray:
-    """3x3 rotation matrix of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = (float(c) for c in np.asarray(quat, dtype=float))
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-    ])
-
-
 def yaw_rotation_2d(yaw: float) -> np.ndarray:
     """2x2 rotation by ``yaw`` radians."""
     c, s = math.cos(yaw), math.sin(yaw)

@@ -137,7 +137,7 @@ class CompiledScene:
 
 # ----------------------------------------------------------------- helpers
 def _check_args(graph: TaskGraph, robot: str | None, timestep: float) -> None:
-    graph.validate()
+    graph.ensure_valid()
     if not graph.factors:
         raise CompileError("", f"graph {graph.name!r} has no factors",
                            "add at least one subtask factor")

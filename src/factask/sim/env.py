@@ -40,6 +40,7 @@ from factask.sim.compile import (
     set_marker,
     set_object_pose,
 )
+from factask.sim.health import physics_problem
 from factask.sim.reset import reset_layout
 from factask.sim.robot import SuctionRobot, make_robot
 
@@ -47,8 +48,6 @@ from factask.sim.robot import SuctionRobot, make_robot
 #: resting may still shift by a fraction of a millimetre).
 SETTLE_SECONDS = 0.3
 #: MuJoCo warnings that mean the simulation can no longer be trusted.
-_UNSTABLE = (mujoco.mjtWarning.mjWARN_BADQACC, mujoco.mjtWarning.mjWARN_BADQPOS,
-             mujoco.mjtWarning.mjWARN_BADQVEL)
 #: Default rendering size (width, height) and camera.
 RENDER_SIZE = (320, 240)
 RENDER_CAMERA = "front"
@@ -198,12 +197,8 @@ class FactaskEnv(gym.Env):
 
     def physics_failure(self) -> str | None:
         """Why the simulation state is no longer trustworthy, or None."""
-        if not (np.all(np.isfinite(self.data.qpos)) and np.all(np.isfinite(self.data.qvel))):
-            return "physics: NaN or infinite positions/velocities"
-        for w in _UNSTABLE:
-            if self.data.warning[w].number > 0:
-                return f"physics: MuJoCo warning {mujoco.mjtWarning(w).name}"
-        return None
+        problem = physics_problem(self.data)
+        return None if problem is None else f"physics: {problem}"
 
     # ------------------------------------------------------------- gym API
     def reset(self, *, seed: int | None = None,

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from factask.geometry import Pose, tilt_deg
+from factask.geometry import Pose, tilt_deg, wrap_angle
 from factask.model.kinds import yaw_symmetry_deg
 from factask.relations.status import MAX_TILT_DEG, FactorStatus
 from factask.scene.collision import occupying, parking_spot, resting_on
@@ -66,7 +66,7 @@ def _yaw_toward(target: float, current: float, symmetry_deg: float) -> float:
     period = math.radians(symmetry_deg)
     k = round((current - target) / period)
     yaw = target + k * period
-    return math.atan2(math.sin(yaw), math.cos(yaw))
+    return wrap_angle(yaw)
 
 
 class Oracle:

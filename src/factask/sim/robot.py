@@ -25,7 +25,8 @@ import mujoco
 import numpy as np
 from dm_control import mjcf
 
-from factask.geometry import Pose, quat_from_yaw
+from factask.geometry import Pose, quat_from_yaw, wrap_angle
+from factask.sim.health import FATAL_WARNINGS, physics_problem, warning_counts
 from factask.sim.ik import TopDownIK, top_down_pose
 from factask.sim.robot_arm import HOME_QPOS, JOINT_NAMES, JOINT_RANGES, build_arm
 from factask.sim.robots import DEFAULT_ARM, DHArm, RobotError, robot_entry
@@ -84,16 +85,6 @@ DEFAULT_MAX_STEPS = 20_000
 DEFAULT_CALLBACK_EVERY = 10
 #: World up axis.
 _UP = np.array([0.0, 0.0, 1.0])
-#: MuJoCo warnings that end a primitive: the physics is no longer trustworthy.
-_FATAL_WARNINGS = (
-    mujoco.mjtWarning.mjWARN_BADQACC,
-    mujoco.mjtWarning.mjWARN_BADQPOS,
-    mujoco.mjtWarning.mjWARN_BADQVEL,
-    mujoco.mjtWarning.mjWARN_CONTACTFULL,
-    mujoco.mjtWarning.mjWARN_CNSTRFULL,
-    mujoco.mjtWarning.mjWARN_BADCTRL,
-)
-_FATAL_INDEX = np.array([int(w) for w in _FATAL_WARNINGS])
 #: Simulated seconds the arm takes to return home after an aborted primitive.
 RECOVER_TIME = 1.5
 #: Distance (rad) the arm's last wrist joint keeps from its range limits.
@@ -174,11 +165,6 @@ def make_robot(kind: str, model: mujoco.MjModel, data: mujoco.MjData) -> Suction
     return robot
 
 
-def _wrap(angle: float) -> float:
-    """Angle wrapped into (-pi, pi]."""
-    return math.atan2(math.sin(angle), math.cos(angle))
-
-
 def _smoothstep(s: float) -> float:
     """Quintic 0 -> 1 profile with zero velocity and acceleration at both ends."""
     return s * s * s * (10 + s * (-15 + 6 * s))
@@ -206,7 +192,7 @@ class SuctionRobot(ABC):
         self._max_steps = DEFAULT_MAX_STEPS
         self._on_step: Callable[[], None] | None = None
         self._callback_every = DEFAULT_CALLBACK_EVERY
-        self._warn0 = np.zeros(len(_FATAL_WARNINGS), dtype=np.int64)
+        self._warn0 = np.zeros(len(FATAL_WARNINGS), dtype=np.int64)
         self._aborted = False
 
     # ----- robot-specific hooks -----
@@ -223,7 +209,7 @@ class SuctionRobot(ABC):
         """Re-command the current tip pose (after a guarded stop, to stop pushing)."""
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw += _wrap(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
+        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
         self._command(self._cmd_pos, self._cmd_yaw, 0)
 
     def _recover(self) -> None:  # noqa: B027 - optional hook, a mocap cannot get stuck
@@ -298,7 +284,7 @@ class SuctionRobot(ABC):
         self._max_steps = max_steps
         self._on_step = on_step
         self._callback_every = max(1, callback_every)
-        self._warn0 = self.data.warning.number[_FATAL_INDEX].copy()
+        self._warn0 = warning_counts(self.data)
         grasped: int | None = None
         try:
             self._check_health()
@@ -403,8 +389,8 @@ class SuctionRobot(ABC):
         shortest rotation ``place.yaw - pick.yaw``. Tool moves follow these values
         without wrapping; this default takes the pick yaw nearest the current one.
         """
-        pick_yaw = self._cmd_yaw + _wrap(pick.yaw - self._cmd_yaw)
-        return pick_yaw, pick_yaw + _wrap(place.yaw - pick.yaw)
+        pick_yaw = self._cmd_yaw + wrap_angle(pick.yaw - self._cmd_yaw)
+        return pick_yaw, pick_yaw + wrap_angle(place.yaw - pick.yaw)
 
     def _idle(self, seconds: float) -> None:
         """Hold the current command for ``seconds`` of simulated time."""
@@ -426,15 +412,11 @@ class SuctionRobot(ABC):
             self._on_step()
 
     def _check_health(self) -> None:
-        """Raise _PrimitiveAbort on NaN/inf state or a new fatal MuJoCo warning."""
-        d = self.data
-        counts = d.warning.number[_FATAL_INDEX]
-        if (counts > self._warn0).any():
-            w = _FATAL_WARNINGS[int(np.argmax(counts > self._warn0))]
-            name = w.name.removeprefix("mjWARN_")
-            raise _PrimitiveAbort(f"physics failure: MuJoCo warning {name} at time {d.time:.3f}s")
-        if not (np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()):
-            raise _PrimitiveAbort(f"physics failure: non-finite qpos/qvel at time {d.time:.3f}s")
+        """Raise _PrimitiveAbort on a fatal MuJoCo warning since the primitive began, or
+        a non-finite state (:func:`~factask.sim.health.physics_problem`)."""
+        problem = physics_problem(self.data, self._warn0)
+        if problem is not None:
+            raise _PrimitiveAbort(f"physics failure: {problem}")
 
 
 class FloatingSuctionRobot(SuctionRobot):
@@ -498,7 +480,7 @@ class ArmSuctionRobot(SuctionRobot):
         self.data.ctrl[self.act] = self.data.qpos[self.qpos_adr]
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw += _wrap(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
+        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
 
     def _settle(self) -> None:
         target = top_down_pose(self._cmd_pos, self._cmd_yaw)
@@ -527,7 +509,7 @@ class ArmSuctionRobot(SuctionRobot):
         self._settle_joints()
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw += _wrap(ee.yaw - self._cmd_yaw)
+        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)
 
     def _settle_joints(self) -> None:
         for _ in range(math.ceil(SETTLE_MAX_TIME / self.model.opt.timestep)):
@@ -541,7 +523,7 @@ class ArmSuctionRobot(SuctionRobot):
         # it closest to the middle of its range at both the pick and the place,
         # else it winds up over successive primitives and hits its limit.
         near, _ = super()._yaw_plan(pick, place)
-        delta = _wrap(place.yaw - pick.yaw)
+        delta = wrap_angle(place.yaw - pick.yaw)
         wrist_now = float(self.data.qpos[self.qpos_adr[-1]])
         lo, hi = JOINT_RANGES[-1]
         mid = 0.5 * (lo + hi)
@@ -552,8 +534,8 @@ class ArmSuctionRobot(SuctionRobot):
         best, best_cost = near, math.inf
         for turns in (0, -1, 1, -2, 2):  # fewest extra turns first: they cost time
             yaw = near + 2 * math.pi * turns
-            at_pick = wrist_now + _wrap(pan_pick - pan_now) - (yaw - self._cmd_yaw)
-            at_place = at_pick + _wrap(pan_place - pan_pick) - delta
+            at_pick = wrist_now + wrap_angle(pan_pick - pan_now) - (yaw - self._cmd_yaw)
+            at_place = at_pick + wrap_angle(pan_place - pan_pick) - delta
             cost = max(abs(at_pick - mid), abs(at_place - mid))
             if cost <= allowed:
                 return yaw, yaw + delta

@@ -479,7 +479,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     graph = TaskGraph(name=kebab(class_name), description=description, variables=variables,
                       factors=factors, limits=limits)
     try:
-        graph.validate()
+        graph.ensure_valid()
     except GraphValidationError as exc:
         raise CliportImportError(f"the imported graph is not valid:\n{exc}") from exc
     return graph, ravens

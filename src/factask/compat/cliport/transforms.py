@@ -9,12 +9,13 @@ helpers at the bottom convert.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 from scipy.spatial.transform import Rotation
+
+from factask.geometry import yaw_of
 
 #: The identity rotation, x, y, z, w.
 IDENTITY_XYZW = (0.0, 0.0, 0.0, 1.0)
@@ -85,8 +86,7 @@ def matrix(quat_xyzw: Any) -> tuple[float, ...]:
 
 def yaw_of_xyzw(quat_xyzw: Any) -> float:
     """Rotation about world z (radians, in (-pi, pi]) of an x, y, z, w quaternion."""
-    x, y, z, w = (float(c) for c in as_quat_xyzw(quat_xyzw))
-    return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    return yaw_of(xyzw_to_wxyz(quat_xyzw))
 
 
 def xyzw_to_wxyz(quat_xyzw: Any) -> np.ndarray:
