@@ -123,3 +123,18 @@ def test_the_graph_model_relations_and_scene_import_no_simulator_or_llm() -> Non
                      [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
             bad = [r for r in roots if r.split(".")[0] in heavy]
             assert not bad, f"{name} imports {bad}"
+
+
+#: Modules longer than this must say at their top why they are one file.
+LONG_MODULE_LINES = 520
+
+
+def test_long_modules_say_why_they_are_one_file() -> None:
+    unexplained = []
+    for name, path in MODULES.items():
+        text = path.read_text()
+        if text.count("\n") > LONG_MODULE_LINES:
+            doc = ast.get_docstring(ast.parse(text)) or ""
+            if "Why one file" not in doc:
+                unexplained.append(f"{name} ({text.count(chr(10))} lines)")
+    assert not unexplained, f"split these or give the reason at their top: {unexplained}"

@@ -14,6 +14,10 @@ structured failure.
 Every step is a conversation: the answer is read as data against the step's
 schema, checked, and on failure the precise message goes back to the model as
 the next user message, at most ``max_repairs`` times.
+
+Why one file of ~630 lines: the three strategies share one repair loop and its
+bookkeeping (attempts, feedback, usage); issue 19 (per-step schemas and budgets)
+rewrites the steps and will split them by strategy.
 """
 
 from __future__ import annotations

@@ -12,6 +12,10 @@ Which names exist is the registry's business (:mod:`factask.sim.robots`).
 
 Both carry a ``suction_tip`` site and a ``suction`` weld (factask.sim.suction).
 Everything runs in simulated time (``mujoco.mj_step``); nothing reads the clock.
+
+Why one file of ~550 lines: both robots share one primitive (the same phases,
+budgets and failure handling); splitting the controllers from the primitive would
+put one contract in two places.
 """
 
 from __future__ import annotations
