@@ -4,6 +4,9 @@ from __future__ import annotations
 
 #: Table top height (metres); the table surface is the plane z = 0.
 TABLE_Z = 0.0
+#: Extent of the table top (metres): x range and y range, around the workspace.
+TABLE_X = (-0.30, 1.20)
+TABLE_Y = (-0.70, 0.70)
 #: Reachable, visible workspace on the table: x range (metres).
 WORKSPACE_X = (0.25, 0.75)
 #: Workspace y range (metres).

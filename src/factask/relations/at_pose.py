@@ -154,7 +154,7 @@ class AtPose(RelationBase):
             supports.append(host)
             ignore.append(set() if host == TABLE else {host})
         return make_plan(slots, surfaces, supports, ignore, matches, assignment=assignment,
-                         check_yaw=self.check_yaw)
+                         check_yaw=self.check_yaw, given=True)
 
     def check(self, solved: SolvedFactor, scene: CheckScene) -> Verdict:
         return check_slots(solved, scene, self.tolerances)

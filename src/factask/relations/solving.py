@@ -23,9 +23,12 @@ from factask.model.errors import FactaskError
 from factask.model.tolerances import Z_TOLERANCE
 from factask.model.world import TABLE_Z, WORKSPACE_Z
 from factask.scene.collision import (
+    GIVEN_CLEARANCE,
     MAX_TRIES_PER_OBJECT,
     Occupancy,
+    centre_in_workspace,
     in_workspace,
+    on_table,
     table_spots,
 )
 from factask.scene.objects import (
@@ -148,7 +151,11 @@ class SolveContext:
             Infeasible: an assigned slot leaves the workspace, rises above its height,
                 sinks into the table, or collides with an obstacle or another slot.
         """
-        trial = self.occ.copy()
+        # Targets an author gave are facts: used as given, as close to one another as
+        # they were put, and accepted wherever the object stands on the table with
+        # its centre in the workspace (Ravens' rule); solved targets keep the
+        # clearance and their whole footprint in the workspace.
+        trial = self.occ.with_clearance(GIVEN_CLEARANCE) if plan.given else self.occ.copy()
         # The movers' own starts stay obstacles for their slots, so no object starts at
         # a target of its own goal (starts of objects other goals move do not count:
         # those objects are moved out of the way).
@@ -158,7 +165,11 @@ class SolveContext:
         for i, j in enumerate(plan.assignment):
             obj = movers[i]
             pose = plan.sized(j, obj)
-            if not in_workspace(obj, pose):
+            if plan.given and not (centre_in_workspace(pose) and on_table(obj, pose)):
+                raise Infeasible(f"slot {j} for {obj.name} at ({pose.pos[0]:.3f}, "
+                                 f"{pose.pos[1]:.3f}) is off the workspace or the table",
+                                 retry=False)
+            if not plan.given and not in_workspace(obj, pose):
                 raise Infeasible(f"slot {j} for {obj.name} at ({pose.pos[0]:.3f}, "
                                  f"{pose.pos[1]:.3f}) leaves the workspace")
             top, bottom = top_z(obj, pose), bottom_z(obj, pose)
@@ -212,6 +223,8 @@ class Plan:
         chain: Slots form a column: slot k counts only if slot k-1 does.
         support_group: The support instances (``on``, a stack on a base, ...).
         random: Made from random choices: another attempt may differ.
+        given: The slots are an author's explicit targets (``at_pose``): see
+            :meth:`SolveContext.accept`.
     """
 
     slots: list[Pose]
@@ -225,6 +238,7 @@ class Plan:
     chain: bool = False
     support_group: list[str] = field(default_factory=list)
     random: bool = False
+    given: bool = False
 
     def sized(self, j: int, obj: SceneObject) -> Pose:
         """Where the centre of ``obj`` goes in slot ``j``."""

@@ -26,7 +26,7 @@ import numpy as np
 
 from factask.geometry import Pose
 from factask.model.errors import FactaskError
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.model.world import TABLE_X, TABLE_Y, WORKSPACE_X, WORKSPACE_Y
 from factask.scene.objects import (
     Area,
     SceneObject,
@@ -45,6 +45,9 @@ from factask.scene.objects import (
 
 #: Gap kept between footprints (metres): objects never start or land touching.
 CLEARANCE = 0.01
+#: Clearance for targets an author gave explicitly (``at_pose``): they may sit as
+#: close as the author put them, touching, but never inside one another (metres).
+GIVEN_CLEARANCE = -0.001
 #: Candidate poses tried per object (or per column/row/circle) before giving up.
 MAX_TRIES_PER_OBJECT = 200
 #: Height intervals overlapping by less than this (metres) do not collide (resting).
@@ -60,6 +63,10 @@ WORKSPACE_HALF = np.array([(WORKSPACE_X[1] - WORKSPACE_X[0]) / 2,
                            (WORKSPACE_Y[1] - WORKSPACE_Y[0]) / 2])
 #: The workspace as an area (what every object's footprint must stay inside).
 WORKSPACE_AREA = Area(WORKSPACE_CENTER, 0.0, WORKSPACE_HALF)
+
+#: The table top as an area (what a fixed object's footprint must stay on).
+TABLE_AREA = Area(np.array([(TABLE_X[0] + TABLE_X[1]) / 2, (TABLE_Y[0] + TABLE_Y[1]) / 2]), 0.0,
+                  np.array([(TABLE_X[1] - TABLE_X[0]) / 2, (TABLE_Y[1] - TABLE_Y[0]) / 2]))
 
 #: Vertical slack (m) when deciding that one object rests on another.
 REST_EPS = 0.01
@@ -97,6 +104,13 @@ class Occupancy:
     def copy(self) -> Occupancy:
         other = Occupancy(self.clearance)
         other._bodies = dict(self._bodies)
+        return other
+
+    def with_clearance(self, clearance: float) -> Occupancy:
+        """The same bodies under another clearance."""
+        other = Occupancy(clearance)
+        for name, b in self._bodies.items():
+            other.put(name, b.obj, b.pose)
         return other
 
     def put(self, name: str, obj: SceneObject, pose: Pose) -> None:
@@ -187,6 +201,16 @@ def _receptacle_pair(rec: _Body, other: _Body) -> bool:
         floor_top = rec.z0 + floor_thickness(rec.obj)
         return (min(other.z1, floor_top) - max(other.z0, rec.z0)) > Z_CONTACT_EPS
     return True
+
+
+def on_table(obj: SceneObject, pose: Pose) -> bool:
+    """True if the object's footprint lies on the table top (nothing hangs off it)."""
+    return bool(TABLE_AREA.contains(footprint_corners(obj, pose)).all())
+
+
+def centre_in_workspace(pose: Pose) -> bool:
+    """True if the pose's centre lies in the workspace (Ravens' rule for any pose)."""
+    return bool(WORKSPACE_AREA.contains(pose.pos[None, :2]).all())
 
 
 def in_workspace(obj: SceneObject, pose: Pose) -> bool:

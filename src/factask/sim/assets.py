@@ -37,7 +37,7 @@ from factask.model.kinds import (
     shape_problem,
 )
 from factask.model.palette import UnknownColorError, rgba
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.model.world import TABLE_X, TABLE_Y, WORKSPACE_X, WORKSPACE_Y
 from factask.scene.objects import corner_arm_width
 
 # ----------------------------------------------------------------- constants
@@ -64,9 +64,7 @@ OBJECT_GROUP = 0
 #: MJCF default classes of colliding object geoms and of visual-only geoms.
 OBJECT_CLASS = "object"
 VISUAL_CLASS = "visual"
-#: Table top: x and y range (m) and thickness; its top face is the plane z = 0.
-TABLE_X = (-0.30, 1.20)
-TABLE_Y = (-0.70, 0.70)
+#: Table top thickness (m); its extent is TABLE_X, TABLE_Y of factask.model.world.
 TABLE_THICKNESS = 0.05
 #: Height of the table top above the floor (m).
 TABLE_HEIGHT = 0.70

@@ -31,6 +31,7 @@ from factask.scene.collision import (
     area_candidates,
     first_free,
     in_workspace,
+    on_table,
     random_yaws,
 )
 from factask.scene.objects import (
@@ -153,9 +154,12 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
             if isinstance(var.initial, AtFixedPose):
                 p = var.initial
                 pose = resting_pose(obj, p.x, p.y, TABLE_Z, math.radians(p.yaw_deg))
-                if not in_workspace(obj, pose):
-                    raise _Placement(inst, f"its fixed pose ({p.x}, {p.y}) puts it partly "
-                                     "outside the workspace", retry=False)
+                # A pose the task's author gave is a fact: its centre is in the
+                # workspace (validation), and only what cannot physically be — an
+                # object hanging off the table — is refused (Ravens accepts the rest).
+                if not on_table(obj, pose):
+                    raise _Placement(inst, f"its fixed pose ({p.x}, {p.y}) leaves part of it "
+                                     "hanging off the table", retry=False)
                 blocked = occ.blockers(obj, pose)
                 if blocked:
                     raise _Placement(inst, f"its fixed pose overlaps {blocked}", retry=False)
