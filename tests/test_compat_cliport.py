@@ -614,3 +614,20 @@ def test_docs_say_rotations_false_is_more_lenient_than_ravens():
     assert "`rotations=False` -> `check_yaw: false` (**not** what Ravens scores" in text
     assert "Ravens' reward (`is_match`) still checks the yaw" in text
     assert "**whatever `rotations` is**" in text
+
+
+# ------------------------------------------------------- goals in queue order
+def test_targets_at_one_point_stack_in_queue_order():
+    """Every goal targets the tower's base point at the same z (Ravens ignores z):
+    each block rests on the one queued before it, not all three in one spot."""
+    r = _imp("tower_on_one_point")
+    heights = []
+    for f in r.graph.factors:
+        (pose,) = f.goal.poses
+        heights.append(pose.z)
+    assert len(heights) == 3
+    assert heights == sorted(heights)
+    assert np.allclose(np.diff(heights), 0.04, atol=1e-3)
+    from factask.sim.episode import run_episode
+
+    assert run_episode(r.graph, seed=0).success

@@ -253,7 +253,7 @@ def resting_heights(goals: list[_Goal], objects: list[RecordedObject],
     Ravens ignores target z, so task code often gets it wrong (e.g. 5 cm layers for
     4 cm blocks); factask checks heights. A target's height is recomputed as the top
     of what supports it (the table, a fixed object, or a lower target) plus half
-    the height of the objects that may go there.
+    the height of the objects that may go there, taking the targets in queue order.
 
     Returns:
         (goal index, target index) -> centre z, metres.
@@ -281,14 +281,18 @@ def resting_heights(goals: list[_Goal], objects: list[RecordedObject],
                       top))
     out: dict[tuple[int, int], float] = {}
     done: list[tuple[_Slot, float]] = []
-    for slot in sorted(slots, key=lambda s: s.z):
+    # In queue order (then the author's z within a goal), as the robot places them:
+    # a target rests on what is under it when it is placed — a fixed object, or a
+    # target placed before it (at the same author z too: Ravens ignores z, so towers
+    # whose every target is the rod's base point still stack).
+    for slot in sorted(slots, key=lambda s: (s.key[0], s.z)):
         support = 0.0
         for fx, fy, fh, top in fixed:
             if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
                 support = max(support, top)
         for other, z in done:
-            if other.z < slot.z - OVERLAP_SHRINK and _overlap(slot.x, slot.y, slot.half,
-                                                              other.x, other.y, other.half):
+            if other.z <= slot.z + Z_TOLERANCE and _overlap(slot.x, slot.y, slot.half,
+                                                            other.x, other.y, other.half):
                 support = max(support, z + other.height / 2)
         z_rest = support + slot.height / 2
         out[slot.key] = z_rest
