@@ -631,3 +631,31 @@ def test_targets_at_one_point_stack_in_queue_order():
     from factask.sim.episode import run_episode
 
     assert run_episode(r.graph, seed=0).success
+
+
+def test_a_zone_goal_with_a_placement_per_object_keeps_the_authors_spots():
+    """Ravens' (object_points, zones) params are read, and the author's own spot for
+    each object (a packing plan) becomes the in_zone goal's poses."""
+    r = _imp("blocks_to_planned_spots")
+    (f,) = r.graph.factors
+    assert f.goal.type == "in_zone" and f.goal.poses is not None
+    assert [round(p.x, 3) for p in f.goal.poses] == [0.525, 0.575]
+    from factask.sim.episode import run_episode
+    from factask.sim.reset import reset_layout
+
+    _, solved = reset_layout(r.graph, np.random.default_rng(0))
+    xs = sorted(round(float(s.pos[0]), 3) for s in solved[f.name].slots)
+    assert xs == [0.525, 0.575]
+    assert run_episode(r.graph, seed=0).success
+
+
+def test_in_zone_poses_must_match_the_object_count():
+    from factask.model import GraphValidationError, TaskGraph
+
+    data = {"name": "t", "variables": [{"name": "blocks", "kind": "block", "count": 2},
+                                       {"name": "zone", "kind": "zone"}],
+            "factors": [{"name": "f", "goal": {"type": "in_zone", "objects": ["blocks"],
+                                               "zone": "zone",
+                                               "poses": [{"x": 0.5, "y": 0.0}]}}]}
+    with pytest.raises(GraphValidationError, match=r"2 object.*1 pose"):
+        TaskGraph.model_validate(data).ensure_valid()

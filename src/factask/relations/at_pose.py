@@ -115,49 +115,62 @@ class AtPose(RelationBase):
         n, m = len(movers), len(self.poses)
         matches = (np.array(self.matches, dtype=bool) if self.matches is not None
                    else np.ones((n, m), dtype=bool))
-        if matches.shape != (n, m):
-            raise Infeasible(f"matches is {matches.shape}, expected ({n}, {m})", retry=False)
-        frame = ctx.current[ctx.inst(self.frame)[0]] if self.frame else None
-        xy_list, yaws, zs = [], [], []
-        for tp in self.poses:
-            xy = np.array([tp.x, tp.y])
-            yaw = math.radians(tp.yaw_deg)
-            z = tp.z
-            if frame is not None:
-                xy = frame.pos[:2] + yaw_rotation_2d(frame.yaw) @ xy
-                yaw += frame.yaw
-                z = None if z is None else float(frame.pos[2] + z)
-            xy_list.append(xy)
-            yaws.append(yaw)
-            zs.append(z)
-        start = np.array([ctx.current[o.name].pos[:2] for o in movers])
-        dist = np.linalg.norm(start[:, None, :] - np.array(xy_list)[None, :, :], axis=-1)
-        rows, cols = linear_sum_assignment(np.where(matches, dist, 1e6))
-        if np.any(~matches[rows, cols]):
-            raise Infeasible("matches leave some object without a pose of its own",
-                             retry=False)
-        assignment = [0] * n
-        for r, c in zip(rows, cols, strict=True):
-            assignment[int(r)] = int(c)
-        slots, surfaces, supports, ignore = [], [], [], []
-        moving = {o.name for o in movers}
-        for j in range(m):
-            who = [i for i in range(n) if assignment[i] == j]
-            obj = movers[who[0]] if who else movers[int(np.argmax(matches[:, j]))]
-            if zs[j] is not None:
-                surface, host = None, TABLE
-                slots.append(Pose.from_xyz_yaw(*xy_list[j], zs[j], yaws[j]))
-            else:
-                surface, host = _surface_under(ctx, xy_list[j], exclude=moving)
-                slots.append(resting_pose(obj, *xy_list[j], surface, yaws[j]))
-            surfaces.append(surface)
-            supports.append(host)
-            ignore.append(set() if host == TABLE else {host})
-        return make_plan(slots, surfaces, supports, ignore, matches, assignment=assignment,
-                         check_yaw=self.check_yaw, given=True)
+        return solve_given_poses(ctx, movers, self.poses, matches, self.frame, self.check_yaw)
 
     def check(self, solved: SolvedFactor, scene: CheckScene) -> Verdict:
         return check_slots(solved, scene, self.tolerances)
+
+
+def solve_given_poses(ctx: SolveContext, movers: list[SceneObject], poses: list[TargetPose],
+                      matches: np.ndarray, frame: str | None = None,
+                      check_yaw: bool = True) -> Plan:
+    """Slots at poses an author gave (see :class:`AtPose`), shared by every relation
+    that takes explicit poses.
+
+    Raises:
+        Infeasible: ``matches`` has the wrong shape or leaves an object without a pose.
+    """
+    n, m = len(movers), len(poses)
+    if matches.shape != (n, m):
+        raise Infeasible(f"matches is {matches.shape}, expected ({n}, {m})", retry=False)
+    frame_pose = ctx.current[ctx.inst(frame)[0]] if frame else None
+    xy_list, yaws, zs = [], [], []
+    for tp in poses:
+        xy = np.array([tp.x, tp.y])
+        yaw = math.radians(tp.yaw_deg)
+        z = tp.z
+        if frame_pose is not None:
+            xy = frame_pose.pos[:2] + yaw_rotation_2d(frame_pose.yaw) @ xy
+            yaw += frame_pose.yaw
+            z = None if z is None else float(frame_pose.pos[2] + z)
+        xy_list.append(xy)
+        yaws.append(yaw)
+        zs.append(z)
+    start = np.array([ctx.current[o.name].pos[:2] for o in movers])
+    dist = np.linalg.norm(start[:, None, :] - np.array(xy_list)[None, :, :], axis=-1)
+    rows, cols = linear_sum_assignment(np.where(matches, dist, 1e6))
+    if np.any(~matches[rows, cols]):
+        raise Infeasible("matches leave some object without a pose of its own",
+                         retry=False)
+    assignment = [0] * n
+    for r, c in zip(rows, cols, strict=True):
+        assignment[int(r)] = int(c)
+    slots, surfaces, supports, ignore = [], [], [], []
+    moving = {o.name for o in movers}
+    for j in range(m):
+        who = [i for i in range(n) if assignment[i] == j]
+        obj = movers[who[0]] if who else movers[int(np.argmax(matches[:, j]))]
+        if zs[j] is not None:
+            surface, host = None, TABLE
+            slots.append(Pose.from_xyz_yaw(*xy_list[j], zs[j], yaws[j]))
+        else:
+            surface, host = _surface_under(ctx, xy_list[j], exclude=moving)
+            slots.append(resting_pose(obj, *xy_list[j], surface, yaws[j]))
+        surfaces.append(surface)
+        supports.append(host)
+        ignore.append(set() if host == TABLE else {host})
+    return make_plan(slots, surfaces, supports, ignore, matches, assignment=assignment,
+                     check_yaw=check_yaw, given=True)
 
 
 def _surface_under(ctx: SolveContext, xy: np.ndarray, exclude: set[str]) -> tuple[float, str]:

@@ -8,7 +8,10 @@ Rules (documented in docs/compat.md):
   ``StartInside`` when the object starts above the table on another object;
 * one factor per ``add_goal``: ``pose`` -> ``AtPose`` (targets, ``matches``,
   ``rotations=False`` -> ``check_yaw=False``), ``zone`` -> ``InZone`` on the
-  recorded region nearest to the zone pose (or a new fixed zone);
+  recorded region nearest to the zone pose (or a new fixed zone), with the
+  author's own target for each object as its ``poses`` when every object has one
+  inside the zone (a packing plan); goals are read by
+  :mod:`factask.compat.cliport.goals`;
 * weights = ``step_max_reward``, rescaled to sum to 1;
 * an object in several goals keeps only its **last** goal (factask has one goal
   per object); the earlier ones lose it, with a warning.
@@ -18,26 +21,32 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from factask.compat.cliport.errors import CliportImportError, Unsupported
+from factask.compat.cliport.goals import (
+    RecordedGoal,
+    read_goals,
+    resting_heights,
+    target_pose,
+    zone_poses,
+)
 from factask.compat.cliport.grippers import Spatula
 from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.scoring import RavensGoal
-from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
+from factask.compat.cliport.transforms import yaw_of_xyzw
 from factask.geometry import tilt_deg
 from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
 from factask.model.kinds import kind_spec
 from factask.model.names import slugify
-from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Z_TOLERANCE, Tolerances
+from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.relations import AtPose, InZone, TargetPose
+from factask.relations import AtPose, InZone
 
 #: An object whose bottom is this far above the table starts on something.
 START_ABOVE_TABLE = 0.01
@@ -49,27 +58,9 @@ WEIGHT_WARN_TOLERANCE = 1e-3
 TILT_WARN_DEG = 5.0
 #: Longest factor name (the graph model allows 64 characters).
 MAX_NAME = 48
-#: Footprints closer than this to merely touching do not support each other, metres.
-OVERLAP_SHRINK = 0.002
-#: Decimals kept of target coordinates (metres, degrees): 1 micrometre.
-TARGET_DECIMALS = 6
 #: Colour of a zone variable created from a zone goal's params.
 GOAL_ZONE_COLOR = "gray"
 
-
-@dataclass
-class _Goal:
-    index: int
-    objs: list[RecordedObject]
-    symmetries: list[float]
-    matches: np.ndarray
-    targets: list[tuple[np.ndarray, np.ndarray]]
-    replace: bool
-    rotations: bool
-    metric: str
-    zones: list[tuple[np.ndarray, np.ndarray, tuple[float, float]]]
-    max_reward: float
-    language: str
 
 
 def kebab(class_name: str) -> str:
@@ -88,85 +79,6 @@ def _unique(name: str, taken: set[str]) -> str:
     taken.add(out)
     return out
 
-
-# ------------------------------------------------------------------ goals
-def _language(task: Any, index: int, goal: Any) -> str:
-    for g, text in getattr(task, "_factask_goal_lang", []):
-        if g is goal and text:
-            return text
-    langs = list(getattr(task, "lang_goals", []) or [])
-    if len(langs) == len(task.goals) and langs:
-        return str(langs[index])
-    if langs:
-        return str(langs[min(index, len(langs) - 1)])
-    return str(getattr(task, "lang_template", "") or f"goal {index}")
-
-
-def _read_goals(task: Any, session: Session) -> list[_Goal]:
-    out = []
-    for i, goal in enumerate(task.goals):
-        if len(goal) != 8:
-            raise CliportImportError(f"goal {i} has {len(goal)} fields; CLIPort goals are "
-                                     "(objs, matches, targs, replace, rotations, metric, "
-                                     "params, max_reward)")
-        objs, matches, targs, replace, rotations, metric, params, max_reward = goal
-        objs = list(objs)
-        ids, syms = [], []
-        for o in objs:
-            if isinstance(o, (tuple, list)):
-                ids.append(o[0])
-                sym = o[1][0] if isinstance(o[1], (tuple, list)) else o[1]
-                syms.append(float(sym or 0.0))
-            else:
-                ids.append(o)
-                syms.append(0.0)
-        recorded = [session.obj(oid) for oid in ids]
-        if len({o.obj_id for o in recorded}) != len(recorded):
-            raise CliportImportError(f"goal {i} lists the same object twice")
-        targets = []
-        for t in list(targs or []):
-            try:
-                targets.append(split_pose(t))
-            except (TypeError, ValueError) as exc:
-                raise CliportImportError(f"goal {i}: bad target pose {t!r}: {exc}") from None
-        m = np.asarray(matches if matches is not None else np.ones((len(ids), len(targets))),
-                       dtype=float)
-        if m.ndim == 1 and len(ids) == 1:
-            m = m.reshape(1, -1)
-        if metric == "pose" and m.ndim == 2 and m.shape[0] == len(ids) \
-                and m.shape[1] != len(targets):
-            # Ravens only looks at the matrix's columns: extra targets are never matched,
-            # extra columns name targets that do not exist.
-            session.warn(f"goal {i}: matches has {m.shape[1]} column(s) for {len(targets)} "
-                         "target(s); missing columns count as 0, extra ones are ignored")
-            fixed = np.zeros((len(ids), len(targets)))
-            n = min(m.shape[1], len(targets))
-            fixed[:, :n] = m[:, :n]
-            m = fixed
-        if metric == "pose" and m.shape != (len(ids), len(targets)):
-            raise CliportImportError(f"goal {i}: matches is {m.shape}, expected "
-                                     f"{(len(ids), len(targets))} (objects x targets)")
-        zones = []
-        if metric == "zone":
-            for zp in list(params or []):
-                zpos, zquat = split_pose(zp[0])
-                zsize = np.asarray(zp[1], dtype=float).reshape(-1)
-                zones.append((zpos, zquat, (float(zsize[0]), float(zsize[-1] if len(zsize) == 1
-                                                                   else zsize[1]))))
-            if not zones:
-                raise CliportImportError(f"goal {i}: metric 'zone' needs params "
-                                         "[(zone_pose, zone_size)]")
-        elif metric != "pose":
-            raise Unsupported(f"goal {i}: metric {metric!r} (only 'pose' and 'zone' exist)")
-        try:
-            max_reward = float(max_reward)
-        except (TypeError, ValueError):
-            raise CliportImportError(f"goal {i}: step_max_reward must be a number, got "
-                                     f"{max_reward!r}") from None
-        out.append(_Goal(i, recorded, syms, (m > 0).astype(int), targets, bool(replace),
-                         bool(rotations), str(metric), zones, max_reward,
-                         _language(task, i, goal)))
-    return out
 
 
 # -------------------------------------------------------------- variables
@@ -222,100 +134,8 @@ def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int,
     return AtFixedPose(x=x, y=y, yaw_deg=math.degrees(yaw_of_xyzw(o.quat)))
 
 
-# ---------------------------------------------------------------- factors
-@dataclass
-class _Slot:
-    key: tuple[int, int]
-    x: float
-    y: float
-    z: float
-    half: tuple[float, float]
-    height: float
 
-
-def _half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
-    """Half extents of the axis-aligned box around a footprint turned by ``yaw``."""
-    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
-    hx, hy = size[0] / 2, size[1] / 2
-    return c * hx + s * hy, s * hx + c * hy
-
-
-def _overlap(ax: float, ay: float, ah: tuple[float, float], bx: float, by: float,
-             bh: tuple[float, float]) -> bool:
-    return (abs(ax - bx) < ah[0] + bh[0] - OVERLAP_SHRINK
-            and abs(ay - by) < ah[1] + bh[1] - OVERLAP_SHRINK)
-
-
-def resting_heights(goals: list[_Goal], objects: list[RecordedObject],
-                    moved: set[int]) -> dict[tuple[int, int], float]:
-    """Physical centre height of every pose target, from what would lie under it.
-
-    Ravens ignores target z, so task code often gets it wrong (e.g. 5 cm layers for
-    4 cm blocks); factask checks heights. A target's height is recomputed as the top
-    of what supports it (the table, a fixed object, or a lower target) plus half
-    the height of the objects that may go there, taking the targets in queue order.
-
-    Returns:
-        (goal index, target index) -> centre z, metres.
-    """
-    slots: list[_Slot] = []
-    for g in goals:
-        if g.metric != "pose" or not g.objs:
-            continue
-        for j, (pos, quat) in enumerate(g.targets):
-            allowed = [o for i, o in enumerate(g.objs) if g.matches[i, j]]
-            if not allowed:
-                continue
-            yaw = yaw_of_xyzw(quat)
-            size = max((o.size for o in allowed), key=lambda s: s[2])
-            slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
-                               _half_xy(size, yaw), size[2]))
-    fixed = []
-    for o in objects:
-        spec = kind_spec(o.kind)
-        if o.obj_id in moved or not spec.collides:
-            continue
-        bottom = float(o.pos[2]) - o.size[2] / 2
-        top = bottom if spec.receptacle else bottom + o.size[2]
-        fixed.append((float(o.pos[0]), float(o.pos[1]), _half_xy(o.size, yaw_of_xyzw(o.quat)),
-                      top))
-    out: dict[tuple[int, int], float] = {}
-    done: list[tuple[_Slot, float]] = []
-    # In queue order (then the author's z within a goal), as the robot places them:
-    # a target rests on what is under it when it is placed — a fixed object, or a
-    # target placed before it (at the same author z too: Ravens ignores z, so towers
-    # whose every target is the rod's base point still stack).
-    for slot in sorted(slots, key=lambda s: (s.key[0], s.z)):
-        support = 0.0
-        for fx, fy, fh, top in fixed:
-            if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
-                support = max(support, top)
-        for other, z in done:
-            if other.z <= slot.z + Z_TOLERANCE and _overlap(slot.x, slot.y, slot.half,
-                                                            other.x, other.y, other.half):
-                support = max(support, z + other.height / 2)
-        z_rest = support + slot.height / 2
-        out[slot.key] = z_rest
-        done.append((slot, z_rest))
-    return out
-
-
-def _target(pos: np.ndarray, quat: np.ndarray, height: float, z_rest: float | None,
-            where: str, warn: Any) -> TargetPose:
-    z = float(pos[2]) if z_rest is None else z_rest
-    if z_rest is not None and abs(float(pos[2]) - z_rest) > Z_TOLERANCE:
-        warn(f"{where}: target z {float(pos[2]):.4f} m is not where the object would rest; "
-             f"using {z_rest:.4f} m (Ravens ignores z, factask checks it)")
-    # "Resting on the table" is left to the checker; a target on something keeps its height.
-    keep_z = z > height / 2 + Z_TOLERANCE if z_rest is None else z_rest > height / 2 + 1e-6
-    # Round away utils.apply's float32 noise (a 1 cm gap must stay 1 cm).
-    return TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
-                      y=round(float(pos[1]), TARGET_DECIMALS),
-                      z=round(z, TARGET_DECIMALS) if keep_z else None,
-                      yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS))
-
-
-def _zone_variable(goal: _Goal, objects: list[RecordedObject], names: dict[int, str],
+def _zone_variable(goal: RecordedGoal, objects: list[RecordedObject], names: dict[int, str],
                    extra: list[StateVariable], warn: Any) -> str:
     zpos, zquat, (sx, sy) = goal.zones[0]
     if len(goal.zones) > 1:
@@ -339,7 +159,7 @@ def _zone_variable(goal: _Goal, objects: list[RecordedObject], names: dict[int, 
     return name
 
 
-def _keep_last_goal_per_object(goals: list[_Goal], names: dict[int, str], warn: Any) -> None:
+def _keep_last_goal_per_object(goals: list[RecordedGoal], names: dict[int, str], warn: Any) -> None:
     claimed: set[int] = set()
     for g in reversed(goals):
         keep = [i for i, o in enumerate(g.objs) if o.obj_id not in claimed]
@@ -375,7 +195,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     if not objects:
         raise CliportImportError("reset added no objects (env.add_object was never called)")
     names = object_names(objects)
-    goals = _read_goals(task, session)
+    goals = read_goals(task, session)
     if not goals:
         raise CliportImportError("reset added no goals (add_goal was never called)")
     if getattr(task, "ee", None) is Spatula:
@@ -413,7 +233,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             g.objs = [g.objs[i] for i in rows]
             g.matches = g.matches[rows, :]
     rest = resting_heights(goals, objects, {o.obj_id for g in goals for o in g.objs})
-    drafts: list[tuple[_Goal, Any]] = []
+    drafts: list[tuple[RecordedGoal, Any]] = []
     for g in goals:
         if not g.objs:
             warn(f"goal {g.index} ({g.language!r}) has no objects left and is dropped")
@@ -426,14 +246,15 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                                   f"{len(g.targets)} target pose(s); factask gives every "
                                   "object its own target")
             tallest = max(o.size[2] for o in g.objs)
-            poses = [_target(p, q, tallest, rest.get((g.index, j)), f"goal {g.index} target {j}",
-                             warn) for j, (p, q) in enumerate(g.targets)]
+            poses = [target_pose(p, q, tallest, rest.get((g.index, j)),
+                                 f"goal {g.index} target {j}", warn)
+                     for j, (p, q) in enumerate(g.targets)]
             rel: Any = AtPose(objects=objs, poses=poses,
                               matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
         else:
             zone = _zone_variable(g, objects, names, extra, warn)
             taken.add(zone)
-            rel = InZone(objects=objs, zone=zone, **extra_kw)
+            rel = InZone(objects=objs, zone=zone, poses=zone_poses(g), **extra_kw)
         drafts.append((g, rel))
     if not drafts:
         raise CliportImportError("no goal is left to check after merging goals per object")

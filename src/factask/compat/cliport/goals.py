@@ -1,0 +1,253 @@
+"""What a CLIPort task's goals say, read faithfully: the goal records and their targets.
+
+* :func:`read_goals` reads ``task.goals`` (GenSim's ``add_goal`` and goals
+  appended directly, Ravens' tuple layout) into :class:`RecordedGoal` records;
+* :func:`resting_heights` puts every pose target where the object would rest,
+  taking the targets in queue order, as the robot places them;
+* :func:`target_pose` and :func:`zone_poses` turn targets into factask poses —
+  an author's explicit placements are facts.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+from factask.compat.cliport.errors import CliportImportError, Unsupported
+from factask.compat.cliport.recorder import RecordedObject, Session
+from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
+from factask.model.kinds import kind_spec
+from factask.model.tolerances import Z_TOLERANCE
+from factask.relations import TargetPose
+
+#: Footprints closer than this to merely touching do not support each other, metres.
+OVERLAP_SHRINK = 0.002
+#: Decimals kept of target coordinates (metres, degrees): 1 micrometre.
+TARGET_DECIMALS = 6
+
+
+@dataclass
+class RecordedGoal:
+    index: int
+    objs: list[RecordedObject]
+    symmetries: list[float]
+    matches: np.ndarray
+    targets: list[tuple[np.ndarray, np.ndarray]]
+    replace: bool
+    rotations: bool
+    metric: str
+    zones: list[tuple[np.ndarray, np.ndarray, tuple[float, float]]]
+    max_reward: float
+    language: str
+
+
+
+def goal_language(task: Any, index: int, goal: Any) -> str:
+    for g, text in getattr(task, "_factask_goal_lang", []):
+        if g is goal and text:
+            return text
+    langs = list(getattr(task, "lang_goals", []) or [])
+    if len(langs) == len(task.goals) and langs:
+        return str(langs[index])
+    if langs:
+        return str(langs[min(index, len(langs) - 1)])
+    return str(getattr(task, "lang_template", "") or f"goal {index}")
+
+
+def read_goals(task: Any, session: Session) -> list[RecordedGoal]:
+    out = []
+    for i, goal in enumerate(task.goals):
+        if len(goal) != 8:
+            raise CliportImportError(f"goal {i} has {len(goal)} fields; CLIPort goals are "
+                                     "(objs, matches, targs, replace, rotations, metric, "
+                                     "params, max_reward)")
+        objs, matches, targs, replace, rotations, metric, params, max_reward = goal
+        objs = list(objs)
+        ids, syms = [], []
+        for o in objs:
+            if isinstance(o, (tuple, list)):
+                ids.append(o[0])
+                sym = o[1][0] if isinstance(o[1], (tuple, list)) else o[1]
+                syms.append(float(sym or 0.0))
+            else:
+                ids.append(o)
+                syms.append(0.0)
+        recorded = [session.obj(oid) for oid in ids]
+        if len({o.obj_id for o in recorded}) != len(recorded):
+            raise CliportImportError(f"goal {i} lists the same object twice")
+        targets = []
+        for t in list(targs or []):
+            try:
+                targets.append(split_pose(t))
+            except (TypeError, ValueError) as exc:
+                raise CliportImportError(f"goal {i}: bad target pose {t!r}: {exc}") from None
+        m = np.asarray(matches if matches is not None else np.ones((len(ids), len(targets))),
+                       dtype=float)
+        if m.ndim == 1 and len(ids) == 1:
+            m = m.reshape(1, -1)
+        if metric == "pose" and m.ndim == 2 and m.shape[0] == len(ids) \
+                and m.shape[1] != len(targets):
+            # Ravens only looks at the matrix's columns: extra targets are never matched,
+            # extra columns name targets that do not exist.
+            session.warn(f"goal {i}: matches has {m.shape[1]} column(s) for {len(targets)} "
+                         "target(s); missing columns count as 0, extra ones are ignored")
+            fixed = np.zeros((len(ids), len(targets)))
+            n = min(m.shape[1], len(targets))
+            fixed[:, :n] = m[:, :n]
+            m = fixed
+        if metric == "pose" and m.shape != (len(ids), len(targets)):
+            raise CliportImportError(f"goal {i}: matches is {m.shape}, expected "
+                                     f"{(len(ids), len(targets))} (objects x targets)")
+        zones = []
+        if metric == "zone":
+            for zp in _zone_list(params):
+                zpos, zquat = split_pose(zp[0])
+                zsize = np.asarray(zp[1], dtype=float).reshape(-1)
+                zones.append((zpos, zquat, (float(zsize[0]), float(zsize[-1] if len(zsize) == 1
+                                                                   else zsize[1]))))
+            if not zones:
+                raise CliportImportError(f"goal {i}: metric 'zone' needs params "
+                                         "[(zone_pose, zone_size)]")
+        elif metric != "pose":
+            raise Unsupported(f"goal {i}: metric {metric!r} (only 'pose' and 'zone' exist)")
+        try:
+            max_reward = float(max_reward)
+        except (TypeError, ValueError):
+            raise CliportImportError(f"goal {i}: step_max_reward must be a number, got "
+                                     f"{max_reward!r}") from None
+        out.append(RecordedGoal(i, recorded, syms, (m > 0).astype(int), targets, bool(replace),
+                         bool(rotations), str(metric), zones, max_reward,
+                         goal_language(task, i, goal)))
+    return out
+
+
+def _zone_list(params: Any) -> list[Any]:
+    """The (zone_pose, zone_size) pairs of a zone goal's params, in either form task
+    code writes: GenSim's ``add_goal`` takes ``[(zone_pose, zone_size), ...]``; a goal
+    appended to ``self.goals`` directly carries Ravens' ``(object_points, zones)``,
+    where ``object_points`` maps object ids to sample points (factask samples its own)."""
+    if isinstance(params, (tuple, list)) and len(params) == 2 and isinstance(params[0], dict):
+        return list(params[1] or [])
+    return list(params or [])
+
+
+
+@dataclass
+class _Slot:
+    key: tuple[int, int]
+    x: float
+    y: float
+    z: float
+    half: tuple[float, float]
+    height: float
+
+
+def _half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
+    """Half extents of the axis-aligned box around a footprint turned by ``yaw``."""
+    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
+    hx, hy = size[0] / 2, size[1] / 2
+    return c * hx + s * hy, s * hx + c * hy
+
+
+def _overlap(ax: float, ay: float, ah: tuple[float, float], bx: float, by: float,
+             bh: tuple[float, float]) -> bool:
+    return (abs(ax - bx) < ah[0] + bh[0] - OVERLAP_SHRINK
+            and abs(ay - by) < ah[1] + bh[1] - OVERLAP_SHRINK)
+
+
+def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
+                    moved: set[int]) -> dict[tuple[int, int], float]:
+    """Physical centre height of every pose target, from what would lie under it.
+
+    Ravens ignores target z, so task code often gets it wrong (e.g. 5 cm layers for
+    4 cm blocks); factask checks heights. A target's height is recomputed as the top
+    of what supports it (the table, a fixed object, or a lower target) plus half
+    the height of the objects that may go there, taking the targets in queue order.
+
+    Returns:
+        (goal index, target index) -> centre z, metres.
+    """
+    slots: list[_Slot] = []
+    for g in goals:
+        if g.metric != "pose" or not g.objs:
+            continue
+        for j, (pos, quat) in enumerate(g.targets):
+            allowed = [o for i, o in enumerate(g.objs) if g.matches[i, j]]
+            if not allowed:
+                continue
+            yaw = yaw_of_xyzw(quat)
+            size = max((o.size for o in allowed), key=lambda s: s[2])
+            slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
+                               _half_xy(size, yaw), size[2]))
+    fixed = []
+    for o in objects:
+        spec = kind_spec(o.kind)
+        if o.obj_id in moved or not spec.collides:
+            continue
+        bottom = float(o.pos[2]) - o.size[2] / 2
+        top = bottom if spec.receptacle else bottom + o.size[2]
+        fixed.append((float(o.pos[0]), float(o.pos[1]), _half_xy(o.size, yaw_of_xyzw(o.quat)),
+                      top))
+    out: dict[tuple[int, int], float] = {}
+    done: list[tuple[_Slot, float]] = []
+    # In queue order (then the author's z within a goal), as the robot places them:
+    # a target rests on what is under it when it is placed — a fixed object, or a
+    # target placed before it (at the same author z too: Ravens ignores z, so towers
+    # whose every target is the rod's base point still stack).
+    for slot in sorted(slots, key=lambda s: (s.key[0], s.z)):
+        support = 0.0
+        for fx, fy, fh, top in fixed:
+            if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
+                support = max(support, top)
+        for other, z in done:
+            if other.z <= slot.z + Z_TOLERANCE and _overlap(slot.x, slot.y, slot.half,
+                                                            other.x, other.y, other.half):
+                support = max(support, z + other.height / 2)
+        z_rest = support + slot.height / 2
+        out[slot.key] = z_rest
+        done.append((slot, z_rest))
+    return out
+
+
+def target_pose(pos: np.ndarray, quat: np.ndarray, height: float, z_rest: float | None,
+            where: str, warn: Any) -> TargetPose:
+    z = float(pos[2]) if z_rest is None else z_rest
+    if z_rest is not None and abs(float(pos[2]) - z_rest) > Z_TOLERANCE:
+        warn(f"{where}: target z {float(pos[2]):.4f} m is not where the object would rest; "
+             f"using {z_rest:.4f} m (Ravens ignores z, factask checks it)")
+    # "Resting on the table" is left to the checker; a target on something keeps its height.
+    keep_z = z > height / 2 + Z_TOLERANCE if z_rest is None else z_rest > height / 2 + 1e-6
+    # Round away utils.apply's float32 noise (a 1 cm gap must stay 1 cm).
+    return TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
+                      y=round(float(pos[1]), TARGET_DECIMALS),
+                      z=round(z, TARGET_DECIMALS) if keep_z else None,
+                      yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS))
+
+
+def zone_poses(goal: RecordedGoal) -> list[TargetPose] | None:
+    """The author's own place for each object inside the zone (e.g. a packing plan):
+    when the goal gives every object a target of its own (within ``matches``) whose
+    centre lies in the zone, those targets are facts; otherwise None (factask packs)."""
+    n = len(goal.objs)
+    if len(goal.targets) < n or goal.matches.shape != (n, len(goal.targets)):
+        return None
+    rows, cols = linear_sum_assignment(-goal.matches.astype(float))
+    if len(rows) < n or not all(goal.matches[r, c] for r, c in zip(rows, cols, strict=True)):
+        return None
+    zpos, zquat, (sx, sy) = goal.zones[0]
+    zyaw = yaw_of_xyzw(zquat)
+    c, s = math.cos(zyaw), math.sin(zyaw)
+    poses = []
+    for r in np.argsort(rows):
+        pos, quat = goal.targets[int(cols[r])]
+        dx, dy = float(pos[0] - zpos[0]), float(pos[1] - zpos[1])
+        if abs(c * dx + s * dy) > sx / 2 or abs(-s * dx + c * dy) > sy / 2:
+            return None
+        poses.append(TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
+                                y=round(float(pos[1]), TARGET_DECIMALS),
+                                yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS)))
+    return poses
