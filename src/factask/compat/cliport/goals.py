@@ -204,8 +204,17 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
                 support = max(support, top)
         for other, z in done:
-            if other.z <= slot.z + Z_TOLERANCE and _overlap(slot.x, slot.y, slot.half,
-                                                            other.x, other.y, other.half):
+            # A target rests on one the author put lower, where they overlap. At the
+            # same author z, a target of an earlier goal is already placed when this
+            # one is: it supports this one if it stands right under its centre (a
+            # tower sent to one point); neighbours (kit holes, a row) do not stack.
+            if other.z < slot.z - OVERLAP_SHRINK:
+                below = _overlap(slot.x, slot.y, slot.half, other.x, other.y, other.half)
+            else:
+                below = (other.key[0] < slot.key[0] and other.z <= slot.z + Z_TOLERANCE
+                         and abs(slot.x - other.x) < other.half[0]
+                         and abs(slot.y - other.y) < other.half[1])
+            if below:
                 support = max(support, z + other.height / 2)
         z_rest = support + slot.height / 2
         out[slot.key] = z_rest
