@@ -659,3 +659,23 @@ def test_in_zone_poses_must_match_the_object_count():
                                                "poses": [{"x": 0.5, "y": 0.0}]}}]}
     with pytest.raises(GraphValidationError, match=r"2 object.*1 pose"):
         TaskGraph.model_validate(data).ensure_valid()
+
+
+def test_get_true_image_sees_the_highest_box_from_above():
+    """Ravens' oracle view, computed from the recorded boxes: rows along y, columns
+    along x, each pixel the highest top over it and its object id."""
+    from factask.compat.cliport.recorder import RecordedObject
+    from factask.compat.cliport.task import top_down_view
+
+    bounds = np.array([[0.25, 0.75], [-0.5, 0.5], [0.0, 0.3]])
+    low = RecordedObject(3, "box/box-template.urdf", "box", (0.1, 0.1, 0.04), "brown", "rigid",
+                         np.array([0.5, 0.0, 0.02]), np.array([0.0, 0.0, 0.0, 1.0]))
+    high = RecordedObject(4, "box/box-template.urdf", "box", (0.04, 0.04, 0.04), "red",
+                          "rigid", np.array([0.5, 0.0, 0.06]), np.array([0.0, 0.0, 0.0, 1.0]))
+    color, height, mask = top_down_view([high, low], bounds, 0.003125)
+    assert height.shape == mask.shape == (320, 160) and color.shape == (320, 160, 3)
+    centre = (160, 80)  # y = 0 -> row 160, x = 0.5 -> column 80
+    assert mask[centre] == 4 and height[centre] == pytest.approx(0.08)
+    edge = (160, 80 + int(0.04 / 0.003125))  # 4 cm along +x: only the low box
+    assert mask[edge] == 3 and height[edge] == pytest.approx(0.04)
+    assert mask[0, 0] == 0 and height[0, 0] == 0.0

@@ -249,3 +249,25 @@ def test_every_public_error_class_of_the_package_is_a_factask_error() -> None:
     from factask.model.palette import UnknownColorError
 
     assert issubclass(UnknownKindError, ValueError) and issubclass(UnknownColorError, ValueError)
+
+
+def test_the_package_raises_no_bare_builtin_error() -> None:
+    """Every error factask raises is a FactaskError subclass (keeping ValueError,
+    KeyError or RuntimeError as a second base where callers rely on it). Exempt:
+    AttributeError from module/class ``__getattr__`` (the attribute protocol) and
+    SystemExit from a script's entry point."""
+    import ast
+    import builtins
+
+    exempt = {"AttributeError", "SystemExit"}
+    builtin_errors = {name for name, obj in vars(builtins).items()
+                      if isinstance(obj, type) and issubclass(obj, BaseException)} - exempt
+    root = Path(__file__).resolve().parents[1] / "src" / "factask"
+    bare = []
+    for path in sorted(root.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Raise) and node.exc is not None:
+                exc = node.exc.func if isinstance(node.exc, ast.Call) else node.exc
+                if isinstance(exc, ast.Name) and exc.id in builtin_errors:
+                    bare.append(f"{path.relative_to(root)}:{node.lineno} raises {exc.id}")
+    assert not bare, "\n".join(bare)

@@ -70,3 +70,33 @@ def test_the_command_line_rejects_an_unknown_robot(tmp_path) -> None:
     result = CliRunner().invoke(app, ["run", str(path), "--robot", "gripper"])
     assert result.exit_code == 2
     assert "ur10e" in result.output
+
+
+@pytest.mark.parametrize("command", ["generate", "benchmark"])
+def test_the_generation_commands_reject_an_unknown_robot(command: str, tmp_path) -> None:
+    """Checked before any LLM is configured or called."""
+    args = [command, "x: y"] if command == "generate" else [command, "--out", str(tmp_path)]
+    tasks = tmp_path / "tasks.json"
+    tasks.write_text('[{"name": "x", "description": "y"}]')
+    if command == "benchmark":
+        args += ["--tasks", str(tasks)]
+    result = CliRunner().invoke(app, [*args, "--robot", "gripper"])
+    assert result.exit_code == 2, result.output
+    assert "ur10e" in result.output
+
+
+def test_the_verifier_takes_every_robot_and_refuses_others() -> None:
+    from factask.gen.verify import Verifier
+
+    for name in ROBOT_NAMES:
+        assert Verifier(episodes=1, robot=name).robot == name
+    with pytest.raises(RobotError):
+        Verifier(episodes=1, robot="gripper")
+
+
+def test_the_robot_docs_name_every_registered_robot() -> None:
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "robot.md").read_text()
+    missing = [n for n in ROBOT_NAMES if f'`"{n}"`' not in text]
+    assert not missing, f"docs/robot.md does not name {missing}"

@@ -3,12 +3,13 @@
 The graph model is imported eagerly (it is pure Python). Everything that pulls in
 heavy dependencies — the MuJoCo backend, the task library, drawing, LLM
 generation, the CLIPort layer — is re-exported *lazily*: ``factask.FactaskEnv``
-imports :mod:`factask.sim.env` on first use, so ``import factask`` stays fast.
+runs ``import factask.sim.env`` on first use, so ``import factask`` stays fast.
 """
 
 from __future__ import annotations
 
-import importlib
+from collections.abc import Callable
+from types import ModuleType
 from typing import Any
 
 from factask.model import *  # noqa: F403
@@ -16,52 +17,125 @@ from factask.model import __all__ as _model_all
 
 __version__ = "0.1.0"
 
-#: Lazily re-exported names: public name -> (module, attribute).
-_LAZY: dict[str, tuple[str, str]] = {
+
+# One loader per lazily re-exported module: a plain import, run on first use.
+def _library() -> ModuleType:
+    import factask.library as module
+
+    return module
+
+
+def _templates() -> ModuleType:
+    import factask.library.templates as module
+
+    return module
+
+
+def _viz() -> ModuleType:
+    import factask.viz as module
+
+    return module
+
+
+def _compile() -> ModuleType:
+    import factask.sim.compile as module
+
+    return module
+
+
+def _collision() -> ModuleType:
+    import factask.scene.collision as module
+
+    return module
+
+
+def _env() -> ModuleType:
+    import factask.sim.env as module
+
+    return module
+
+
+def _oracle() -> ModuleType:
+    import factask.sim.oracle as module
+
+    return module
+
+
+def _episode() -> ModuleType:
+    import factask.sim.episode as module
+
+    return module
+
+
+def _render() -> ModuleType:
+    import factask.sim.render as module
+
+    return module
+
+
+def _gen() -> ModuleType:
+    import factask.gen as module
+
+    return module
+
+
+def _benchmark() -> ModuleType:
+    import factask.evaluation.benchmark as module
+
+    return module
+
+
+def _cliport() -> ModuleType:
+    import factask.compat.cliport as module
+
+    return module
+
+
+#: Lazily re-exported names: public name -> the loader of the module defining it.
+_LAZY: dict[str, Callable[[], ModuleType]] = {
     # task library
-    "get_task": ("factask.library", "get_task"),
-    "task_names": ("factask.library", "task_names"),
-    "list_tasks": ("factask.library", "list_tasks"),
-    "TEMPLATES": ("factask.library.templates", "TEMPLATES"),
-    "get_template": ("factask.library.templates", "get_template"),
+    "get_task": _library,
+    "task_names": _library,
+    "list_tasks": _library,
+    "TEMPLATES": _templates,
+    "get_template": _templates,
     # pictures
-    "draw_graph": ("factask.viz", "draw_graph"),
+    "draw_graph": _viz,
     # MuJoCo backend
-    "compile_graph": ("factask.sim.compile", "compile_graph"),
-    "CompileError": ("factask.sim.compile", "CompileError"),
-    "LayoutError": ("factask.scene.collision", "LayoutError"),
-    "FactaskEnv": ("factask.sim.env", "FactaskEnv"),
-    "Oracle": ("factask.sim.oracle", "Oracle"),
-    "run_episode": ("factask.sim.episode", "run_episode"),
-    "evaluate_task": ("factask.sim.episode", "evaluate_task"),
-    "check_runtime": ("factask.sim.episode", "check_runtime"),
-    "EpisodeResult": ("factask.sim.episode", "EpisodeResult"),
-    "TaskResult": ("factask.sim.episode", "TaskResult"),
-    "SceneRenderer": ("factask.sim.render", "SceneRenderer"),
-    "VideoRecorder": ("factask.sim.render", "VideoRecorder"),
+    "compile_graph": _compile,
+    "CompileError": _compile,
+    "LayoutError": _collision,
+    "FactaskEnv": _env,
+    "Oracle": _oracle,
+    "run_episode": _episode,
+    "evaluate_task": _episode,
+    "check_runtime": _episode,
+    "EpisodeResult": _episode,
+    "TaskResult": _episode,
+    "SceneRenderer": _render,
+    "VideoRecorder": _render,
     # LLM generation by factorization
-    "generate": ("factask.gen", "generate"),
-    "Generator": ("factask.gen", "Generator"),
-    "GenerationResult": ("factask.gen", "GenerationResult"),
-    "LLMConfig": ("factask.gen", "LLMConfig"),
-    "LLMClient": ("factask.gen", "LLMClient"),
-    "Verifier": ("factask.gen", "Verifier"),
-    "SubtaskMemory": ("factask.gen", "SubtaskMemory"),
-    "LoopbackServer": ("factask.gen", "LoopbackServer"),
-    "run_benchmark": ("factask.evaluation.benchmark", "run_benchmark"),
+    "generate": _gen,
+    "Generator": _gen,
+    "GenerationResult": _gen,
+    "LLMConfig": _gen,
+    "LLMClient": _gen,
+    "Verifier": _gen,
+    "SubtaskMemory": _gen,
+    "LoopbackServer": _gen,
+    "run_benchmark": _benchmark,
     # CLIPort / GenSim task code
-    "import_cliport": ("factask.compat.cliport", "import_cliport"),
+    "import_cliport": _cliport,
 }
 
 __all__ = [*_model_all, *_LAZY, "__version__"]
 
 
 def __getattr__(name: str) -> Any:
-    try:
-        module, attribute = _LAZY[name]
-    except KeyError:
-        raise AttributeError(f"module 'factask' has no attribute {name!r}") from None
-    value = getattr(importlib.import_module(module), attribute)
+    loader = _LAZY.get(name)
+    if loader is None:
+        raise AttributeError(f"module 'factask' has no attribute {name!r}")
+    value = getattr(loader(), name)
     globals()[name] = value
     return value
 

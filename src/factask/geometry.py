@@ -57,6 +57,13 @@ def quat_from_yaw(yaw: float) -> np.ndarray:
     return np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
 
 
+def quat_from_axis_angle(axis: tuple[float, float, float], angle: float) -> np.ndarray:
+    """Quaternion (w, x, y, z) of a rotation by ``angle`` radians about the unit ``axis``
+    (components that are zero come out as +0.0, never -0.0)."""
+    s = math.sin(angle / 2)
+    return np.array([math.cos(angle / 2), *(s * float(a) + 0.0 for a in axis)])
+
+
 def yaw_of(quat: np.ndarray) -> float:
     """Yaw (radians, in (-pi, pi]) of a quaternion (w, x, y, z)."""
     w, x, y, z = (float(c) for c in quat)
@@ -93,6 +100,20 @@ def compose(a: Pose, b: Pose) -> Pose:
 def inverse(a: Pose) -> Pose:
     qi = quat_conj(a.quat)
     return Pose(-rotate(qi, a.pos), qi)
+
+
+def slerp(q0: np.ndarray, q1: np.ndarray, s: float) -> np.ndarray:
+    """Spherical interpolation of unit quaternions (w, x, y, z), shortest way."""
+    q0 = np.asarray(q0, dtype=float)
+    q1 = np.asarray(q1, dtype=float)
+    dot = float(np.dot(q0, q1))
+    if dot < 0.0:
+        q1, dot = -q1, -dot
+    if dot > 0.9995:
+        q = q0 + s * (q1 - q0)
+        return q / np.linalg.norm(q)
+    theta = math.acos(dot)
+    return (math.sin((1 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)
 
 
 def rotation_matrix(quat: np.ndarray) -> np.ndarray:

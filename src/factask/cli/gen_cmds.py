@@ -5,13 +5,14 @@ litellm and MuJoCo are imported only when a command runs.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import typer
 from rich.console import Console
 
-from factask.cli.app import app
+from factask.cli.app import ROBOT_HELP, app, check_robot
 
 if TYPE_CHECKING:
     from factask.gen.strategies import Generator
@@ -26,6 +27,7 @@ def _make_generator(model: str | None, api_base: str | None, cache: Path | None,
                     max_repairs: int, episodes: int, memory: Path | None, robot: str,
                     temperature: float | None, on_step: Any = None) -> Generator:
     """Build the client, verifier, memory and generator from options + environment."""
+    check_robot(robot)
     from factask.gen.llm import LLMClient, LLMConfig, LLMConfigError, ResponseCache
     from factask.gen.memory import SubtaskMemory
     from factask.gen.strategies import Generator as _Generator
@@ -36,8 +38,6 @@ def _make_generator(model: str | None, api_base: str | None, cache: Path | None,
     except LLMConfigError as exc:
         err_console.print(f"[red]{exc}[/red]")
         raise typer.Exit(2) from None
-    import os
-
     cache_dir = cache or (Path(os.environ["FACTASK_CACHE"]) if os.environ.get("FACTASK_CACHE")
                           else None)
     client = LLMClient(config, ResponseCache(cache_dir) if cache_dir else None)
@@ -67,8 +67,8 @@ def generate(
     max_repairs: int = typer.Option(3, "--max-repairs", min=0, help="Repairs per step."),
     episodes: int = typer.Option(3, "--episodes", min=1, help="Oracle episodes (completion)."),
     memory: Path = typer.Option(None, "--memory", help="Subtask memory dir ($FACTASK_MEMORY)."),
-    robot: str = typer.Option("floating", "--robot",
-                              help="Robot of the oracle episodes (see factask run --help)."),
+    robot: str = typer.Option("floating", "--robot", help=f"{ROBOT_HELP} Runs the oracle "
+                              "episodes of the completion check."),
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
 ) -> None:
     """Generate a task graph with an LLM, verify it, write it; exit 0 iff completion reached."""
@@ -115,8 +115,8 @@ def benchmark(
     max_repairs: int = typer.Option(3, "--max-repairs", min=0, help="Repairs per step."),
     episodes: int = typer.Option(3, "--episodes", min=1, help="Oracle episodes (completion)."),
     memory: Path = typer.Option(None, "--memory", help="Subtask memory dir ($FACTASK_MEMORY)."),
-    robot: str = typer.Option("floating", "--robot",
-                              help="Robot of the oracle episodes (see factask run --help)."),
+    robot: str = typer.Option("floating", "--robot", help=f"{ROBOT_HELP} Runs the oracle "
+                              "episodes of the completion check."),
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
 ) -> None:
     """Run a task list through generation + verification; write JSONL, summary, chart."""
@@ -152,8 +152,6 @@ def benchmark(
         raise typer.Exit(2) from None
     if limit:
         task_list = task_list[:limit]
-    import os
-
     cache_dir = cache or (Path(os.environ["FACTASK_CACHE"]) if os.environ.get("FACTASK_CACHE")
                           else out / "cache")
     gen = _make_generator(model, api_base, cache_dir, max_repairs, episodes,

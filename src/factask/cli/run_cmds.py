@@ -12,23 +12,11 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from factask.cli.app import app
+from factask.cli.app import ROBOT_HELP, app, check_robot
 from factask.model import FactaskError, GraphValidationError, TaskGraph, parse_graph
-from factask.sim.robots import ROBOT_NAMES, describe_robots
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
-
-ROBOT_HELP = f"Robot, one of the registry's: {describe_robots()}."
-
-
-def _check_robot(robot: str) -> None:
-    """Exit with status 2 and the registry's names unless ``robot`` is registered."""
-    if robot not in ROBOT_NAMES:
-        err_console.print(f"unknown robot {robot!r} (use one of {', '.join(ROBOT_NAMES)})",
-                          markup=False)
-        raise typer.Exit(2)
-
 
 def _progress(quiet: bool) -> Progress:
     return Progress(
@@ -108,7 +96,7 @@ def run(
     from factask.sim.env import FactaskEnv
     from factask.sim.episode import TaskResult, run_episode
 
-    _check_robot(robot)
+    check_robot(robot)
     graph = load_task(task, seed)
     try:
         env = FactaskEnv(graph, robot=robot)
@@ -160,7 +148,7 @@ def eval_library(
     from factask.library import task_names
     from factask.sim.episode import evaluate_task, summarize
 
-    _check_robot(robot)
+    check_robot(robot)
     names = tasks or task_names()
     results = []
     with _progress(as_json) as progress:
@@ -201,7 +189,7 @@ def demo(
     from factask.sim.episode import run_episode
     from factask.viz import draw_graph
 
-    _check_robot(robot)
+    check_robot(robot)
     graph = load_task(task)
     out.mkdir(parents=True, exist_ok=True)
     console.rule(f"[bold]{graph.name}[/bold]: {graph.description}")

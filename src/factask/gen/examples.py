@@ -3,9 +3,7 @@ subtasks, retrieved by simple word overlap with the proposal.
 
 The research found that showing a few successful subtask designs fixed the
 granularity problem; the examples here are real, valid library objects, so a
-prompt never shows something the library cannot do. The task library
-(:mod:`factask.library`) is optional: where it is missing, no library examples
-are shown.
+prompt never shows something the library cannot do.
 """
 
 from __future__ import annotations
@@ -15,6 +13,9 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
+
+from factask.library import get_task, task_names
+from factask.library.templates import TEMPLATES
 
 _WORD_RE = re.compile(r"[a-z]+")
 # Words that say nothing about which task is meant.
@@ -111,7 +112,7 @@ def top_k(candidates: Iterable[Example], query: str, k: int) -> list[Example]:
 
 
 def library_task_examples(query: str, k: int = 2, exclude: str | None = None) -> list[Example]:
-    """Whole library task graphs most similar to ``query`` (empty if no library).
+    """Whole library task graphs most similar to ``query``.
 
     Args:
         query: Retrieval text (the proposal).
@@ -120,10 +121,6 @@ def library_task_examples(query: str, k: int = 2, exclude: str | None = None) ->
             near-duplicate, :func:`same_task`) is never shown, so a benchmark task
             that also exists in the library is not given its own answer.
     """
-    try:
-        from factask.library import get_task, task_names
-    except ImportError:
-        return []
     candidates = []
     try:
         for name in task_names():
@@ -140,11 +137,7 @@ def library_task_examples(query: str, k: int = 2, exclude: str | None = None) ->
 
 
 def template_examples(query: str, k: int = 3) -> list[Example]:
-    """Subtask templates most similar to ``query`` (empty if no library)."""
-    try:
-        from factask.library.templates import TEMPLATES
-    except ImportError:
-        return []
+    """Subtask templates most similar to ``query``."""
     values = TEMPLATES.values() if isinstance(TEMPLATES, dict) else TEMPLATES
     candidates = []
     for t in values:

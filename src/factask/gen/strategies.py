@@ -53,7 +53,13 @@ from factask.gen.schemas import (
     schema_of,
 )
 from factask.gen.verify import Level, Verifier, at_least, level_index
-from factask.model.errors import CompositionError, FactaskError, GraphValidationError, Problem
+from factask.model.errors import (
+    CompositionError,
+    FactaskError,
+    GraphValidationError,
+    InvalidValueError,
+    Problem,
+)
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
 from factask.model.names import slugify
@@ -126,7 +132,7 @@ class Generator:
         n_examples: int = 2,
     ) -> None:
         if max_repairs < 0:
-            raise ValueError("max_repairs must be >= 0")
+            raise InvalidValueError("max_repairs must be >= 0")
         self.client = client
         self.verifier = verifier or Verifier()
         self.memory = memory

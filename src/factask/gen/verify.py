@@ -18,9 +18,10 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from factask.gen.schemas import AnswerError, format_problems, read_json, several_objects_note
-from factask.model.errors import FactaskError, GraphValidationError
+from factask.model.errors import FactaskError, GraphValidationError, InvalidValueError
 from factask.model.graph import TaskGraph, parse_graph
 from factask.sim.episode import check_runtime, run_episode
+from factask.sim.robots import robot_entry
 
 Level = Literal["none", "syntax", "runtime", "completion"]
 #: The ladder, lowest first.
@@ -98,15 +99,21 @@ class Verifier:
 
     Args:
         episodes: Oracle episodes of the completion check.
-        robot: Robot of the episodes (``floating`` is the fast one).
+        robot: Robot of the episodes, a name of :data:`factask.sim.robots.ROBOTS`
+            (``floating`` is the fast one).
         base_seed: Seeds derive from it (:func:`completion_seeds`).
         success_fraction: Fraction of episodes that must succeed (research: half).
+
+    Raises:
+        InvalidValueError: ``episodes`` < 1.
+        RobotError: no robot of that name.
     """
 
     def __init__(self, episodes: int = 3, robot: str = "floating", base_seed: int = 0,
                  success_fraction: float = 0.5) -> None:
         if episodes < 1:
-            raise ValueError("episodes must be >= 1")
+            raise InvalidValueError("episodes must be >= 1")
+        robot_entry(robot)
         self.episodes = episodes
         self.robot = robot
         self.base_seed = base_seed

@@ -14,6 +14,7 @@ from typing import Any
 from factask.library.templates import get_template
 from factask.model import AtFixedPose, InRegion, StartInside, StartOn, StateVariable, TaskGraph
 from factask.model import compose as _compose
+from factask.model.errors import InvalidValueError
 
 #: Task name -> builder (filled by :func:`register`, read by ``factask.library.tasks``).
 BUILDERS: dict[str, Callable[[], TaskGraph]] = {}
@@ -24,7 +25,7 @@ def register(name: str) -> Callable[[Callable[[], TaskGraph]], Callable[[], Task
 
     def deco(builder: Callable[[], TaskGraph]) -> Callable[[], TaskGraph]:
         if name in BUILDERS:
-            raise ValueError(f"library task {name!r} is registered twice")
+            raise InvalidValueError(f"library task {name!r} is registered twice")
         BUILDERS[name] = builder
         return builder
 

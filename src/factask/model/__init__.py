@@ -7,6 +7,7 @@ from factask.model.errors import (
     CompositionError,
     FactaskError,
     GraphValidationError,
+    InvalidValueError,
     Problem,
     SubjectError,
 )
@@ -59,7 +60,8 @@ from factask.relations import (
 __all__ = [
     "ASSET_KINDS", "COLORS", "COLOR_NAMES", "KIND_NAMES", "RELATION_TYPES",
     "Aligned", "AssetKind", "AtFixedPose", "AtPose", "Circle", "CompositionError",
-    "FactaskError", "GraphValidationError", "InRegion", "InZone", "Inside", "KindSpec",
+    "FactaskError", "GraphValidationError", "InRegion", "InZone", "Inside",
+    "InvalidValueError", "KindSpec",
     "Limits", "On", "OnTable", "Placement", "Problem", "Relation", "Row", "Stack",
     "StartInside", "StartOn", "StateVariable", "SubjectError", "SubtaskFactor", "SubtaskTemplate",
     "TargetPose", "TaskGraph", "TemplateSlot", "Tolerances", "UnknownColorError",

@@ -40,6 +40,14 @@ class Problem:
         return text
 
 
+class InvalidValueError(FactaskError, ValueError):
+    """A value factask was given is not acceptable: an argument out of range, a
+    malformed pose, a field a validator rejects, a name registered twice.
+
+    Also a ``ValueError``, as Python callers (and pydantic's validators) expect.
+    """
+
+
 class GraphValidationError(FactaskError):
     """A task graph (or fragment, or template) is not valid.
 

@@ -7,6 +7,8 @@ from typing import Annotated
 
 from pydantic import AfterValidator, StringConstraints
 
+from factask.model.errors import InvalidValueError
+
 #: Separator between a variable's name and an instance index (``blocks__2``).
 INSTANCE_SEPARATOR = "__"
 
@@ -19,8 +21,8 @@ TASK_NAME_PATTERN = r"^[a-z0-9][a-z0-9_-]{0,99}$"
 
 def _no_double_underscore(value: str) -> str:
     if INSTANCE_SEPARATOR in value:
-        raise ValueError(f"name {value!r} contains '__', which is reserved for instance "
-                         "names (blocks__2); use single underscores")
+        raise InvalidValueError(f"name {value!r} contains '__', which is reserved for "
+                                "instance names (blocks__2); use single underscores")
     return value
 
 

@@ -6,6 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
+from factask.model.errors import InvalidValueError
 from factask.model.kinds import AssetKind, default_mass, kind_spec, yaw_symmetry_deg
 from factask.model.names import Name, instance_names
 from factask.model.palette import normalize_color
@@ -33,9 +34,9 @@ class InRegion(BaseModel):
     def _ordered(self) -> InRegion:
         for axis, (lo, hi), (wlo, whi) in (("x", self.x, WORKSPACE_X), ("y", self.y, WORKSPACE_Y)):
             if not lo < hi:
-                raise ValueError(f"region {axis} range must have low < high, got {(lo, hi)}")
+                raise InvalidValueError(f"region {axis} range must have low < high, got {(lo, hi)}")
             if lo < wlo - 1e-9 or hi > whi + 1e-9:
-                raise ValueError(
+                raise InvalidValueError(
                     f"region {axis} range {(lo, hi)} leaves the workspace {(wlo, whi)}"
                 )
         return self

@@ -27,6 +27,7 @@ from typing import Any, Literal
 import numpy as np
 from dm_control import mjcf
 
+from factask.geometry import quat_from_yaw
 from factask.model.errors import SubjectError
 from factask.model.kinds import (
     ELL_BAR_FRACTION,
@@ -360,10 +361,6 @@ def _fmt(values: Any) -> list[float]:
     return [round(float(v), 9) + 0.0 for v in np.atleast_1d(values)]
 
 
-def _yaw_quat(yaw: float) -> list[float]:
-    return _fmt([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
-
-
 def build_object(
     parent: Any,
     name: str,
@@ -446,7 +443,7 @@ def build_object(
             "group": (MARKER_GROUP if visual_only else OBJECT_GROUP) if group is None else group,
         }
         if part.yaw:
-            geom["quat"] = _yaw_quat(part.yaw)
+            geom["quat"] = _fmt(quat_from_yaw(part.yaw))
         geom["dclass"] = OBJECT_CLASS if collides else VISUAL_CLASS
         if not mocap:
             # Share the object's mass by volume so its centre of mass is right.

@@ -27,7 +27,7 @@ import numpy as np
 from gymnasium import spaces
 
 from factask.geometry import Pose
-from factask.model.errors import FactaskError
+from factask.model.errors import FactaskError, InvalidValueError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 from factask.relations.solving import SolvedFactor
@@ -47,7 +47,6 @@ from factask.sim.robot import SuctionRobot, make_robot
 #: Simulated seconds the scene settles after a reset (objects placed exactly
 #: resting may still shift by a fraction of a millimetre).
 SETTLE_SECONDS = 0.3
-#: MuJoCo warnings that mean the simulation can no longer be trusted.
 #: Default rendering size (width, height) and camera.
 RENDER_SIZE = (320, 240)
 RENDER_CAMERA = "front"
@@ -55,6 +54,10 @@ RENDER_CAMERA = "front"
 
 class ActionError(FactaskError):
     """An action that is not a finite (pick, place) pair of (x, y, z, yaw)."""
+
+
+class ResetNeededError(FactaskError, RuntimeError):
+    """``step`` was called before the first ``reset`` (a ``RuntimeError`` too)."""
 
 
 @dataclass(frozen=True)
@@ -109,7 +112,8 @@ class FactaskEnv(gym.Env):
                  render_size: tuple[int, int] = RENDER_SIZE,
                  camera: str = RENDER_CAMERA) -> None:
         if render_mode not in (None, "rgb_array"):
-            raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
+            raise InvalidValueError(
+                f"render_mode must be None or 'rgb_array', got {render_mode!r}")
         self.graph = graph
         self.robot_kind = robot
         self.scene: CompiledScene = compile_graph(graph, robot=robot)
@@ -243,10 +247,10 @@ class FactaskEnv(gym.Env):
 
         Raises:
             ActionError: the action is malformed (missing keys, wrong shape, NaN).
-            RuntimeError: ``step`` before ``reset``.
+            ResetNeededError: ``step`` before ``reset``.
         """
         if self._status is None:
-            raise RuntimeError("call reset() before step()")
+            raise ResetNeededError("call reset() before step()")
         if not isinstance(action, dict) or not {"pick", "place"} <= set(action):
             raise ActionError(f"action must be a dict with 'pick' and 'place', got {action!r}")
         pick = _pose4(action["pick"], "pick")

@@ -16,7 +16,7 @@ import mujoco
 import numpy as np
 from dm_control import mjcf
 
-from factask.geometry import Pose, quat_from_yaw
+from factask.geometry import Pose, quat_from_yaw, slerp
 from factask.sim.robot_arm import HOME_QPOS, build_arm
 from factask.sim.robots import DEFAULT_ARM, DHArm
 from factask.sim.suction import TIP_SITE
@@ -150,16 +150,3 @@ class TopDownIK:
             pos_err, rot_err = self.error(target)
         return self.q, pos_err, rot_err
 
-
-def slerp(q0: np.ndarray, q1: np.ndarray, s: float) -> np.ndarray:
-    """Spherical interpolation of unit quaternions (w, x, y, z), shortest way."""
-    q0 = np.asarray(q0, dtype=float)
-    q1 = np.asarray(q1, dtype=float)
-    dot = float(np.dot(q0, q1))
-    if dot < 0.0:
-        q1, dot = -q1, -dot
-    if dot > 0.9995:
-        q = q0 + s * (q1 - q0)
-        return q / np.linalg.norm(q)
-    theta = math.acos(dot)
-    return (math.sin((1 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)

@@ -14,6 +14,7 @@ import math
 import numpy as np
 from dm_control import mjcf
 
+from factask.geometry import quat_from_axis_angle
 from factask.sim.robots import DEFAULT_ARM, DHArm
 from factask.sim.suction import ROBOT_CONAFFINITY, ROBOT_CONTYPE, add_suction_weld, add_tool
 
@@ -44,11 +45,6 @@ BASE_QUAT = (0.0, 0.0, 0.0, 1.0)
 FLANGE_BODY = "flange"
 #: Body name of link i (1..6).
 LINK_BODY = "link{}"
-
-
-def _rx_quat(angle: float) -> list[float]:
-    """Quaternion (w, x, y, z) of a rotation about x."""
-    return [math.cos(angle / 2), math.sin(angle / 2), 0.0, 0.0]
 
 
 def build_arm(root: mjcf.RootElement, arm: DHArm = DEFAULT_ARM) -> mjcf.Element:
@@ -85,7 +81,7 @@ def build_arm(root: mjcf.RootElement, arm: DHArm = DEFAULT_ARM) -> mjcf.Element:
         )
         # Next DH frame, expressed in this body's (rotated) frame.
         child_pos = [arm.a[i], 0.0, arm.d[i]]
-        child_quat = _rx_quat(arm.alpha[i])
+        child_quat = quat_from_axis_angle((1.0, 0.0, 0.0), arm.alpha[i]).tolist()
         start = np.zeros(3)
         if i == 0:
             # Keep the shoulder capsule above the pedestal (and the table).

@@ -36,7 +36,7 @@ from factask.compat.cliport.goals import (
 from factask.compat.cliport.grippers import Spatula
 from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.scoring import RavensGoal
-from factask.compat.cliport.transforms import yaw_of_xyzw
+from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
 from factask.geometry import tilt_deg
 from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
@@ -124,7 +124,7 @@ def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int,
     if bottom > START_ABOVE_TABLE:
         warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
              "the table instead")
-    if tilt_deg(np.array([o.quat[3], *o.quat[:3]])) > TILT_WARN_DEG:
+    if tilt_deg(xyzw_to_wxyz(o.quat)) > TILT_WARN_DEG:
         warn(f"{name} starts tilted; only its yaw is kept")
     x, y = float(o.pos[0]), float(o.pos[1])
     if not (WORKSPACE_X[0] <= x <= WORKSPACE_X[1] and WORKSPACE_Y[0] <= y <= WORKSPACE_Y[1]):
@@ -254,7 +254,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         else:
             zone = _zone_variable(g, objects, names, extra, warn)
             taken.add(zone)
-            rel = InZone(objects=objs, zone=zone, poses=zone_poses(g), **extra_kw)
+            rel = InZone(objects=objs, zone=zone, poses=zone_poses(g, rest), **extra_kw)
         drafts.append((g, rel))
     if not drafts:
         raise CliportImportError("no goal is left to check after merging goals per object")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from factask.model.errors import FactaskError
+from factask.model.errors import FactaskError, InvalidValueError
 
 
 class CliportImportError(FactaskError):
@@ -21,3 +21,13 @@ class Unsupported(CliportImportError):
     objects, an unknown URDF, a PyBullet call with no recorded meaning. The
     message names the call or the asset.
     """
+
+
+class PoseError(InvalidValueError):
+    """A pose or quaternion in CLIPort/PyBullet form is malformed (not four finite
+    numbers, a zero quaternion, no 3-D position). A ``ValueError``, as PyBullet's."""
+
+
+class UnknownColorNameError(FactaskError, KeyError):
+    """``utils.COLORS[name]`` with a name the palette lacks (a ``KeyError``, as
+    looking up CLIPort's colour dict is)."""

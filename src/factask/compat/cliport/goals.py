@@ -173,8 +173,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
     """
     slots: list[_Slot] = []
     for g in goals:
-        if g.metric != "pose" or not g.objs:
-            continue
+        if not g.objs or (g.metric != "pose" and len(g.targets) < len(g.objs)):
+            continue  # a zone goal's targets count only as per-object placements
         for j, (pos, quat) in enumerate(g.targets):
             allowed = [o for i, o in enumerate(g.objs) if g.matches[i, j]]
             if not allowed:
@@ -237,10 +237,14 @@ def target_pose(pos: np.ndarray, quat: np.ndarray, height: float, z_rest: float 
                       yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS))
 
 
-def zone_poses(goal: RecordedGoal) -> list[TargetPose] | None:
+def zone_poses(goal: RecordedGoal, rest: dict[tuple[int, int], float]
+               ) -> list[TargetPose] | None:
     """The author's own place for each object inside the zone (e.g. a packing plan):
     when the goal gives every object a target of its own (within ``matches``) whose
-    centre lies in the zone, those targets are facts; otherwise None (factask packs)."""
+    centre lies in the zone, those targets are facts; otherwise None (factask packs).
+    A target that rests on something other than the table or a receptacle's floor
+    (a second layer on a pallet) keeps its resting height from ``rest``
+    (:func:`resting_heights`)."""
     n = len(goal.objs)
     if len(goal.targets) < n or goal.matches.shape != (n, len(goal.targets)):
         return None
@@ -256,7 +260,12 @@ def zone_poses(goal: RecordedGoal) -> list[TargetPose] | None:
         dx, dy = float(pos[0] - zpos[0]), float(pos[1] - zpos[1])
         if abs(c * dx + s * dy) > sx / 2 or abs(-s * dx + c * dy) > sy / 2:
             return None
+        j = int(cols[r])
+        z = rest.get((goal.index, j))
+        height = goal.objs[int(rows[r])].size[2]
         poses.append(TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
                                 y=round(float(pos[1]), TARGET_DECIMALS),
+                                z=round(z, TARGET_DECIMALS) if z is not None
+                                and z > height / 2 + Z_TOLERANCE else None,
                                 yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS)))
     return poses

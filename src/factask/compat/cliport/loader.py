@@ -28,7 +28,7 @@ from pydantic import ValidationError
 
 from factask.compat.cliport import cameras, grippers, primitives, pybullet_stub, task, utils
 from factask.compat.cliport.convert import build_graph, kebab, object_names
-from factask.compat.cliport.errors import CliportImportError, Unsupported
+from factask.compat.cliport.errors import CliportImportError, PoseError, Unsupported
 from factask.compat.cliport.recorder import FAKE_ASSETS_ROOT, RecordingEnv, Session, session_scope
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.task import RAVENS_POS_EPS, RAVENS_ROT_EPS, Task
@@ -259,6 +259,10 @@ def import_cliport(path: str | Path, class_name: str | None = None,
                 graph, goals = build_graph(instance, session, cls.__name__)
             except CliportImportError as exc:
                 raise type(exc)(f"{p}: {cls.__name__}: {exc}") from exc
+            except PoseError as exc:  # a malformed pose in a goal: not a graph problem
+                raise CliportImportError(f"{p}: {cls.__name__}: the recorded goals could "
+                                         f"not be converted: {type(exc).__name__}: {exc}"
+                                         ) from exc
             except (FactaskError, ValidationError) as exc:
                 raise CliportImportError(f"{p}: {cls.__name__}: the recorded scene is not "
                                          f"a valid graph: {exc}") from exc

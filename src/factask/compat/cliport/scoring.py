@@ -20,7 +20,8 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from factask.compat.cliport.transforms import yaw_of_xyzw
+from factask.compat.cliport.errors import PoseError
+from factask.compat.cliport.transforms import rotation_wxyz, yaw_of_xyzw
 from factask.geometry import Pose
 
 #: A goal counts as done when its step reward is within this of its share (Ravens).
@@ -106,15 +107,13 @@ def _pose_of(value: Any) -> tuple[np.ndarray, Rotation]:
     or ``(x, y, z, yaw)`` with yaw in radians.
     """
     if isinstance(value, Pose):
-        w, x, y, z = value.quat
-        return value.pos, Rotation.from_quat([x, y, z, w])
+        return value.pos, rotation_wxyz(value.quat)
     if len(value) == 2:
-        w, x, y, z = (float(c) for c in value[1])
-        return np.asarray(value[0], float).reshape(3), Rotation.from_quat([x, y, z, w])
+        return np.asarray(value[0], float).reshape(3), rotation_wxyz(value[1])
     if len(value) == 4:
         x, y, z, yaw = (float(c) for c in value)
         return np.array([x, y, z]), Rotation.from_euler("z", yaw)
-    raise ValueError(f"cannot read a pose from {value!r}: give a Pose, (pos, quat wxyz) "
+    raise PoseError(f"cannot read a pose from {value!r}: give a Pose, (pos, quat wxyz) "
                      "or (x, y, z, yaw)")
 
 

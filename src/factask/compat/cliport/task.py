@@ -25,7 +25,9 @@ from factask.compat.cliport.errors import Unsupported
 from factask.compat.cliport.grippers import Spatula, Suction
 from factask.compat.cliport.recorder import active_session
 from factask.compat.cliport.scoring import pose_match
-from factask.compat.cliport.transforms import split_pose
+from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
+from factask.model.errors import InvalidValueError
+from factask.model.palette import rgba
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
 #: Ravens' XY tolerance of a pose goal, metres, and yaw tolerance, radians.
@@ -89,10 +91,10 @@ class Task:
         """Start a new episode: clear goals (subclasses then add objects and goals).
 
         Raises:
-            ValueError: ``assets_root`` not set (as CLIPort).
+            InvalidValueError: ``assets_root`` not set (a ``ValueError``, as CLIPort's).
         """
         if not self.assets_root:
-            raise ValueError("assets_root must be set for task, call set_assets_root().")
+            raise InvalidValueError("assets_root must be set for task, call set_assets_root().")
         self.goals = []
         self.lang_goals = []
         self.progress = 0
@@ -283,8 +285,16 @@ class Task:
     def done(self) -> Any:
         return self._unsupported("done")
 
-    def get_true_image(self, env: Any) -> Any:
-        return self._unsupported("get_true_image (no rendering while recording)")
+    def get_true_image(self, env: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Ravens' oracle top-down view of the workspace, computed from the recorded
+        objects' boxes instead of rendered (nothing renders while recording).
+
+        Returns:
+            (colour uint8 (H, W, 3), height float32 (H, W), object id int32 (H, W), 0
+            where nothing is), H along y and W along x at ``pix_size``, as Ravens'
+            height maps; each pixel shows the highest box top over it.
+        """
+        return top_down_view(active_session().objects.values(), self.bounds, self.pix_size)
 
     def get_mesh_object_points(self, obj: int) -> Any:
         return self._unsupported("get_mesh_object_points")
@@ -302,3 +312,34 @@ class Task:
 
     def spawn_box(self) -> Any:
         return self._unsupported("spawn_box (needs a running simulation)")
+
+
+def top_down_view(objects: Any, bounds: np.ndarray, pix_size: float
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Colour, height and object-id maps of boxes seen from straight above.
+
+    Args:
+        objects: :class:`~factask.compat.cliport.recorder.RecordedObject` items.
+        bounds: Workspace bounds ``[[x0, x1], [y0, y1], [z0, z1]]``.
+        pix_size: Metres per pixel.
+    """
+    width = round(float(bounds[0, 1] - bounds[0, 0]) / pix_size)
+    height = round(float(bounds[1, 1] - bounds[1, 0]) / pix_size)
+    xs = bounds[0, 0] + (np.arange(width) + 0.5) * pix_size
+    ys = bounds[1, 0] + (np.arange(height) + 0.5) * pix_size
+    gx, gy = np.meshgrid(xs, ys)  # (H, W): rows along y, columns along x
+    hmap = np.zeros((height, width), dtype=np.float32)
+    mask = np.zeros((height, width), dtype=np.int32)
+    cmap = np.zeros((height, width, 3), dtype=np.uint8)
+    for o in sorted(objects, key=lambda o: float(o.pos[2]) + o.size[2] / 2):
+        yaw = yaw_of_xyzw(o.quat)
+        c, sn = np.cos(yaw), np.sin(yaw)
+        dx, dy = gx - o.pos[0], gy - o.pos[1]
+        inside = ((np.abs(c * dx + sn * dy) <= o.size[0] / 2)
+                  & (np.abs(-sn * dx + c * dy) <= o.size[1] / 2))
+        top = float(o.pos[2]) + o.size[2] / 2 - bounds[2, 0]
+        over = inside & (top >= hmap)
+        hmap[over] = top
+        mask[over] = o.obj_id
+        cmap[over] = np.round(np.asarray(rgba(o.color)[:3]) * 255).astype(np.uint8)
+    return cmap, hmap, mask

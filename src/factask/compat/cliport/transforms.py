@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from factask.compat.cliport.errors import PoseError
 from factask.geometry import yaw_of
 
 #: The identity rotation, x, y, z, w.
@@ -27,14 +28,14 @@ def as_quat_xyzw(quat: Any) -> np.ndarray:
     """A normalised (4,) float array from any x, y, z, w sequence.
 
     Raises:
-        ValueError: not four finite numbers, or a zero quaternion.
+        PoseError: not four finite numbers, or a zero quaternion.
     """
     q = np.asarray(quat, dtype=float).reshape(-1)
     if q.shape != (4,) or not np.all(np.isfinite(q)):
-        raise ValueError(f"expected a quaternion (x, y, z, w), got {quat!r}")
+        raise PoseError(f"expected a quaternion (x, y, z, w), got {quat!r}")
     n = float(np.linalg.norm(q))
     if n == 0.0:
-        raise ValueError("zero quaternion")
+        raise PoseError("zero quaternion")
     return q / n
 
 
@@ -45,15 +46,15 @@ def split_pose(pose: Any) -> tuple[np.ndarray, np.ndarray]:
     (three numbers), which means "no rotation".
 
     Raises:
-        ValueError: the value is neither form.
+        PoseError: the value is neither form.
     """
     if len(pose) == 3 and not hasattr(pose[0], "__len__"):
         return np.asarray(pose, dtype=float).reshape(3), np.array(IDENTITY_XYZW)
     if len(pose) != 2:
-        raise ValueError(f"expected a pose (position, quaternion), got {pose!r}")
+        raise PoseError(f"expected a pose (position, quaternion), got {pose!r}")
     pos = np.asarray(pose[0], dtype=float).reshape(-1)
     if pos.shape != (3,):
-        raise ValueError(f"expected a 3-D position, got {pose[0]!r}")
+        raise PoseError(f"expected a 3-D position, got {pose[0]!r}")
     return pos, as_quat_xyzw(pose[1])
 
 
@@ -77,6 +78,12 @@ def invert(pose: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
     pos, quat = split_pose(pose)
     inv = rotation(quat).inv()
     return tuple(float(c) for c in -inv.apply(pos)), tuple(float(c) for c in inv.as_quat())
+
+
+def rotation_wxyz(quat_wxyz: Any) -> Rotation:
+    """A scipy Rotation of a MuJoCo (w, x, y, z) quaternion (scipy normalises it)."""
+    w, x, y, z = (float(c) for c in np.asarray(quat_wxyz, dtype=float).reshape(4))
+    return Rotation.from_quat([x, y, z, w])
 
 
 def matrix(quat_xyzw: Any) -> tuple[float, ...]:

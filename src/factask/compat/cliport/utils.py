@@ -16,7 +16,8 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from factask.compat.cliport import transforms
-from factask.compat.cliport.errors import Unsupported
+from factask.compat.cliport.errors import UnknownColorNameError, Unsupported
+from factask.geometry import quat_mul
 from factask.model.palette import COLOR_NAMES
 from factask.model.palette import COLORS as PALETTE
 
@@ -26,7 +27,7 @@ class _Colors(dict):  # type: ignore[type-arg]
 
     def __getitem__(self, key: Any) -> list[float]:
         if key not in self:
-            raise KeyError(f"unknown colour {key!r}; valid colours: {', '.join(self)}")
+            raise UnknownColorNameError(f"unknown colour {key!r}; valid colours: {', '.join(self)}")
         return list(dict.__getitem__(self, key))
 
 
@@ -92,12 +93,8 @@ def quatXYZW_to_eulerXYZ(quaternion_xyzw: Any) -> tuple[float, ...]:
 
 def q_mult(q1: Any, q2: Any) -> tuple[float, ...]:
     """Product of two (w, x, y, z) quaternions (CLIPort's ``q_mult`` order)."""
-    w1, x1, y1, z1 = q1
-    w2, x2, y2, z2 = q2
-    return (w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-            w1 * y2 + y1 * w2 + z1 * x2 - x1 * z2,
-            w1 * z2 + z1 * w2 + x1 * y2 - y1 * x2)
+    product = quat_mul(np.asarray(q1, dtype=float), np.asarray(q2, dtype=float))
+    return tuple(float(c) for c in product)
 
 
 def sample_distribution(prob: Any, n_samples: int = 1) -> np.ndarray:
