@@ -42,6 +42,7 @@ from factask.sim.oracle import Oracle
 
 #: Default task: six stacking pick-and-places of blocks.
 DEFAULT_TASK = "rainbow-stack"
+#: The fast robot and the default arm (two names of :data:`factask.sim.robots.ROBOTS`).
 ROBOTS = ("floating", "arm")
 
 

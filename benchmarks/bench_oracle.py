@@ -26,6 +26,7 @@ from factask.model.errors import FactaskError
 from factask.sim.env import FactaskEnv
 from factask.sim.episode import EpisodeResult, run_episode
 
+#: The fast robot and the default arm (two names of :data:`factask.sim.robots.ROBOTS`).
 ROBOTS = ("floating", "arm")
 #: Tasks of ``--quick``: one placing, one stacking, one structure task.
 QUICK_TASKS = ("place-red-in-green", "rainbow-stack", "build-bridge")

@@ -18,7 +18,7 @@ from dm_control import mjcf
 from factask.geometry import Pose
 from factask.sim.ik import TopDownIK, top_down_pose
 from factask.sim.robot import attach_robot, make_robot
-from factask.sim.robots import UR5E, UR10E
+from factask.sim.robots import ROBOTS
 
 BLOCK = 0.04
 #: (pick xy, place xy) pairs spread over the workspace.
@@ -64,7 +64,7 @@ def bench_primitive(kind: str, repeats: int) -> None:
 
 def bench_ik() -> None:
     """Print IK time per QP solve and top-down reach over the workspace grid."""
-    for arm in (UR10E, UR5E):
+    for arm in (entry.arm for entry in ROBOTS.values() if entry.arm is not None):
         ik = TopDownIK(arm)
         worst, misses = 0.0, []
         t0 = time.perf_counter()
@@ -84,7 +84,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=2)
     args = parser.parse_args()
     bench_ik()
-    for kind in ("floating", "arm", "arm_ur5e"):
+    for kind in ROBOTS:  # every registered robot
         bench_primitive(kind, args.repeats)
 
 

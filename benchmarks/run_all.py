@@ -26,6 +26,8 @@ import bench_env
 import bench_oracle
 import bench_robot
 
+from factask.sim.robots import ROBOTS
+
 
 def _section(title: str) -> float:
     print(f"\n=== {title} " + "=" * max(0, 70 - len(title)), flush=True)
@@ -56,7 +58,7 @@ def main() -> None:
 
     t = _section("robots: IK and pick-and-place primitive (bench_robot)")
     bench_robot.bench_ik()
-    kinds = ("floating", "arm") if args.quick else ("floating", "arm", "arm_ur5e")
+    kinds = ("floating", "arm") if args.quick else tuple(ROBOTS)  # quick: fast + default arm
     for kind in kinds:
         bench_robot.bench_primitive(kind, 1 if args.quick else 2)
     print(f"[{time.perf_counter() - t:.0f} s]")
