@@ -679,3 +679,21 @@ def test_get_true_image_sees_the_highest_box_from_above():
     edge = (160, 80 + int(0.04 / 0.003125))  # 4 cm along +x: only the low box
     assert mask[edge] == 3 and height[edge] == pytest.approx(0.04)
     assert mask[0, 0] == 0 and height[0, 0] == 0.0
+
+
+def test_run_scores_a_task_file_as_ravens_does_beside_factask():
+    from typer.testing import CliRunner
+
+    from factask.cli import app
+
+    runner = CliRunner()
+    res = runner.invoke(app, ["run", str(TASKS / "tower_on_one_point.py"), "-n", "1",
+                              "--ravens", "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.output.strip().splitlines()[-1])
+    (score,) = out["ravens"]
+    assert score["goals"] == 3 and score["goals_done"] == 3 and score["success"]
+    assert out["episodes"][0]["success"]
+    res = runner.invoke(app, ["run", "stack-block-pyramid", "--ravens"])
+    assert res.exit_code == 2 and "CLIPort task file" in res.output
+    assert "--ravens" in runner.invoke(app, ["run", "--help"]).output

@@ -26,7 +26,13 @@ def _progress(quiet: bool) -> Progress:
 
 
 def load_task(spec: str, seed: int = 0) -> TaskGraph:
-    """A task from a library name, a graph JSON file, or a CLIPort task file.
+    """A task from a library name, a graph JSON file, or a CLIPort task file
+    (see :func:`load_task_source`)."""
+    return load_task_source(spec, seed)[0]
+
+
+def load_task_source(spec: str, seed: int = 0) -> tuple[TaskGraph, Any]:
+    """A task and, for a CLIPort task file, its import result (None otherwise).
 
     Args:
         spec: ``NAME`` (library), ``FILE.json``, or ``FILE.py[:ClassName]``.
@@ -46,10 +52,10 @@ def load_task(spec: str, seed: int = 0) -> TaskGraph:
             raise typer.Exit(2) from None
         for warning in result.warnings:
             err_console.print(f"[yellow]warning:[/yellow] {warning}")
-        return result.graph
+        return result.graph, result
     if spec.endswith(".json") or Path(spec).is_file():
         try:
-            return parse_graph(Path(spec).read_text())
+            return parse_graph(Path(spec).read_text()), None
         except (OSError, UnicodeDecodeError) as exc:
             why = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
             err_console.print(f"cannot read {spec}: {why or exc}", style="red", markup=False)
@@ -61,20 +67,26 @@ def load_task(spec: str, seed: int = 0) -> TaskGraph:
     from factask.library.tasks import UnknownTaskError
 
     try:
-        return get_task(spec)
+        return get_task(spec), None
     except UnknownTaskError as exc:
         err_console.print(f"[red]{exc}[/red]")
         raise typer.Exit(2) from None
 
 
-def _episode_table(result: Any) -> Table:
+def _episode_table(result: Any, ravens: list[Any] | None = None) -> Table:
     table = Table(title=f"{result.task}: success {result.success_rate:.0%} "
                   f"({'completed' if result.completed else 'not completed'})")
-    for col in ("seed", "reward", "success", "actions", "failure"):
+    cols = ["seed", "reward", "success", "actions", "failure"]
+    if ravens:
+        cols[3:3] = ["Ravens reward", "Ravens success"]
+    for col in cols:
         table.add_column(col)
-    for e in result.episodes:
-        table.add_row(str(e.seed), f"{e.reward:.3f}", "yes" if e.success else "no",
-                      str(e.steps), e.failure or "")
+    for k, e in enumerate(result.episodes):
+        row = [str(e.seed), f"{e.reward:.3f}", "yes" if e.success else "no", str(e.steps),
+               e.failure or ""]
+        if ravens:
+            row[3:3] = [f"{ravens[k].reward:.3f}", "yes" if ravens[k].success else "no"]
+        table.add_row(*row)
     return table
 
 
@@ -87,28 +99,44 @@ def run(
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
     video: Path | None = typer.Option(None, "--video", help="Write a GIF of the first episode."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
+    ravens: bool = typer.Option(
+        False, "--ravens", help="Also score every episode as Ravens does (CLIPort task files "
+        "only): goals in queue order, XY within pos_eps and yaw within rot_eps modulo "
+        "symmetry (z ignored), a finished goal never re-checked, success at reward >= 0.99. "
+        "Shown beside factask's own checks."),
 ) -> None:
     """Run the scripted oracle on a task and report reward and success per episode.
 
     An episode succeeds at total reward >= 0.99; the task is completed when at
-    least half of its episodes succeed.
+    least half of its episodes succeed (factask's checks decide, also with --ravens).
     """
+    from factask.compat.cliport.scoring import ravens_reward
     from factask.sim.env import FactaskEnv
     from factask.sim.episode import TaskResult, run_episode
 
     check_robot(robot)
-    graph = load_task(task, seed)
+    graph, source = load_task_source(task, seed)
+    if ravens and source is None:
+        err_console.print("--ravens needs a CLIPort task file (FILE.py[:Class]): a graph has "
+                          "no Ravens goals", markup=False)
+        raise typer.Exit(2)
     try:
         env = FactaskEnv(graph, robot=robot)
     except FactaskError as exc:
         err_console.print(f"[red]cannot compile {graph.name}[/red]: {exc}")
         raise typer.Exit(2) from None
     results = []
+    scores: list[Any] = []
     try:
         with _progress(as_json) as progress:
             bar = progress.add_task(f"{graph.name} ({robot})", total=episodes)
             for k in range(episodes):
-                def show(i: int, planned: Any, info: dict[str, Any], k: int = k) -> None:
+                snapshots: list[dict[str, Any]] = []
+
+                def show(i: int, planned: Any, info: dict[str, Any], k: int = k,
+                         snapshots: list[dict[str, Any]] = snapshots) -> None:
+                    if ravens:
+                        snapshots.append(env.object_poses())
                     if as_json:
                         return
                     done = ", ".join(f"{n} {p:.0%}" for n, p in info["factors"].items())
@@ -118,14 +146,21 @@ def run(
 
                 results.append(run_episode(graph, seed + k, robot=robot, env=env,
                                            video=video if k == 0 else None, on_action=show))
+                if ravens:
+                    scores.append(ravens_reward(source, snapshots))
                 progress.advance(bar)
     finally:
         env.close()
     result = TaskResult(graph.name, results)
     if as_json:
-        typer.echo(json.dumps(result.to_dict()))
+        out = result.to_dict()
+        if ravens:
+            out["ravens"] = [{"seed": e.seed, "reward": sc.reward, "success": sc.success,
+                              "goals_done": sc.goals_done, "goals": len(source.goals)}
+                             for e, sc in zip(results, scores, strict=True)]
+        typer.echo(json.dumps(out))
     else:
-        console.print(_episode_table(result))
+        console.print(_episode_table(result, scores))
         if video is not None:
             written = video if video.suffix == ".gif" else video.with_suffix(".gif")
             console.print(f"video: {written}")
