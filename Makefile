@@ -36,12 +36,12 @@ demo: $(STAMP)
 
 # The whole suite, the arm sweeps (marked slow) included, then the linter.
 test: $(STAMP)
-	$(PY) -m pytest -q -n 2
+	$(PY) -m pytest -q -n 2 --dist loadgroup
 	$(VENV)/bin/ruff check .
 
 # Everything but the tests marked slow: for quick iterations.
 test-fast: $(STAMP)
-	$(PY) -m pytest -q -n 2 -m "not slow"
+	$(PY) -m pytest -q -n 2 --dist loadgroup -m "not slow"
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

@@ -1,0 +1,66 @@
+"""The CLIPort original task files (code nobody here wrote), run through factask.
+
+Runs ``benchmarks/cliport_corpus.py`` over ``../shared/data/cliport_tasks/`` when it
+is present (as in CI) with the floating robot, 4 episodes per class. Every rigid
+class must be completed (the oracle succeeds in at least half of its episodes),
+except those listed in :data:`NOT_YET` with the reason — issue 11 works them off;
+a class leaving the list shows as an unexpected pass, not a failure.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from helpers import GENSIM_TASKS
+
+ROOT = Path(__file__).resolve().parents[1]
+CORPUS = GENSIM_TASKS.parent / "cliport_tasks"
+#: Classes outside the rigid scope (ropes, piles: issue 15; Google objects: no assets).
+OUT_OF_SCOPE = ("rope", "piles", "google")
+#: Rigid classes factask does not complete yet, with why.
+NOT_YET = {
+    "BlockInsertionSixDof": "6-DoF fixture: the top-down oracle runs out of actions",
+    "PackingBoxes": "boxes end tilted against the container walls of the packing plan",
+    "PackingBoxesPairsFull": "as PackingBoxes",
+    "PackingBoxesPairsSeenColors": "as PackingBoxes",
+    "PackingBoxesPairsUnseenColors": "as PackingBoxes",
+}
+
+
+@pytest.fixture(scope="module")
+def corpus_records(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
+    if not CORPUS.is_dir():
+        pytest.skip(f"the CLIPort originals are not at {CORPUS} (they live in ../shared)")
+    out = tmp_path_factory.mktemp("corpus") / "results.jsonl"
+    subprocess.run([sys.executable, str(ROOT / "benchmarks" / "cliport_corpus.py"), str(CORPUS),
+                    "--episodes", "4", "--timeout", "300", "--out", str(out)],
+                   check=True, capture_output=True, text=True, timeout=1800, cwd=ROOT)
+    return {r["class"]: r for r in map(json.loads, out.read_text().splitlines()) if r["class"]}
+
+
+def _rigid_classes() -> list[str]:
+    if not CORPUS.is_dir():
+        return ["(corpus missing)"]
+    import ast
+
+    names = []
+    for path in sorted(CORPUS.glob("*.py")):
+        for node in ast.parse(path.read_text()).body:
+            if isinstance(node, ast.ClassDef) and not any(
+                    s in f"{path.stem} {node.name}".lower() for s in OUT_OF_SCOPE):
+                names.append(node.name)
+    return names
+
+
+@pytest.mark.slow
+@pytest.mark.xdist_group("cliport_originals")  # one corpus run, on one worker
+@pytest.mark.parametrize("cls", _rigid_classes())
+def test_every_rigid_cliport_class_is_completed(cls: str, corpus_records: dict) -> None:
+    if cls in NOT_YET:
+        pytest.xfail(NOT_YET[cls])
+    rec = corpus_records[cls]
+    assert rec["level"] == "completion", rec
