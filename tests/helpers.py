@@ -11,8 +11,11 @@ from factask.model import TaskGraph
 from factask.scene.objects import footprint_corners, obb_overlaps
 from factask.sim.env import FactaskEnv
 
-#: The benchmark task list, in ``shared/`` beside the checkout (as in CI).
-GENSIM_TASKS = Path(__file__).resolve().parents[2] / "shared" / "data" / "gensim_tasks.json"
+#: The benchmark task list shipped inside the package.
+GENSIM_TASKS = (Path(__file__).resolve().parents[1] / "src" / "factask" / "data"
+                / "gensim_tasks.json")
+#: The CLIPort original task files, in ``shared/`` beside the checkout (as in CI).
+CLIPORT_ORIGINALS = Path(__file__).resolve().parents[2] / "shared" / "data" / "cliport_tasks"
 
 
 def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],

@@ -266,3 +266,11 @@ def test_benchmark_honours_factask_cache(tmp_path, monkeypatch) -> None:
     CliRunner().invoke(app, args)
     CliRunner().invoke(app, [*args, "--cache", str(tmp_path / "c")])
     assert given == [tmp_path / "shared-cache", tmp_path / "run" / "cache", tmp_path / "c"]
+
+
+def test_the_default_task_list_ships_with_the_package() -> None:
+    from factask.evaluation.benchmark import default_tasks_path
+
+    path = default_tasks_path()
+    assert path.is_file() and "factask" in path.parts
+    assert len(load_tasks(path)) == 192

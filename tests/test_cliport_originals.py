@@ -15,10 +15,10 @@ import sys
 from pathlib import Path
 
 import pytest
-from helpers import GENSIM_TASKS
+from helpers import CLIPORT_ORIGINALS
 
 ROOT = Path(__file__).resolve().parents[1]
-CORPUS = GENSIM_TASKS.parent / "cliport_tasks"
+CORPUS = CLIPORT_ORIGINALS
 #: Classes outside the rigid scope (ropes, piles: issue 15; Google objects: no assets).
 OUT_OF_SCOPE = ("rope", "piles", "google")
 #: Rigid classes factask does not complete yet, with why.

@@ -21,6 +21,7 @@ import re
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -75,8 +76,8 @@ class BenchTask:
 
 
 def default_tasks_path() -> Path:
-    """``../shared/data/gensim_tasks.json`` relative to the working directory."""
-    return Path.cwd().parent / "shared" / "data" / "gensim_tasks.json"
+    """The 192-task list shipped with factask (``factask/data/gensim_tasks.json``)."""
+    return Path(str(resources.files("factask") / "data" / "gensim_tasks.json"))
 
 
 def load_tasks(path: str | os.PathLike[str]) -> list[BenchTask]:
