@@ -25,7 +25,7 @@ from factask.library import (
 from factask.library.builders import var
 from factask.model import (
     CompositionError,
-    Stack,
+    On,
     StartOn,
     TaskGraph,
     compose,
@@ -161,10 +161,9 @@ def test_towers_of_hanoi_starts_stacked_and_restacks_in_order(
     graphs: dict[str, TaskGraph],
 ) -> None:
     g = graphs["towers-of-hanoi"]
-    disks = [v for v in g.variables if v.kind == "cylinder"]
-    assert len(disks) == 3
-    diam = [d.extents[0] for d in disks]
-    assert diam == sorted(diam, reverse=True) and len(set(diam)) == 3
+    disks = sorted((v for v in g.variables if v.kind == "cylinder"),
+                   key=lambda d: -d.extents[0])
+    assert len(disks) == 3 and len({d.extents[0] for d in disks}) == 3
     assert all(0.015 <= d.extents[2] <= 0.02 for d in disks)
     # Largest on a stand, each smaller one on the previous.
     assert isinstance(disks[0].initial, StartOn)
@@ -172,11 +171,19 @@ def test_towers_of_hanoi_starts_stacked_and_restacks_in_order(
     assert start.kind == "stand"
     for lower, upper in pairwise(disks):
         assert isinstance(upper.initial, StartOn) and upper.initial.support == lower.name
-    (f,) = g.factors
-    assert isinstance(f.goal, Stack) and f.goal.ordered
-    assert f.goal.objects == [d.name for d in disks]
-    goal_stand = g.variable(f.goal.base)
+    # Seven moves, one disk each, in a chain; the final ones rebuild the stack on
+    # the goal stand (largest at the bottom); the moves a later move undoes are
+    # milestones.
+    assert len(g.factors) == 7 and g.factor_order() == g.factor_names()
+    assert all(isinstance(f.goal, On) and len(f.goal.objects) == 1 for f in g.factors)
+    final = {f.goal.objects[0]: f.goal.support for f in g.factors if not f.milestone}
+    large, medium, small = (d.name for d in disks)
+    assert final[medium] == large and final[small] == medium
+    goal_stand = g.variable(final[large])
     assert goal_stand.kind == "stand" and goal_stand.name != start.name
+    last_move = {f.goal.objects[0]: f.name for f in g.factors}
+    assert [f.name for f in g.factors if not f.milestone] == sorted(
+        last_move.values(), key=g.factor_names().index)
 
 
 def test_pyramid_seq_has_explicit_order_the_plain_one_not(

@@ -2,7 +2,8 @@
 
 Variables are circles in their palette colour (left column); factors are squares
 (right column) in their execution order, numbered, with the order numbers of the
-factors each one waits for. Edges: solid to the variables a factor moves, dashed
+factors each one waits for; a milestone (counts once achieved) is a diamond, a
+final factor (must hold at the end) a square. Edges: solid to the variables a factor moves, dashed
 to its anchors, dotted to the rest of its scope.
 
 Uses :class:`matplotlib.figure.Figure` directly (no pyplot), so it works
@@ -102,14 +103,17 @@ def graph_figure(graph: TaskGraph, title: str | None = None) -> Figure:
         if f.name not in fy:
             continue
         y = fy[f.name]
-        ax.scatter([_X_FAC], [y], s=380, marker="s", color="#f3efe0", edgecolors="black",
+        ax.scatter([_X_FAC], [y], s=480 if f.milestone else 380,
+                   marker="D" if f.milestone else "s", color="#f3efe0", edgecolors="black",
                    linewidths=0.8, zorder=3)
         ax.text(_X_FAC, y, str(frow[f.name] + 1), ha="center", va="center",
                 fontsize=_FONT, weight="bold", zorder=4)
         waits = sorted(frow[d] + 1 for d in deps.get(f.name, ()) if d in frow)
         after = f"  after {', '.join(map(str, waits))}" if waits else ""
         desc = f.description if len(f.description) <= 84 else f.description[:81] + "..."
-        ax.text(_X_FAC + 0.09, y, f"{f.name}  [{f.goal.type}, w={f.weight:.2f}]{after}\n{desc}",
+        kind = ", milestone" if f.milestone else ""
+        ax.text(_X_FAC + 0.09, y,
+                f"{f.name}  [{f.goal.type}{kind}, w={f.weight:.2f}]{after}\n{desc}",
                 ha="left", va="center", fontsize=_FONT, zorder=4)
 
     head = title if title is not None else graph.name
@@ -123,8 +127,12 @@ def graph_figure(graph: TaskGraph, title: str | None = None) -> Figure:
     ax.legend(
         handles=[Line2D([], [], ls="-", color="0.45", label="moves"),
                  Line2D([], [], ls="--", color="0.45", label="anchored to"),
-                 Line2D([], [], ls=":", color="0.45", label="other scope")],
-        loc="lower left", fontsize=_FONT - 1, frameon=False, ncol=3,
+                 Line2D([], [], ls=":", color="0.45", label="other scope"),
+                 Line2D([], [], ls="", marker="s", color="black", mfc="#f3efe0",
+                        label="final: holds at the end"),
+                 Line2D([], [], ls="", marker="D", color="black", mfc="#f3efe0",
+                        label="milestone: counts once reached")],
+        loc="lower left", fontsize=_FONT - 1, frameon=False, ncol=5,
     )
     return fig
 

@@ -92,13 +92,17 @@ def _print_graph(graph: TaskGraph) -> None:
                                                           key=order.index)]
         after = f", after {', '.join(before)}" if before else ""
         tpl = f", template {f.template}" if f.template else ""
-        console.print(f"  {i}. [bold]{name}[/bold] (weight {f.weight:.3f}{after}{tpl})",
+        kind = ", milestone" if f.milestone else ""
+        console.print(f"  {i}. [bold]{name}[/bold] (weight {f.weight:.3f}{kind}{after}{tpl})",
                       highlight=False)
         console.print(f"     goal: {_goal_text(f)}", highlight=False, markup=False)
         console.print(f"     \"{f.description}\"", highlight=False, markup=False)
         if f.initial_setup:
             console.print(f"     needs: {f.initial_setup}", highlight=False, markup=False)
     console.print(f"order: {' -> '.join(order)}", highlight=False)
+    if graph.milestones():
+        console.print("milestones count once reached, in this order; the other factors "
+                      "must hold at the end", highlight=False)
 
 
 @app.command()

@@ -64,16 +64,20 @@ def start_inside(container: StateVariable) -> StartInside:
 
 
 def use(template: str, *, prefix: str | None = None, after: Iterable[TaskGraph | str] = (),
+        milestone: bool | None = None,
         **bindings: StateVariable | Sequence[StateVariable]) -> TaskGraph:
     """Instantiate library template ``template`` with ``bindings``.
 
     ``after`` takes fragments (all their factors) or factor names that this
     instance must come after: an explicit order beyond what anchoring implies.
+    ``milestone=True`` makes the instance's factors milestones (they count once
+    achieved, in order).
     """
     names: list[str] = []
     for item in after:
         names.extend(item.factor_names() if isinstance(item, TaskGraph) else [item])
-    return get_template(template).instantiate(prefix=prefix, after=names, **bindings)
+    return get_template(template).instantiate(prefix=prefix, after=names, milestone=milestone,
+                                              **bindings)
 
 
 def assemble(name: str, description: str, *fragments: TaskGraph | Sequence[TaskGraph],

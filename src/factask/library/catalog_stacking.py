@@ -18,22 +18,39 @@ def _blocks(colors: tuple[str, ...], suffix: str = "block", size=BLOCK) -> list:
     return [var(f"{c}_{suffix}", "block", c, size) for c in colors]
 
 
+#: The seven moves that take three disks from the first stand to the third, the
+#: smallest never under a bigger one: (disk, where it goes), ``None`` = a stand.
+HANOI_MOVES = (("small", "goal"), ("medium", "spare"), ("small", "medium"),
+               ("large", "goal"), ("small", "start"), ("medium", "large"), ("small", "medium"))
+
+
 @register("towers-of-hanoi")
 def towers_of_hanoi() -> TaskGraph:
-    stand_a = var("start_stand", "stand", "gray", SQUARE_STAND, description="the start peg's stand")
-    stand_b = var("goal_stand", "stand", "brown", SQUARE_STAND, description="the goal stand")
-    large = var("large_disk", "cylinder", "red", (0.07, 0.07, 0.02), initial=start_on(stand_a),
+    stands = {
+        role: var(f"{role}_stand", "stand", color, SQUARE_STAND, description=f"the {role} stand")
+        for role, color in (("start", "gray"), ("spare", "white"), ("goal", "brown"))}
+    large = var("large_disk", "cylinder", "red", (0.07, 0.07, 0.02),
+                initial=start_on(stands["start"]),
                 description="the largest disk, at the bottom of the start stack")
     medium = var("medium_disk", "cylinder", "green", (0.055, 0.055, 0.02),
                  initial=start_on(large), description="the middle disk")
     small = var("small_disk", "cylinder", "blue", (0.04, 0.04, 0.02), initial=start_on(medium),
                 description="the smallest disk, on top of the start stack")
+    disks = {"large": large, "medium": medium, "small": small}
+    last_move = {disk: k for k, (disk, _) in enumerate(HANOI_MOVES)}
+    moves: list[TaskGraph] = []
+    for k, (disk, onto) in enumerate(HANOI_MOVES):
+        support = disks.get(onto) or stands[onto]
+        # A disk's last move must hold at the end; its earlier moves are milestones.
+        moves.append(use("place_on_top", objects=[disks[disk]], support=support,
+                         prefix=f"move_{k + 1}", after=moves[-1:],
+                         milestone=k != last_move[disk]))
     return assemble(
         "towers-of-hanoi",
-        "Three disks of decreasing size start stacked on one stand; move them to the "
-        "other stand, stacked in the same order (largest at the bottom).",
-        use("stack_on_base", layers=[large, medium, small], base=stand_b),
-        extra=[stand_a],
+        "Three disks of decreasing size start stacked on the first of three stands; move "
+        "them to the third stand one at a time, never a bigger disk on a smaller one: "
+        "seven moves, each its own milestone, ending largest at the bottom.",
+        *moves, extra=list(stands.values()),
     )
 
 

@@ -20,6 +20,11 @@ class SubtaskFactor(BaseModel):
         scope: Variables the factor touches; defaults to those its goal names.
         weight: Share of the task's reward; a graph's weights sum to 1.
         after: Factors that must be done before this one (explicit order).
+        milestone: False (default): the goal must hold at the end of the episode and
+            is re-checked every step. True: the goal counts once achieved, in order
+            (when every factor before it has been reached), and keeps its progress
+            even if a later factor moves its objects again (see
+            :mod:`factask.model.order`).
         initial_setup: What must already hold before the subtask runs (language).
         template: Name of the subtask template it came from, if any (provenance).
     """
@@ -32,6 +37,7 @@ class SubtaskFactor(BaseModel):
     scope: list[Name] | None = None
     weight: Annotated[float, Field(gt=0, le=1, allow_inf_nan=False)] = 1.0
     after: list[Name] = Field(default_factory=list)
+    milestone: bool = False
     initial_setup: str = ""
     template: Name | None = None
 

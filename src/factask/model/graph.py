@@ -22,6 +22,12 @@ from factask.model.errors import GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.kinds import kind_spec, shape_problem
 from factask.model.names import TaskName
+from factask.model.order import (
+    cycle_problems,
+    dependency_graph,
+    mover_problems,
+    topological_order,
+)
 from factask.model.variables import StartInside, StateVariable
 
 #: Weights must sum to 1 within this absolute tolerance.
@@ -141,39 +147,27 @@ class TaskGraph(BaseModel):
         """Directed graph of factor order: an edge A -> B means A comes before B.
 
         Edges come from B's explicit ``after`` and from implied order: B's goal is
-        anchored to (rests on, goes into, aligns with) a variable that A moves.
+        anchored to (rests on, goes into, aligns with) a variable that A moves
+        (see :mod:`factask.model.order`).
         """
-        d = nx.DiGraph()
-        names = self.factor_names()
-        d.add_nodes_from(names)
-        known = set(names)
-        movers: dict[str, list[str]] = {}
-        for f in self.factors:
-            for v in f.moved():
-                movers.setdefault(v, []).append(f.name)
-        for f in self.factors:
-            for a in f.after:
-                if a in known and a != f.name:
-                    d.add_edge(a, f.name, why="after")
-            for anchor in f.anchors():
-                for m in movers.get(anchor, []):
-                    if m != f.name:
-                        d.add_edge(m, f.name, why=f"{f.name} is anchored to {anchor}")
-        return d
+        return dependency_graph(self.factors)
 
     def factor_order(self) -> list[str]:
         """Factors in an order that respects every dependency (declaration order
         breaks ties).
 
         Raises:
-            GraphValidationError: the order has a cycle.
+            GraphValidationError: the order has a cycle (naming its factors).
         """
         d = self.dependency_graph()
-        index = {n: i for i, n in enumerate(self.factor_names())}
         try:
-            return list(nx.lexicographical_topological_sort(d, key=index.__getitem__))
+            return topological_order(d, self.factor_names())
         except nx.NetworkXUnfeasible:
-            raise GraphValidationError(_cycle_problems(d)) from None
+            raise GraphValidationError(cycle_problems(d)) from None
+
+    def milestones(self) -> list[str]:
+        """Names of the milestone factors (they count once achieved, in order)."""
+        return [f.name for f in self.factors if f.milestone]
 
     # ------------------------------------------------------------ validation
     def problems(self) -> list[Problem]:
@@ -195,23 +189,6 @@ class TaskGraph(BaseModel):
 
 
 # ---------------------------------------------------------------------------
-def _cycle_problems(d: nx.DiGraph) -> list[Problem]:
-    problems = []
-    for cycle in nx.simple_cycles(d):
-        path = " -> ".join([*cycle, cycle[0]])
-        problems.append(
-            Problem(
-                cycle[0],
-                "after",
-                f"factor order has a cycle: {path}",
-                "remove one 'after' entry, or anchor the goals differently",
-            )
-        )
-        if len(problems) >= 5:
-            break
-    return problems
-
-
 def _duplicates(names: Iterable[str]) -> list[str]:
     seen: set[str] = set()
     dup: list[str] = []
@@ -245,6 +222,10 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
         shape = shape_problem(v.kind, v.extents)
         if shape is not None:
             out.append(Problem(v.name, "size", *shape))
+        if getattr(v.initial, "offset", None) is not None and v.count > 1:
+            out.append(Problem(v.name, "initial.offset", f"one place given for {v.count} "
+                               "objects", "give each object its own variable, or drop the "
+                               "offset"))
         for ref in v.references():
             if ref == v.name:
                 out.append(Problem(v.name, "initial", "starts on/inside itself",
@@ -270,7 +251,6 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
                            + " -> ".join(a for a, _ in cyc), "start one of them on the table"))
 
     # Factors.
-    movers: dict[str, list[str]] = {}
     for f in graph.factors:
         scope = f.scope_names
         if not scope:
@@ -301,7 +281,6 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             if v is not None and v.is_fixed:
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))
-            movers.setdefault(name, []).append(f.name)
         out.extend(f.goal.problems(f.name, variables))
         for a in f.after:
             if a == f.name:
@@ -314,11 +293,6 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             out.append(Problem(f.name, "weight", "weight must be a positive number",
                                "give a weight in (0, 1]"))
 
-    for name, who in movers.items():
-        if len(who) > 1:
-            out.append(Problem(who[1], "goal.objects", f"variable {name!r} is moved by factors "
-                               f"{who}; an object has one goal pose",
-                               "merge those goals, or split the variable in two"))
 
     if graph.factors:
         total = sum(f.weight for f in graph.factors)
@@ -328,7 +302,8 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
 
     d = graph.dependency_graph()
     if not nx.is_directed_acyclic_graph(d):
-        out.extend(_cycle_problems(d))
+        out.extend(cycle_problems(d))
+    out.extend(mover_problems(graph.factors, d))
     return out
 
 

@@ -217,6 +217,7 @@ class SubtaskTemplate(BaseModel):
         self,
         prefix: str | None = None,
         after: Sequence[str] = (),
+        milestone: bool | None = None,
         **bindings: StateVariable | Sequence[StateVariable],
     ) -> TaskGraph:
         """Bind every slot to task variables and return the fragment.
@@ -225,6 +226,8 @@ class SubtaskTemplate(BaseModel):
             prefix: Suffix added to factor names to keep instances apart; default
                 the name of the first variable bound.
             after: Factor names (of other fragments) this fragment's factors come after.
+            milestone: Make every factor a milestone (True) or a final goal (False);
+                None keeps the template's own choice.
             **bindings: slot name -> variable (or list of variables for ``many`` slots).
 
         Returns:
@@ -303,6 +306,8 @@ class SubtaskTemplate(BaseModel):
                 initial_setup=_fill(f.initial_setup, words),
                 template=self.name,
             )
+            if milestone is not None:
+                data["milestone"] = milestone
             try:
                 factors.append(SubtaskFactor.model_validate(data))
             except ValidationError as exc:

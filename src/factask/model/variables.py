@@ -42,18 +42,33 @@ class InRegion(BaseModel):
         return self
 
 
-class StartOn(BaseModel):
-    """Start resting on top of another variable (e.g. disks stacked on a stand)."""
+#: A given place on a host is at most this far (metres) from the host's centre.
+MAX_OFFSET = 1.0
+Offset = Annotated[float, Field(ge=-MAX_OFFSET, le=MAX_OFFSET, allow_inf_nan=False)]
+
+
+class _OnHost(BaseModel):
+    """Where on its host an object starts: a free spot (default), or the place
+    given by ``offset`` (x, y in metres, in the host's frame) and ``yaw_deg``
+    (relative to the host) — e.g. a disk on a given peg of a stand. A given place
+    is a fact: an object there that overlaps something else is an error, never
+    moved."""
 
     model_config = ConfigDict(extra="forbid")
+    offset: tuple[Offset, Offset] | None = None
+    yaw_deg: Annotated[float, Field(ge=-360, le=360, allow_inf_nan=False)] = 0.0
+
+
+class StartOn(_OnHost):
+    """Start resting on top of another variable (e.g. disks stacked on a stand)."""
+
     type: Literal["on"] = "on"
     support: Name
 
 
-class StartInside(BaseModel):
+class StartInside(_OnHost):
     """Start inside a receptacle variable (a container or bowl)."""
 
-    model_config = ConfigDict(extra="forbid")
     type: Literal["inside"] = "inside"
     container: Name
 

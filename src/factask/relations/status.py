@@ -8,9 +8,11 @@ the free slots and, for every object still to place, the free slot it should tak
 (the nearest, by one optimal assignment). The env's reward and ``info``, the
 oracle, the CLI and the scoring all read that status; nobody re-derives it.
 
-Every check re-checks from the current poses (nothing latches: a stack that falls
-loses its progress). Objects held by the robot never count as placed. Tolerances
-come from each relation's ``tolerances``, never from literals.
+Every check re-checks from the current poses (a stack that falls loses its
+progress); only milestone factors latch, and that is decided where the statuses
+are added up (:mod:`factask.sim.checks`), never inside a relation. Objects held
+by the robot never count as placed. Tolerances come from each relation's
+``tolerances``, never from literals.
 """
 
 from __future__ import annotations
@@ -53,6 +55,9 @@ class FactorStatus:
         targets: Object still to place -> the free slot it should take (nearest by
             one optimal assignment within the relation's matches); an object with
             no allowed free slot is absent.
+        latched: A milestone reached earlier: full progress whatever the poses now.
+        waiting_for: A milestone not ready yet: the factors before it that have not
+            been reached (its progress stays 0 until they are).
     """
 
     progress: float
@@ -61,6 +66,8 @@ class FactorStatus:
     placed: Mapping[str, int] = field(default_factory=dict)
     free_slots: tuple[int, ...] = ()
     targets: Mapping[str, int] = field(default_factory=dict)
+    latched: bool = False
+    waiting_for: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -145,6 +145,8 @@ class FactaskEnv(gym.Env):
         self.actions_taken = 0
         self.failure: str | None = None
         self._status: TaskStatus | None = None
+        # Factors reached so far (milestones latch on it); updated after each action.
+        self._reached: frozenset[str] = frozenset()
         #: Called every few physics steps during actions (e.g. to record video).
         self.frame_callback: Callable[[], None] | None = None
 
@@ -162,9 +164,9 @@ class FactaskEnv(gym.Env):
         return {name} if name else set()
 
     def status(self) -> TaskStatus:
-        """Check every factor now."""
+        """Check every factor now (milestones reached at earlier actions stay latched)."""
         return check_task(self.graph, self.solved, self.object_poses(), self.held_objects(),
-                          self.objects)
+                          self.objects, self._reached)
 
     def _obs(self) -> dict[str, np.ndarray]:
         poses = self.object_poses()
@@ -181,6 +183,8 @@ class FactaskEnv(gym.Env):
             "success": status.success,
             "factors": {n: s.progress for n, s in status.factors.items()},
             "satisfied": {n: s.satisfied for n, s in status.factors.items()},
+            # Milestones reached so far (they keep progress 1 from then on).
+            "reached": [n for n in self.graph.factor_names() if n in status.reached],
             "details": {n: s.detail for n, s in status.factors.items()},
             # Each factor's status as the checks found it: placed objects with their
             # slots, and the free slot each object still to place should take.
@@ -232,8 +236,9 @@ class FactaskEnv(gym.Env):
         self.history = []
         self.actions_taken = 0
         self.failure = self.physics_failure()
+        self._reached = frozenset()
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
-        self._status = status
+        self._status, self._reached = status, status.reached
         return self._obs(), self._info(status)
 
     def step(self, action: dict[str, Any]) -> tuple[dict[str, np.ndarray], float, bool, bool,
@@ -266,7 +271,7 @@ class FactaskEnv(gym.Env):
         self.actions_taken += 1
         self.failure = self.physics_failure()
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
-        self._status = status
+        self._status, self._reached = status, status.reached
         self.history.append(ActionRecord(self.actions_taken, result.ok, result.reason,
                                        result.sim_steps, status.reward))
         info = self._info(status)

@@ -80,6 +80,7 @@ class Oracle:
     def __init__(self, env: FactaskEnv, seed: int = 0) -> None:
         self.env = env
         self.order = env.graph.factor_order()
+        self.milestones = env.graph.milestones()
         self.rng = np.random.default_rng(seed)
         self.attempts: Counter[tuple[str, str]] = Counter()
         self.failure: str | None = None
@@ -125,9 +126,15 @@ class Oracle:
             return None
         poses = env.object_poses()
         objs = env.objects
+        pending_milestones = [n for n in self.milestones if n not in status.reached]
         for fname in self.order:
             fstatus = status.factors[fname]
             if fstatus.satisfied:
+                continue
+            if fname in status.reached and any(self.order.index(m) > self.order.index(fname)
+                                               for m in pending_milestones):
+                # A final goal reached earlier and disturbed since: a milestone still
+                # ahead may need its objects; restore it once the milestones are done.
                 continue
             for name in fstatus.placed:  # a success resets the object's retry budget
                 self.attempts.pop((fname, name), None)

@@ -19,7 +19,7 @@ import numpy as np
 
 from factask.geometry import Pose
 from factask.model.graph import TaskGraph
-from factask.model.variables import AtFixedPose, InRegion, StartInside
+from factask.model.variables import AtFixedPose, InRegion, StartInside, StartOn
 from factask.model.world import TABLE_Z
 from factask.scene.collision import (
     CLEARANCE,
@@ -192,11 +192,35 @@ def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
         by_host: dict[str, list[tuple[str, bool]]] = {}
         for v in group:
             inside = isinstance(v.initial, StartInside)
+            if v.initial.offset is not None:  # an author's place: a fact
+                _place_given(objs, occ, poses, hosts[0], v.instances[0], v.initial)
+                continue
             for inst in v.instances:
                 host = hosts[int(rng.integers(len(hosts)))]
                 by_host.setdefault(host, []).append((inst, inside))
         for host, members in by_host.items():
             _place_on_host(objs, rng, tries, occ, poses, host, members)
+
+
+def _place_given(objs: Mapping[str, SceneObject], occ: Occupancy, poses: dict[str, Pose],
+                 host: str, inst: str, placement: StartOn | StartInside) -> None:
+    """Put ``inst`` at the place on ``host`` its placement gives (host frame)."""
+    assert placement.offset is not None
+    hobj, hpose = objs[host], poses[host]
+    c, s = math.cos(hpose.yaw), math.sin(hpose.yaw)
+    dx, dy = placement.offset
+    x, y = hpose.pos[0] + c * dx - s * dy, hpose.pos[1] + s * dx + c * dy
+    obj = objs[inst]
+    pose = resting_pose(obj, x, y, rest_surface_z(hobj, hpose),
+                        hpose.yaw + math.radians(placement.yaw_deg))
+    if not placement_area(hobj, hpose).contains(np.array([x, y]))[0]:
+        raise _Placement(inst, f"its given place ({dx:+.3f}, {dy:+.3f}) from {host!r}'s "
+                         "centre is off that host", retry=False)
+    blocked = occ.blockers(obj, pose, ignore=[host])
+    if blocked:
+        raise _Placement(inst, f"its given place on {host!r} overlaps {blocked}", retry=False)
+    poses[inst] = pose
+    occ.put(inst, obj, pose)
 
 
 def _place_on_host(objs: Mapping[str, SceneObject], rng: np.random.Generator, tries: int,
