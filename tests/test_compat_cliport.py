@@ -167,21 +167,28 @@ def test_identity_matches_and_colours_as_lists_tuples_and_names():
     assert f.goal.matches == [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
 
 
-def test_hanoi_keeps_last_goal_per_disk_with_warnings():
+def test_hanoi_keeps_every_goal_in_queue_order_earlier_moves_are_milestones():
     r = _imp("towers_of_hanoi_seq")
     g = r.graph
-    assert len(r.goals) == 7  # the full Ravens queue is kept for scoring
-    assert len(g.factors) == 3
-    moved = [f.goal.objects[0] for f in g.factors]
-    assert sorted(moved) == ["cylinder_blue_0", "cylinder_green_0", "cylinder_red_0"]
-    assert all(f.goal.poses[0].y == pytest.approx(0.12) for f in g.factors)
-    assert any("only the last goal" in w for w in r.warnings)
-    assert any("dropped" in w for w in r.warnings)
-    sizes = sorted(g.variable(n).extents[0] for n in moved)
+    assert len(r.goals) == 7 and len(g.factors) == 7  # one factor per add_goal
+    assert g.factor_order() == g.factor_names()
+    assert all(f.after == [prev.name] for prev, f in zip(g.factors, g.factors[1:]))
+    disks = [f.goal.objects[0] for f in g.factors]
+    last = {d: k for k, d in enumerate(disks)}
+    assert [f.milestone for f in g.factors] == [last[d] != k for k, d in enumerate(disks)]
+    final = [f for f in g.factors if not f.milestone]
+    assert sorted(f.goal.objects[0] for f in final) == [
+        "cylinder_blue_0", "cylinder_green_0", "cylinder_red_0"]
+    assert all(f.goal.poses[0].y == pytest.approx(0.12) for f in final)
+    # Every disk's final target rests on the one below (or the stand), as placed in
+    # queue order; a disk's earlier target no longer supports anything once it moves.
+    heights = sorted(f.goal.poses[0].z or 0.0 for f in final)
+    assert heights[1] > heights[0] and heights[2] > heights[1]
+    sizes = sorted(g.variable(n).extents[0] for n in set(disks))
     assert sizes == pytest.approx([0.06, 0.07, 0.08])
     stand = g.variable("stand_brown_0")
     assert stand.extents == pytest.approx((0.12, 0.36, 0.01))
-    assert all(isinstance(g.variable(n).initial, StartOn) for n in moved)
+    assert all(isinstance(g.variable(n).initial, StartOn) for n in set(disks))
 
 
 def test_ell_into_fixture():

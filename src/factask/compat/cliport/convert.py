@@ -13,8 +13,10 @@ Rules (documented in docs/compat.md):
   inside the zone (a packing plan); goals are read by
   :mod:`factask.compat.cliport.goals`;
 * weights = ``step_max_reward``, rescaled to sum to 1;
-* an object in several goals keeps only its **last** goal (factask has one goal
-  per object); the earlier ones lose it, with a warning.
+* the goals keep Ravens' queue: each factor comes ``after`` the one before it; a
+  goal whose objects a later goal moves again is a **milestone** (it counts once
+  achieved, as Ravens counts a popped goal), an object's last goal is a final
+  factor that must hold at the end.
 """
 
 from __future__ import annotations
@@ -114,13 +116,14 @@ def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int,
     receptacles = [c for c in holders if kind_spec(c.kind).receptacle
                    and c.pos[2] - c.size[2] / 2 <= bottom + SUPPORT_SLACK]
     if receptacles:
-        return StartInside(container=names[receptacles[-1].obj_id])
+        host = receptacles[-1]
+        return StartInside(container=names[host.obj_id], **_given_place(o, host))
     # A centre inside a support's footprint cannot rest on the table: it is on it.
     below = [c for c in holders if kind_spec(c.kind).support
              and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
     if below:
         support = max(below, key=lambda c: c.pos[2] + c.size[2] / 2)
-        return StartOn(support=names[support.obj_id])
+        return StartOn(support=names[support.obj_id], **_given_place(o, support))
     if bottom > START_ABOVE_TABLE:
         warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
              "the table instead")
@@ -133,6 +136,20 @@ def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int,
         return OnTable()
     return AtFixedPose(x=x, y=y, yaw_deg=math.degrees(yaw_of_xyzw(o.quat)))
 
+
+
+def _given_place(o: RecordedObject, host: RecordedObject) -> dict[str, Any]:
+    """Where the task's author put ``o`` on ``host``: offset and yaw in the host's
+    frame (a fact, like every pose the code gives), unless it asked for a random
+    spot."""
+    if o.random_start:
+        return {}
+    host_yaw = yaw_of_xyzw(host.quat)
+    dx, dy = float(o.pos[0] - host.pos[0]), float(o.pos[1] - host.pos[1])
+    c, s = math.cos(host_yaw), math.sin(host_yaw)
+    yaw = math.degrees(yaw_of_xyzw(o.quat) - host_yaw)
+    return {"offset": (round(c * dx + s * dy, 6), round(-s * dx + c * dy, 6)),
+            "yaw_deg": round((yaw + 180.0) % 360.0 - 180.0, 6)}
 
 
 def _zone_variable(goal: RecordedGoal, objects: list[RecordedObject], names: dict[int, str],
@@ -159,19 +176,16 @@ def _zone_variable(goal: RecordedGoal, objects: list[RecordedObject], names: dic
     return name
 
 
-def _keep_last_goal_per_object(goals: list[RecordedGoal], names: dict[int, str], warn: Any) -> None:
-    claimed: set[int] = set()
+def _moved_again(goals: list[RecordedGoal]) -> set[int]:
+    """Indices of the goals some of whose objects a later goal moves again."""
+    later: set[int] = set()
+    out: set[int] = set()
     for g in reversed(goals):
-        keep = [i for i, o in enumerate(g.objs) if o.obj_id not in claimed]
-        dropped = [names[o.obj_id] for o in g.objs if o.obj_id in claimed]
-        if dropped:
-            warn(f"goal {g.index} ({g.language!r}): {', '.join(dropped)} also in a later "
-                 "goal; only the last goal of an object is kept")
-        claimed.update(o.obj_id for o in g.objs)
-        g.objs = [g.objs[i] for i in keep]
-        g.symmetries = [g.symmetries[i] for i in keep]
-        if g.metric == "pose":
-            g.matches = g.matches[keep, :] if keep else g.matches[:0]
+        ids = {o.obj_id for o in g.objs}
+        if ids & later:
+            out.add(g.index)
+        later |= ids
+    return out
 
 
 def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph,
@@ -214,7 +228,6 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     for g in goals:
         for o, sym in zip(g.objs, g.symmetries, strict=True):
             symmetry[o.obj_id] = sym
-    _keep_last_goal_per_object(goals, names, warn)
 
     # Factors.
     tol = None
@@ -257,7 +270,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             rel = InZone(objects=objs, zone=zone, poses=zone_poses(g, rest), **extra_kw)
         drafts.append((g, rel))
     if not drafts:
-        raise CliportImportError("no goal is left to check after merging goals per object")
+        raise CliportImportError("no goal is left to check (every goal lost its objects)")
 
     weights = [g.max_reward for g, _ in drafts]
     if any(not math.isfinite(w) or w <= 0 for w in weights):
@@ -267,11 +280,13 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     if abs(total - 1.0) > WEIGHT_WARN_TOLERANCE:
         why = " (after dropping goals)" if len(drafts) < len(goals) else ""
         warn(f"step_max_reward values sum to {total:.4g}{why}, not 1; rescaled to sum to 1")
-    factors = []
+    factors: list[SubtaskFactor] = []
+    milestones = _moved_again([g for g, _ in drafts])
     for (g, rel), w in zip(drafts, weights, strict=True):
         name = _unique(slugify(g.language, "_", MAX_NAME, "goal"), taken)
         factors.append(SubtaskFactor(name=name, description=g.language, goal=rel,
-                                     weight=w / total))
+                                     weight=w / total, milestone=g.index in milestones,
+                                     after=[factors[-1].name] if factors else []))
     # Fix rounding so the weights sum to exactly 1.
     drift = 1.0 - sum(f.weight for f in factors)
     factors[-1].weight = factors[-1].weight + drift

@@ -144,6 +144,7 @@ class _Slot:
     z: float
     half: tuple[float, float]
     height: float
+    objects: frozenset[int]  # ids of the objects that may take the target
 
 
 def _half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
@@ -167,6 +168,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
     4 cm blocks); factask checks heights. A target's height is recomputed as the top
     of what supports it (the table, a fixed object, or a lower target) plus half
     the height of the objects that may go there, taking the targets in queue order.
+    A target whose objects a later goal moves again stops supporting anything
+    from that goal on (a towers-of-hanoi disk leaves its peg).
 
     Returns:
         (goal index, target index) -> centre z, metres.
@@ -182,7 +185,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             yaw = yaw_of_xyzw(quat)
             size = max((o.size for o in allowed), key=lambda s: s[2])
             slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
-                               _half_xy(size, yaw), size[2]))
+                               _half_xy(size, yaw), size[2],
+                               frozenset(o.obj_id for o in allowed)))
     fixed = []
     for o in objects:
         spec = kind_spec(o.kind)
@@ -198,7 +202,11 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
     # a target rests on what is under it when it is placed — a fixed object, or a
     # target placed before it (at the same author z too: Ravens ignores z, so towers
     # whose every target is the rod's base point still stack).
+    goal_objects = {g.index: {o.obj_id for o in g.objs} for g in goals}
     for slot in sorted(slots, key=lambda s: (s.key[0], s.z)):
+        # Earlier targets whose objects this goal moves again are vacated.
+        done = [(other, z) for other, z in done if other.key[0] == slot.key[0]
+                or not other.objects <= goal_objects[slot.key[0]]]
         support = 0.0
         for fx, fy, fh, top in fixed:
             if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
