@@ -257,7 +257,7 @@ def test_benchmark_honours_factask_cache(tmp_path, monkeypatch) -> None:
         given.append(cache)
         raise SystemExit(0)
 
-    monkeypatch.setattr(cmds, "_make_generator", fake)
+    monkeypatch.setattr(cmds, "_session", fake)
     args = ["benchmark", "-a", "one-shot", "--model", "m", "--tasks", str(tasks_file),
             "--out", str(tmp_path / "run")]
     monkeypatch.setenv("FACTASK_CACHE", str(tmp_path / "shared-cache"))

@@ -43,5 +43,33 @@ def test_generate_rejects_bad_options(monkeypatch) -> None:
     monkeypatch.delenv("FACTASK_MODEL", raising=False)
     res = runner.invoke(app, ["generate", "x: y", "--approach", "bottom-up", "--model", "m"])
     assert res.exit_code == 2
-    res = runner.invoke(app, ["generate", "x: y"])
-    assert res.exit_code == 2 and "FACTASK_MODEL" in res.output
+    res = runner.invoke(app, ["generate", "x: y", "--model", "local/no-such-model"])
+    assert res.exit_code == 2 and "unknown local model" in res.output
+    res = runner.invoke(app, ["generate", "x: y", "--response-format", "xml"])
+    assert res.exit_code == 2 and "response_format" in res.output
+
+
+def test_a_missing_key_is_one_line_and_exit_2_with_no_call(monkeypatch) -> None:
+    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
+    monkeypatch.delenv("FACTASK_API_KEY", raising=False)
+    monkeypatch.delenv("FACTASK_API_BASE", raising=False)
+    res = runner.invoke(app, ["generate", "x: y", "--model", "openai/gpt-4o-mini"])
+    assert res.exit_code == 2, res.output
+    lines = [ln for ln in res.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "OPENAI_API_KEY" in lines[0] and "fix:" in lines[0]
+    assert "Traceback" not in res.output
+    res = runner.invoke(app, ["benchmark", "--model", "anthropic/claude-3-5-haiku-latest",
+                              "--limit", "1", "--out", "/tmp/factask-never"])
+    assert res.exit_code == 2 and "ANTHROPIC_API_KEY" in res.output
+
+
+def test_no_successful_call_exits_3(tmp_path) -> None:
+    from factask.gen.loopback import LoopbackServer, ScriptedResponder
+
+    with LoopbackServer(ScriptedResponder({})) as server:  # every call: 500
+        env = {"FACTASK_RETRIES": "0"}
+        res = runner.invoke(app, ["benchmark", "-a", "one-shot", "--model", "openai/scripted",
+                                  "--api-base", server.url, "--limit", "2", "--out",
+                                  str(tmp_path / "run")], env=env)
+    assert res.exit_code == 3, res.output
+    assert "no LLM call succeeded" in res.output

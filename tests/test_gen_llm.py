@@ -24,9 +24,11 @@ def test_config_arguments_win_over_environment() -> None:
     assert cfg.num_retries == 5
 
 
-def test_config_without_model_is_a_typed_error() -> None:
-    with pytest.raises(LLMConfigError, match="FACTASK_MODEL"):
-        LLMConfig.from_env({})
+def test_config_without_model_is_the_local_model_and_bad_values_are_typed_errors() -> None:
+    assert LLMConfig.from_env({}).model == "local/smollm2-135m"
+    assert LLMConfig.from_env({}).is_local
+    with pytest.raises(LLMConfigError, match="response_format"):
+        LLMConfig.from_env({"FACTASK_RESPONSE_FORMAT": "xml"})
     with pytest.raises(LLMConfigError, match="FACTASK_TEMPERATURE"):
         LLMConfig.from_env({"FACTASK_MODEL": "x", "FACTASK_TEMPERATURE": "warm"})
 
@@ -43,8 +45,9 @@ def test_call_records_usage_and_sends_the_schema(tmp_path) -> None:
     responder = ScriptedResponder({"ping": ['{"answer": "pong"}']})
     with LoopbackServer(responder) as server:
         client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
-                                     num_retries=0))
-        reply = client.complete(MSGS, schema={"type": "object"}, schema_name="pong")
+                                     num_retries=0, response_format="json_schema"))
+        reply = client.complete(MSGS, schema={"type": "object"}, schema_name="pong",
+                                max_tokens=50)
     assert reply.text == '{"answer": "pong"}'
     assert not reply.cached
     assert reply.usage.prompt_tokens > 0 and reply.usage.completion_tokens == 2
@@ -53,6 +56,7 @@ def test_call_records_usage_and_sends_the_schema(tmp_path) -> None:
     assert sent["response_format"]["type"] == "json_schema"
     assert sent["response_format"]["json_schema"]["schema"] == {"type": "object"}
     assert sent["messages"][1]["content"].startswith("Step: ping")
+    assert sent["max_tokens"] == 50 and sent["seed"] == 0
 
 
 def test_cache_makes_a_rerun_free_and_identical(tmp_path) -> None:
@@ -101,7 +105,14 @@ def _litellm_errors():
         return httpx.Response(code, request=req)
 
     kw = {"llm_provider": "openai", "model": "m"}
-    from factask.gen.llm import LLMAuthError, LLMRequestError, LLMTransientError
+    from factask.gen.llm import (
+        LLMAuthError,
+        LLMContextError,
+        LLMModelNotFoundError,
+        LLMQuotaError,
+        LLMRequestError,
+        LLMTransientError,
+    )
 
     return [
         (e.APIConnectionError(message="refused", request=req, **kw), LLMTransientError),
@@ -111,6 +122,14 @@ def _litellm_errors():
          LLMTransientError),
         (e.InternalServerError(message="500", response=resp(500), **kw), LLMTransientError),
         (e.ContextWindowExceededError(message="too long", response=resp(400), **kw),
+         LLMContextError),
+        (e.RateLimitError(message="You exceeded your current quota, check billing",
+                          response=resp(429), **kw), LLMQuotaError),
+        (e.NotFoundError(message="The model `gpt-9` does not exist", response=resp(404),
+                         **kw), LLMModelNotFoundError),
+        (e.InternalServerError(message="1 validation error: {'loc': ('body', "
+                               "'response_format', 'type'), 'msg': \"Input should be 'text' "
+                               "or 'json_object'\"}", response=resp(500), **kw),
          LLMRequestError),
         (e.BadRequestError(message="bad", response=resp(400), **kw), LLMRequestError),
         (e.ContentPolicyViolationError(message="policy", response=resp(400), **kw),

@@ -77,7 +77,8 @@ def test_each_approach_recovers_from_a_broken_answer_and_completes(approach, tmp
 
 
 def test_repairs_that_never_succeed_are_bounded_and_reported() -> None:
-    result, server = _run({"one_shot": ["still thinking..."]}, "one-shot", max_repairs=2)
+    result, server = _run({"one_shot": ["still thinking...", "hmm, thinking", "no idea",
+                                        "fourth"]}, "one-shot", max_repairs=2)
     assert len(server.requests) == 3  # first answer + 2 repairs, no more
     assert [s.attempt for s in result.steps] == [0, 1, 2]
     assert not any(s.ok for s in result.steps)
@@ -85,6 +86,18 @@ def test_repairs_that_never_succeed_are_bounded_and_reported() -> None:
     assert "one_shot" in result.failure and "JSON" in result.failure
     # The conversation grew by the answer and the feedback at each repair.
     assert [len(r["messages"]) for r in server.requests] == [2, 4, 6]
+    # Each retry samples differently: another seed, a warmer temperature.
+    seeds = [r["seed"] for r in server.requests]
+    temps = [r["temperature"] for r in server.requests]
+    assert len(set(seeds)) == 3 and temps[0] == 0 and temps[1] > 0 and temps[2] > temps[1]
+    assert all(r["max_tokens"] == 1600 for r in server.requests)
+
+
+def test_a_repeated_answer_stops_the_step_early() -> None:
+    result, server = _run({"one_shot": ["still thinking..."]}, "one-shot", max_repairs=3)
+    assert len(server.requests) == 2  # the second answer repeats the first: stop
+    assert "repeated an earlier answer" in result.steps[-1].feedback
+    assert result.level_reached == "none"
 
 
 def test_infeasible_layout_gets_runtime_feedback_then_repair() -> None:
@@ -116,8 +129,11 @@ def test_missing_variables_and_wrong_schema_are_repaired() -> None:
                   variables=[json.dumps({"objects": ["red"]}), good["variables"]])
     result, _ = _run(script, "variables-first")
     fb = {s.step: s.feedback for s in result.steps if not s.ok}
-    assert "VariablesAnswer" in fb["variables"]
-    assert "unknown variable 'purple_block'" in fb["subtask_plan"]
+    assert "does not follow the schema" in fb["variables"]
+    assert "'variables' is a required property" in fb["variables"]
+    # The plan's schema lists the declared variables: an unknown one is a schema error.
+    assert "'purple_block' is not one of ['red_block', 'blue_block', 'green_zone']" in \
+        fb["subtask_plan"]
     assert result.level_reached == "completion"
 
 
@@ -125,7 +141,8 @@ def test_subtasks_first_may_leave_out_earlier_variables() -> None:
     good = demo_answers()
     design = {"variables": [json.loads(good["subtask_design:stack_blue_on_red"])
                             ["variables"][0]],
-              "goal": {"type": "on", "objects": ["blue_block"], "support": "red_block"}}
+              "goal": {"type": "on", "objects": ["blue_block"], "support": "red_block"},
+              "description": ""}
     script = dict(good, **{"subtask_design:stack_blue_on_red": json.dumps(design)})
     result, _ = _run(script, "subtasks-first")
     assert result.level_reached == "completion"
@@ -202,7 +219,7 @@ class _FakeClient:
         self.answers = list(answers)
         self.prompts: list[list[dict]] = []
 
-    def complete(self, messages, schema=None, schema_name="answer"):
+    def complete(self, messages, schema=None, schema_name="answer", **sampling):
         from factask.gen.llm import LLMReply, Usage
 
         self.prompts.append([dict(m) for m in messages])

@@ -6,8 +6,10 @@ litellm and MuJoCo are imported only when a command runs.
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import typer
 from rich.console import Console
@@ -23,26 +25,54 @@ err_console = Console(stderr=True, soft_wrap=True, highlight=False)
 _APPROACH_HELP = "one-shot (baseline), variables-first (approach 1) or subtasks-first (approach 2)"
 
 
-def _make_generator(model: str | None, api_base: str | None, cache: Path | None,
-                    max_repairs: int, episodes: int, memory: Path | None, robot: str,
-                    temperature: float | None, on_step: Any = None) -> Generator:
-    """Build the client, verifier, memory and generator from options + environment."""
+#: Exit status of a run that cannot work as configured (key, model, quota, context).
+EXIT_CONFIG = 2
+#: Exit status of a run in which no LLM call succeeded.
+EXIT_NO_CALL = 3
+
+_MODEL_HELP = ("litellm model, e.g. openai/gpt-4o ($FACTASK_MODEL); default: the packaged "
+               "local model local/smollm2-135m (a small floor, not a recommendation)")
+_FORMAT_HELP = ("structured output: auto (per provider), json_schema, llama_cpp, json_object "
+                "or prompt (unconstrained) ($FACTASK_RESPONSE_FORMAT)")
+
+
+def _fail(message: str, code: int = EXIT_CONFIG) -> NoReturn:
+    err_console.print(f"[red]error:[/red] {message}")
+    raise typer.Exit(code)
+
+
+@contextmanager
+def _session(model: str | None, api_base: str | None, cache: Path | None,
+             max_repairs: int, episodes: int, memory: Path | None, robot: str,
+             temperature: float | None, response_format: str | None = None,
+             seed: int | None = None, on_step: Any = None) -> Iterator[Generator]:
+    """The generator for a command: client (the local server started and stopped
+    around the command), verifier, memory. A configuration that cannot work exits
+    with one line and status 2."""
     check_robot(robot)
-    from factask.gen.llm import LLMClient, LLMConfig, LLMConfigError, ResponseCache
+    from factask.gen.llm import LLMConfig, LLMConfigError, LLMFatalError, ResponseCache
+    from factask.gen.local import LocalModelError
     from factask.gen.memory import SubtaskMemory
+    from factask.gen.session import open_client
     from factask.gen.strategies import Generator as _Generator
     from factask.gen.verify import Verifier
 
     try:
-        config = LLMConfig.from_env(model=model, api_base=api_base, temperature=temperature)
+        config = LLMConfig.from_env(model=model, api_base=api_base, temperature=temperature,
+                                    response_format=response_format, seed=seed)
     except LLMConfigError as exc:
-        err_console.print(f"[red]{exc}[/red]")
-        raise typer.Exit(2) from None
+        _fail(str(exc))
     cache_dir = cache or (Path(os.environ["FACTASK_CACHE"]) if os.environ.get("FACTASK_CACHE")
                           else None)
-    client = LLMClient(config, ResponseCache(cache_dir) if cache_dir else None)
-    verifier = Verifier(episodes=episodes, robot=robot)
-    return _Generator(client, verifier, SubtaskMemory.from_env(memory), max_repairs, on_step)
+    try:
+        with open_client(config, ResponseCache(cache_dir) if cache_dir else None) as client:
+            verifier = Verifier(episodes=episodes, robot=robot)
+            yield _Generator(client, verifier, SubtaskMemory.from_env(memory), max_repairs,
+                             on_step)
+    except LLMFatalError as exc:
+        _fail(exc.line())
+    except (LocalModelError, LLMConfigError) as exc:
+        _fail(str(exc))
 
 
 def _print_step(rec: Any) -> None:
@@ -59,8 +89,7 @@ def _print_step(rec: Any) -> None:
 def generate(
     proposal: str = typer.Argument(..., help="Task proposal: 'task-name: description' or text."),
     approach: str = typer.Option("variables-first", "--approach", "-a", help=_APPROACH_HELP),
-    model: str = typer.Option(None, "--model", "-m",
-                              help="litellm model, e.g. openai/gpt-4o (default $FACTASK_MODEL)."),
+    model: str = typer.Option(None, "--model", "-m", help=_MODEL_HELP),
     api_base: str = typer.Option(None, "--api-base", help="API base URL ($FACTASK_API_BASE)."),
     out: Path = typer.Option(None, "--out", "-o", help="Graph file (default <task>.json)."),
     cache: Path = typer.Option(None, "--cache", help="LLM answer cache dir ($FACTASK_CACHE)."),
@@ -70,23 +99,25 @@ def generate(
     robot: str = typer.Option("floating", "--robot", help=f"{ROBOT_HELP} Runs the oracle "
                               "episodes of the completion check."),
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
+    seed: int = typer.Option(None, "--seed", help="Sampling seed ($FACTASK_SEED)."),
+    response_format: str = typer.Option(None, "--response-format", help=_FORMAT_HELP),
 ) -> None:
-    """Generate a task graph with an LLM, verify it, write it; exit 0 iff completion reached."""
-    from factask.gen.llm import LLMAuthError
+    """Generate a task graph with an LLM, verify it, write it.
+
+    Exit status: 0 completion reached, 1 not reached, 2 the configuration cannot
+    work (key, model, quota, context; one line says the fix), 3 no LLM call
+    succeeded.
+    """
     from factask.gen.results import APPROACHES
 
     if approach not in APPROACHES:
-        err_console.print(f"[red]unknown approach {approach!r}; use {', '.join(APPROACHES)}")
-        raise typer.Exit(2)
-    gen = _make_generator(model, api_base, cache, max_repairs, episodes, memory, robot,
-                          temperature, _print_step)
-    console.print(f"[bold]generate[/bold] ({approach}, {gen.client.config.model}): "
-                  f"{proposal}")
-    try:
+        _fail(f"unknown approach {approach!r}; use {', '.join(APPROACHES)}")
+    with _session(model, api_base, cache, max_repairs, episodes, memory, robot, temperature,
+                  response_format, seed, _print_step) as gen:
+        console.print(f"[bold]generate[/bold] ({approach}, {gen.client.config.model}, "
+                      f"structured output: {gen.client.form}): {proposal}")
         result = gen.generate(proposal, approach)
-    except LLMAuthError as exc:
-        err_console.print(f"[red]the LLM provider refused the credentials: {exc}[/red]")
-        raise typer.Exit(2) from None
+        succeeded = gen.client.succeeded
     if result.graph is not None:
         path = out or Path(f"{result.task}.json")
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -97,6 +128,8 @@ def generate(
                   f"({u.cached_calls} cached), {u.total_tokens} tokens, ${u.cost_usd:.4f}")
     if result.failure:
         console.print(f"[yellow]failure:[/yellow] {result.failure.splitlines()[0]}")
+    if succeeded == 0:
+        _fail(f"no LLM call succeeded: {(result.failure or '').splitlines()[0]}", EXIT_NO_CALL)
     raise typer.Exit(0 if result.completed else 1)
 
 
@@ -104,10 +137,14 @@ def generate(
 def benchmark(
     approach: list[str] = typer.Option(["all"], "--approach", "-a",
                                        help=f"{_APPROACH_HELP}, repeatable, or 'all'."),
-    model: str = typer.Option(None, "--model", "-m", help="litellm model ($FACTASK_MODEL)."),
+    model: str = typer.Option(None, "--model", "-m", help=_MODEL_HELP),
     api_base: str = typer.Option(None, "--api-base", help="API base URL ($FACTASK_API_BASE)."),
     tasks: Path = typer.Option(None, "--tasks",
-                               help="Task list JSON (default ../shared/data/gensim_tasks.json)."),
+                               help="Task list JSON (default: the 192 GenSim tasks shipped "
+                                    "with factask)."),
+    sample: str = typer.Option("all", "--sample",
+                               help="all, or research55: the fixed 55-task sample "
+                                    "(factask.evaluation.benchmark.research_sample)."),
     limit: int = typer.Option(None, "--limit", min=1, help="Only the first N tasks."),
     out: Path = typer.Option(..., "--out", "-o", help="Run directory (resumed if it exists)."),
     cache: Path = typer.Option(None, "--cache",
@@ -118,8 +155,14 @@ def benchmark(
     robot: str = typer.Option("floating", "--robot", help=f"{ROBOT_HELP} Runs the oracle "
                               "episodes of the completion check."),
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
+    seed: int = typer.Option(None, "--seed", help="Sampling seed ($FACTASK_SEED)."),
+    response_format: str = typer.Option(None, "--response-format", help=_FORMAT_HELP),
 ) -> None:
-    """Run a task list through generation + verification; write JSONL, summary, chart."""
+    """Run a task list through generation + verification; write JSONL, summary, chart.
+
+    Exit status: 0 done, 2 the configuration cannot work (one line says the fix;
+    finished pairs are kept), 3 no LLM call succeeded.
+    """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from factask.evaluation.benchmark import (
@@ -129,40 +172,42 @@ def benchmark(
         finished_pairs,
         load_tasks,
         read_results,
+        research_sample,
         run_benchmark,
         summary_table,
     )
-    from factask.gen.llm import LLMAuthError
     from factask.gen.results import APPROACHES
 
     approaches: list[str] = []
     for a in approach:
         for item in (APPROACHES if a == "all" else (a,)):
             if item not in APPROACHES:
-                err_console.print(f"[red]unknown approach {item!r}; use "
-                                  f"{', '.join(APPROACHES)} or all[/red]")
-                raise typer.Exit(2)
+                _fail(f"unknown approach {item!r}; use {', '.join(APPROACHES)} or all")
             if item not in approaches:
                 approaches.append(item)
+    if sample not in ("all", "research55"):
+        _fail(f"unknown sample {sample!r}; use all or research55")
     tasks_path = tasks or default_tasks_path()
     try:
         task_list = load_tasks(tasks_path)
     except BenchmarkError as exc:
-        err_console.print(f"[red]{exc}[/red]")
-        raise typer.Exit(2) from None
+        _fail(str(exc))
+    if sample == "research55":
+        task_list = research_sample(task_list)
     if limit:
         task_list = task_list[:limit]
     cache_dir = cache or (Path(os.environ["FACTASK_CACHE"]) if os.environ.get("FACTASK_CACHE")
                           else out / "cache")
-    gen = _make_generator(model, api_base, cache_dir, max_repairs, episodes,
-                          memory, robot, temperature)
     done = finished_pairs(read_results(out / RESULTS_FILE))
     total = len(task_list) * len(approaches)
     already = sum(1 for t in task_list for a in approaches if (a, t.name) in done)
     if already:
         console.print(f"resuming {out}: {already} of {total} pair(s) already finished")
-    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                  console=console) as progress:
+    ran = {"pairs": 0, "sent": 0}
+    with _session(model, api_base, cache_dir, max_repairs, episodes, memory, robot,
+                  temperature, response_format, seed) as gen, \
+            Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                     console=console) as progress:
         bar = progress.add_task("benchmark", total=total, completed=already)
 
         def on_start(a: str, t: Any) -> None:
@@ -170,6 +215,8 @@ def benchmark(
 
         def on_result(record: dict[str, Any]) -> None:
             progress.advance(bar)
+            ran["pairs"] += 1
+            ran["sent"] += record.get("status") in ("done", "llm_error", "error")
             progress.console.print(f"  {record['approach']:<16} {record['task']:<40} "
                                    f"{record['status']:<15} {record.get('level_reached')}",
                                    markup=False)
@@ -177,15 +224,15 @@ def benchmark(
         try:
             summary = run_benchmark(task_list, approaches, gen, out, on_start, on_result,
                                     meta={"model": gen.client.config.model,
-                                          "tasks_file": str(tasks_path),
+                                          "structured_output": gen.client.form,
+                                          "tasks_file": str(tasks_path), "sample": sample,
                                           "episodes": episodes, "max_repairs": max_repairs})
         except BenchmarkError as exc:
-            err_console.print(f"[red]{exc}[/red]")
-            raise typer.Exit(2) from None
-        except LLMAuthError as exc:
-            err_console.print(f"[red]the LLM provider refused the credentials; the run "
-                              f"stopped (finished pairs are kept): {exc}[/red]")
-            raise typer.Exit(2) from None
+            _fail(str(exc))
+        succeeded = gen.client.succeeded
     console.print(summary_table(summary), markup=False)
     console.print(f"results: {out / RESULTS_FILE}; summary: {out / 'summary.json'}, "
                   f"{out / 'summary.md'}; chart: {out / 'rates.png'}")
+    if ran["sent"] and succeeded == 0:
+        _fail(f"no LLM call succeeded in {ran['sent']} generation(s): see the failures in "
+              f"{out / RESULTS_FILE}", EXIT_NO_CALL)

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import os
+import random
 import re
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -25,7 +26,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from factask.gen.llm import LLMAuthError
+from factask.gen.llm import LLMFatalError
 from factask.gen.memory import SubtaskMemory
 from factask.gen.results import APPROACHES
 from factask.gen.strategies import Generator
@@ -103,6 +104,34 @@ def load_tasks(path: str | os.PathLike[str]) -> list[BenchTask]:
                                assets=[str(a) for a in item.get("assets", [])],
                                origin=str(item.get("origin", ""))))
     return tasks
+
+
+#: Size and seed of the fixed research sample (the research used 55 tasks).
+RESEARCH_SAMPLE_SIZE = 55
+RESEARCH_SAMPLE_SEED = 224
+
+
+def research_sample(tasks: Sequence[BenchTask], n: int = RESEARCH_SAMPLE_SIZE,
+                    seed: int = RESEARCH_SAMPLE_SEED) -> list[BenchTask]:
+    """The fixed task sample of the generation table.
+
+    The rule: of the tasks a rigid suction world can express
+    (:func:`not_expressible_reason` is None), sorted by name, ``n`` drawn by
+    ``random.Random(seed).sample``; returned in the list's own order. With the
+    packaged list this is always the same 55 tasks (docs/generation.md lists them).
+
+    Args:
+        tasks: The task list.
+        n: Sample size (all expressible tasks if fewer).
+        seed: Seed of the draw.
+
+    Returns:
+        The sample.
+    """
+    pool = sorted((t for t in tasks if not_expressible_reason(t) is None),
+                  key=lambda t: t.name)
+    chosen = {t.name for t in random.Random(seed).sample(pool, min(n, len(pool)))}
+    return [t for t in tasks if t.name in chosen]
 
 
 def not_expressible_reason(task: BenchTask) -> str | None:
@@ -206,7 +235,8 @@ def run_benchmark(
 
     Raises:
         BenchmarkError: an unknown approach, or an unusable run directory.
-        LLMAuthError: the provider refused the credentials (the run stops).
+        LLMFatalError: key, model, quota or context error (the run stops; finished
+            pairs are kept).
 
     Any other error of one pair becomes a line with ``status: "error"`` and the
     exception text (a failure at level none); the run goes on. In-context
@@ -264,7 +294,7 @@ def _run_guarded(generator: Generator, task: BenchTask, approach: str,
     start = time.perf_counter()
     try:
         return _run_one(generator, task, approach, reason)
-    except (LLMAuthError, KeyboardInterrupt):
+    except (LLMFatalError, KeyboardInterrupt):
         raise
     except Exception as exc:
         return {"approach": approach, "task": task.name, "origin": task.origin,
@@ -320,6 +350,7 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
         n = len(done)
         tokens = sum(int(r.get("usage", {}).get("total_tokens", 0)) for r in done)
         cost = sum(float(r.get("usage", {}).get("cost_usd", 0.0)) for r in done)
+        wall = sum(float(r.get("wall_s", 0.0)) for r in done)
         table[a] = {
             "tasks": n,
             **{lvl: (counts[lvl] / n if n else 0.0) for lvl in RATE_LEVELS},
@@ -330,6 +361,7 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
             "repairs": sum(int(r.get("repairs", 0)) for r in done),
             "tokens": tokens,
             "cost_usd": round(cost, 6),
+            "wall_s": round(wall, 1),
         }
     return {"approaches": table, "levels": list(RATE_LEVELS),
             "research": {k: list(v) for k, v in RESEARCH_RATES.items()}}
@@ -338,15 +370,17 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
 def summary_table(summary: Mapping[str, Any]) -> str:
     """The summary as a Markdown table (ours next to the research's numbers)."""
     head = ("| approach | tasks | syntax % | runtime % | completion % | not expressible | "
-            "LLM errors | repairs | tokens | cost $ | research syntax / runtime / completion % |")
-    lines = [head, "|" + "---|" * 11]
+            "LLM errors | repairs | tokens | wall s | cost $ | research syntax / runtime / "
+            "completion % |")
+    lines = [head, "|" + "---|" * 12]
     for a, row in summary["approaches"].items():
         ref = RESEARCH_RATES.get(a)
         ref_text = " / ".join(f"{x:.1f}" for x in ref) if ref else "-"
         lines.append(
             f"| {a} | {row['tasks']} | {100 * row['syntax']:.1f} | {100 * row['runtime']:.1f} | "
             f"{100 * row['completion']:.1f} | {row['not_expressible']} | {row['llm_errors']} | "
-            f"{row['repairs']} | {row['tokens']} | {row['cost_usd']:.4f} | {ref_text} |")
+            f"{row['repairs']} | {row['tokens']} | {row.get('wall_s', 0.0):.0f} | "
+            f"{row['cost_usd']:.4f} | {ref_text} |")
     return "\n".join(lines)
 
 
@@ -397,8 +431,20 @@ def plot_rates(summary: Mapping[str, Any], path: str | os.PathLike[str]) -> None
 
 
 __all__ = [
-    "LEVELS", "RATE_LEVELS", "RESEARCH_RATES", "BenchTask", "BenchmarkError",
-    "default_tasks_path", "finished_pairs", "load_tasks", "not_expressible_reason",
-    "plot_rates", "read_results", "run_benchmark", "summarize", "summary_table",
+    "LEVELS",
+    "RATE_LEVELS",
+    "RESEARCH_RATES",
+    "BenchTask",
+    "BenchmarkError",
+    "default_tasks_path",
+    "finished_pairs",
+    "load_tasks",
+    "not_expressible_reason",
+    "plot_rates",
+    "read_results",
+    "research_sample",
+    "run_benchmark",
+    "summarize",
+    "summary_table",
     "write_summary",
 ]

@@ -10,19 +10,25 @@ Main entry points:
   :class:`~factask.gen.results.GenerationResult`;
 - :class:`~factask.gen.verify.Verifier` — the syntax / runtime / completion ladder;
 - :class:`~factask.gen.memory.SubtaskMemory` — verified subtasks on disk;
+- :func:`~factask.gen.session.open_client` — a client for a run; with no model
+  configured it starts the packaged local model
+  (:class:`~factask.gen.local.LocalLlamaServer`) and stops it at the end;
 - :class:`~factask.gen.loopback.LoopbackServer` — a scripted OpenAI-compatible
   server for tests and offline demos.
 """
 
-from factask.gen.llm import LLMClient, LLMConfig, LLMError, ResponseCache, Usage
+from factask.gen.llm import LLMClient, LLMConfig, LLMError, LLMFatalError, ResponseCache, Usage
+from factask.gen.local import DEFAULT_LOCAL_MODEL, LocalLlamaServer
 from factask.gen.loopback import LoopbackServer, ScriptedResponder
 from factask.gen.memory import SubtaskMemory
 from factask.gen.results import APPROACHES, AttemptRecord, GenerationResult
+from factask.gen.session import open_client
 from factask.gen.strategies import Generator, generate
 from factask.gen.verify import LEVELS, Verifier, VerifyOutcome
 
 __all__ = [
     "APPROACHES",
+    "DEFAULT_LOCAL_MODEL",
     "LEVELS",
     "AttemptRecord",
     "GenerationResult",
@@ -30,6 +36,8 @@ __all__ = [
     "LLMClient",
     "LLMConfig",
     "LLMError",
+    "LLMFatalError",
+    "LocalLlamaServer",
     "LoopbackServer",
     "ResponseCache",
     "ScriptedResponder",
@@ -38,4 +46,5 @@ __all__ = [
     "Verifier",
     "VerifyOutcome",
     "generate",
+    "open_client",
 ]

@@ -19,13 +19,18 @@ from factask.gen.loopback import ScriptedResponder
 DEMO_PROPOSAL = ("stack-blue-on-red-in-zone: put the red block in the green zone, then "
                  "put the blue block on top of the red block")
 
+# Every field is given: the step schemas (factask.gen.step_schemas) require them all.
+_TABLE = {"type": "table"}
 RED = {"name": "red_block", "description": "block that goes into the zone", "kind": "block",
-       "color": "red"}
+       "size": [0.04, 0.04, 0.04], "color": "red", "count": 1, "initial": _TABLE}
 BLUE = {"name": "blue_block", "description": "block that goes on the red block",
-        "kind": "block", "color": "blue"}
-ZONE = {"name": "green_zone", "description": "target zone", "kind": "zone", "color": "green"}
+        "kind": "block", "size": [0.04, 0.04, 0.04], "color": "blue", "count": 1,
+        "initial": _TABLE}
+ZONE = {"name": "green_zone", "description": "target zone", "kind": "zone",
+        "size": [0.12, 0.12, 0.001], "color": "green", "count": 1, "initial": _TABLE}
 IN_ZONE = {"type": "in_zone", "objects": ["red_block"], "zone": "green_zone"}
 ON_RED = {"type": "on", "objects": ["blue_block"], "support": "red_block"}
+_FACTOR = {"after": [], "initial_setup": "", "milestone": False}
 
 
 def demo_graph(name: str = "stack-blue-on-red-in-zone") -> dict[str, Any]:
@@ -36,9 +41,9 @@ def demo_graph(name: str = "stack-blue-on-red-in-zone") -> dict[str, Any]:
         "variables": [RED, BLUE, ZONE],
         "factors": [
             {"name": "place_red_in_zone", "description": "put the red block in the green zone",
-             "goal": IN_ZONE, "weight": 0.5},
+             "goal": IN_ZONE, "weight": 0.5, **_FACTOR},
             {"name": "stack_blue_on_red", "description": "put the blue block on the red block",
-             "goal": ON_RED, "weight": 0.5},
+             "goal": ON_RED, "weight": 0.5, **_FACTOR},
         ],
     })
 
@@ -64,14 +69,16 @@ def demo_answers() -> dict[str, str]:
              "variables": ["blue_block", "red_block"],
              "initial_setup": "the red block is in the green zone"},
         ]}),
-        "subtask_goal:place_red_in_zone": _j({"goal": IN_ZONE}),
-        "subtask_goal:stack_blue_on_red": _j({"goal": ON_RED}),
+        "subtask_goal:place_red_in_zone": _j({"goal": IN_ZONE, "description": ""}),
+        "subtask_goal:stack_blue_on_red": _j({"goal": ON_RED, "description": ""}),
         "subtask_outline": _j({"subtasks": [
             {"name": "place_red_in_zone", "description": "the red block is in the green zone"},
             {"name": "stack_blue_on_red", "description": "the blue block is on the red block"},
         ]}),
-        "subtask_design:place_red_in_zone": _j({"variables": [RED, ZONE], "goal": IN_ZONE}),
-        "subtask_design:stack_blue_on_red": _j({"variables": [BLUE, RED], "goal": ON_RED}),
+        "subtask_design:place_red_in_zone": _j({"variables": [RED, ZONE], "goal": IN_ZONE,
+                                                "description": ""}),
+        "subtask_design:stack_blue_on_red": _j({"variables": [BLUE, RED], "goal": ON_RED,
+                                                "description": ""}),
     }
 
 
@@ -84,10 +91,11 @@ def broken_answers() -> dict[str, str]:
         "one_shot": ["I would put the red block in the zone first.", _j(bad_graph)],
         # variables-first: the goal anchors on a variable outside the subtask.
         "subtask_goal:stack_blue_on_red": [_j({"goal": {"type": "on", "objects": ["blue_block"],
-                                                        "support": "green_zone"}})],
+                                                        "support": "green_zone"},
+                                               "description": ""})],
         # subtasks-first: the shared red block is redefined with another colour.
         "subtask_design:stack_blue_on_red": [_j({"variables": [BLUE, dict(RED, color="orange")],
-                                                 "goal": ON_RED})],
+                                                 "goal": ON_RED, "description": ""})],
     }
 
 

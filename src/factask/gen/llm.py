@@ -6,20 +6,30 @@ map; importing this module is cheap.
 
 Configuration comes from arguments first, then environment variables:
 
-=======================  =================================================
-``FACTASK_MODEL``        litellm model string (``openai/gpt-4o``,
-                         ``anthropic/claude-3-5-sonnet-latest``,
-                         ``ollama_chat/llama3.1``)
-``FACTASK_API_BASE``     API base URL (a proxy, Ollama, the loopback server)
-``FACTASK_API_KEY``      API key (else the provider's own variable, e.g.
-                         ``OPENAI_API_KEY``, is read by litellm)
-``FACTASK_TEMPERATURE``  sampling temperature (default 0)
-``FACTASK_RETRIES``      transport retries per call (default 2)
-``FACTASK_TIMEOUT``      seconds per call (default 120)
-``FACTASK_MAX_TOKENS``   cap on the answer length (default: the provider's)
-``FACTASK_RESPONSE_FORMAT``  ``json_schema`` (default), ``json_object`` or ``off``
-``FACTASK_CACHE``        cache directory (default: no cache)
-=======================  =================================================
+===========================  ================================================
+``FACTASK_MODEL``            litellm model string (``openai/gpt-4o``,
+                             ``anthropic/claude-3-5-sonnet-latest``,
+                             ``ollama_chat/llama3.1``); default: the packaged
+                             local model ``local/smollm2-135m``
+``FACTASK_API_BASE``         API base URL (a proxy, Ollama, the loopback server)
+``FACTASK_API_KEY``          API key (else the provider's own variable, e.g.
+                             ``OPENAI_API_KEY``, is read by litellm)
+``FACTASK_TEMPERATURE``      sampling temperature (default 0)
+``FACTASK_SEED``             sampling seed (default 0; retries vary it)
+``FACTASK_RETRIES``          retries of a transient failure (default 2)
+``FACTASK_TIMEOUT``          seconds per call (default 120)
+``FACTASK_MAX_TOKENS``       cap on every answer (default: sized per step)
+``FACTASK_RESPONSE_FORMAT``  ``auto`` (default), ``json_schema``, ``llama_cpp``,
+                             ``json_object`` or ``prompt`` (see
+                             :mod:`factask.gen.providers`)
+``FACTASK_CONTEXT``          the model's context in tokens (default: litellm's
+                             model info, or the local server's ``n_ctx``)
+``FACTASK_CACHE``            cache directory (default: no cache)
+===========================  ================================================
+
+Errors are typed (:mod:`factask.gen.llm_errors`): transient ones are retried
+here with bounded exponential backoff; fatal ones (key, unknown model, quota,
+context) are raised at once, never retried.
 """
 
 from __future__ import annotations
@@ -28,85 +38,38 @@ import hashlib
 import json
 import os
 import threading
-from collections.abc import Mapping, Sequence
+import time
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any
 from urllib.parse import urlsplit, urlunsplit
 
-from factask.model.errors import FactaskError
+from factask.gen.llm_errors import (
+    LLMAuthError,
+    LLMConfigError,
+    LLMContextError,
+    LLMError,
+    LLMFatalError,
+    LLMModelNotFoundError,
+    LLMQuotaError,
+    LLMRequestError,
+    LLMTransientError,
+    classify_llm_exception,
+    make_error,
+)
+from factask.gen.providers import (
+    FORM_CHOICES,
+    StructuredForm,
+    import_litellm,
+    response_format_param,
+    structured_form,
+)
 
-ResponseFormat = Literal["json_schema", "json_object", "off"]
 Message = dict[str, str]
 
 #: Bumped when the cache entry layout changes, so old entries are not misread.
-CACHE_VERSION = 2
-
-
-class LLMError(FactaskError):
-    """An LLM call failed after its retries (network, provider or config error)."""
-
-
-class LLMConfigError(LLMError):
-    """The LLM is not configured (no model given and no FACTASK_MODEL)."""
-
-
-class LLMTransientError(LLMError):
-    """The LLM could not be reached or was overloaded (connection, timeout, rate
-    limit, 5xx): an infrastructure problem, worth retrying later."""
-
-
-class LLMRequestError(LLMError):
-    """The provider rejected this request (context window exceeded, bad request,
-    content policy): retrying the same request would fail again, so it counts
-    as the model's failure."""
-
-
-class LLMAuthError(LLMError):
-    """The provider refused the credentials (authentication, permission): no
-    call can succeed, the run must stop."""
-
-
-_TRANSIENT_NAMES = frozenset([
-    "APIConnectionError", "APITimeoutError", "Timeout", "RateLimitError",
-    "ServiceUnavailableError", "InternalServerError", "ConnectionError", "TimeoutError",
-])
-_REQUEST_NAMES = frozenset([
-    "ContextWindowExceededError", "ContentPolicyViolationError", "BadRequestError",
-    "UnprocessableEntityError", "NotFoundError", "UnsupportedParamsError",
-])
-_AUTH_NAMES = frozenset(["AuthenticationError", "PermissionDeniedError"])
-
-
-def classify_llm_exception(exc: BaseException) -> type[LLMError]:
-    """Which :class:`LLMError` subclass a provider (litellm) exception maps onto.
-
-    Read from the exception's class hierarchy by name (so litellm need not be
-    imported), then from its HTTP ``status_code``: authentication/permission
-    (401, 403) -> :class:`LLMAuthError`; connection, timeout, rate limit (429),
-    service unavailable and other 5xx -> :class:`LLMTransientError`; context
-    window, bad request, content policy and other 4xx -> :class:`LLMRequestError`.
-    Anything unrecognised is taken as transient (retried on a resume).
-    """
-    names = [c.__name__ for c in type(exc).__mro__]
-    # Most specific first: ContextWindowExceededError is a BadRequestError, Timeout
-    # an APIConnectionError.
-    for name in names:
-        if name in _AUTH_NAMES:
-            return LLMAuthError
-        if name in _REQUEST_NAMES:
-            return LLMRequestError
-        if name in _TRANSIENT_NAMES:
-            return LLMTransientError
-    status = getattr(exc, "status_code", None)
-    if isinstance(status, int):
-        if status in (401, 403):
-            return LLMAuthError
-        if status == 429 or status >= 500:
-            return LLMTransientError
-        if 400 <= status < 500:
-            return LLMRequestError
-    return LLMTransientError
+CACHE_VERSION = 3
 
 
 def normalise_api_base(api_base: str | None) -> str | None:
@@ -126,24 +89,43 @@ class LLMConfig:
     """How to reach a model.
 
     Attributes:
-        model: litellm model string (provider prefix included).
+        model: litellm model string (provider prefix included), or
+            ``local/<name>`` for a packaged local model (:mod:`factask.gen.local`).
         api_base: API base URL, or None for the provider's default.
         api_key: API key, or None to let litellm read the provider's variable.
-        temperature: Sampling temperature.
-        num_retries: Transport retries per call (litellm's ``num_retries``).
+        temperature: Sampling temperature of a step's first attempt.
+        seed: Sampling seed of a step's first attempt (retries vary it).
+        num_retries: Retries of a transient failure (bounded backoff).
         timeout: Seconds per call.
-        max_tokens: Cap on the answer length, or None.
-        response_format: How structured output is requested.
+        max_tokens: Cap on every answer (None: sized per step).
+        response_format: How structured output is requested (``auto`` decides
+            per provider, see :func:`factask.gen.providers.structured_form`).
+        context: The model's context in tokens (None: litellm's model info, or
+            the local server's).
     """
 
-    model: str
+    model: str = "local/smollm2-135m"
     api_base: str | None = None
     api_key: str | None = None
     temperature: float = 0.0
+    seed: int = 0
     num_retries: int = 2
     timeout: float = 120.0
     max_tokens: int | None = None
-    response_format: ResponseFormat = "json_schema"
+    response_format: str = "auto"
+    context: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.response_format not in FORM_CHOICES:
+            raise LLMConfigError(f"response_format must be one of {', '.join(FORM_CHOICES)}, "
+                                 f"not {self.response_format!r}")
+        if self.num_retries < 0 or self.timeout <= 0:
+            raise LLMConfigError("num_retries must be >= 0 and timeout > 0")
+
+    @property
+    def is_local(self) -> bool:
+        """True for a packaged local model (``local/...``)."""
+        return self.model.startswith("local/")
 
     @classmethod
     def from_env(
@@ -156,11 +138,10 @@ class LLMConfig:
             **overrides: Field values that win over the environment (None = unset).
 
         Returns:
-            The configuration.
+            The configuration (with no model anywhere: the local default).
 
         Raises:
-            LLMConfigError: no model given and ``FACTASK_MODEL`` unset, or a
-                variable does not parse.
+            LLMConfigError: an unknown setting, or a variable does not parse.
         """
         env = os.environ if env is None else env
         given = {k: v for k, v in overrides.items() if v is not None}
@@ -172,10 +153,12 @@ class LLMConfig:
             "api_base": ("FACTASK_API_BASE", str),
             "api_key": ("FACTASK_API_KEY", str),
             "temperature": ("FACTASK_TEMPERATURE", float),
+            "seed": ("FACTASK_SEED", int),
             "num_retries": ("FACTASK_RETRIES", int),
             "timeout": ("FACTASK_TIMEOUT", float),
             "max_tokens": ("FACTASK_MAX_TOKENS", int),
             "response_format": ("FACTASK_RESPONSE_FORMAT", str),
+            "context": ("FACTASK_CONTEXT", int),
         }
         values: dict[str, Any] = {}
         for name, (var, typ) in readers.items():
@@ -187,20 +170,15 @@ class LLMConfig:
                 except ValueError:
                     raise LLMConfigError(f"{var}={env[var]!r} is not a valid {typ.__name__}")\
                         from None
-        if not values.get("model"):
-            raise LLMConfigError("no model: pass --model (e.g. openai/gpt-4o) or set "
-                                 "FACTASK_MODEL")
-        if values.get("response_format", "json_schema") not in ("json_schema", "json_object",
-                                                                "off"):
-            raise LLMConfigError("response_format must be json_schema, json_object or off")
         return cls(**values)
 
     def cache_params(self) -> dict[str, Any]:
         """The parameters that change an answer (the cache key's part; no secrets:
-        the API key is never part of it, the API base only normalised)."""
-        return {"temperature": self.temperature, "max_tokens": self.max_tokens,
-                "response_format": self.response_format,
-                "api_base": normalise_api_base(self.api_base)}
+        the API key is never part of it, the API base only normalised, and a local
+        model's random port not at all)."""
+        return {"temperature": self.temperature, "seed": self.seed,
+                "max_tokens": self.max_tokens, "response_format": self.response_format,
+                "api_base": None if self.is_local else normalise_api_base(self.api_base)}
 
 
 @dataclass
@@ -253,12 +231,14 @@ class LLMReply:
         usage: This call's usage (tokens 0 and ``cached_calls`` 1 if from the cache).
         cached: Answered from the disk cache.
         key: The cache key of the request.
+        finish_reason: Why generation stopped (``length``: cut at ``max_tokens``).
     """
 
     text: str
     usage: Usage
     cached: bool
     key: str
+    finish_reason: str = ""
 
 
 class ResponseCache:
@@ -310,35 +290,20 @@ class ResponseCache:
         return sum(1 for _ in self.directory.glob("*/*.json")) if self.directory.exists() else 0
 
 
-def _import_litellm() -> Any:
-    # Use the bundled cost map: offline, litellm would otherwise try to download it.
-    os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")
-    import litellm
+_import_litellm = import_litellm  # the seam tests replace
 
-    litellm.suppress_debug_info = True
-    return litellm
+#: Backoff between retries of a transient failure: base * 2**i seconds, capped.
+BACKOFF_BASE_S = 1.0
+BACKOFF_CAP_S = 8.0
 
 
-def response_format_param(mode: ResponseFormat, schema: Mapping[str, Any] | None,
-                          name: str) -> dict[str, Any] | None:
-    """The ``response_format`` argument for litellm.
+def backoff_delays(retries: int, base: float = BACKOFF_BASE_S,
+                   cap: float = BACKOFF_CAP_S) -> list[float]:
+    """The waits before each retry: ``base * 2**i``, at most ``cap`` seconds."""
+    return [min(cap, base * 2 ** i) for i in range(max(0, retries))]
 
-    Args:
-        mode: ``json_schema``: the step's JSON Schema (non-strict, since the graph
-            schema uses unions and defaults that strict mode rejects);
-            ``json_object``: any JSON object; ``off``: nothing requested.
-        schema: The step's JSON Schema.
-        name: Schema name (letters, digits, ``_`` and ``-``).
 
-    Returns:
-        The parameter, or None.
-    """
-    if mode == "off":
-        return None
-    if mode == "json_schema" and schema is not None:
-        return {"type": "json_schema",
-                "json_schema": {"name": name, "schema": dict(schema), "strict": False}}
-    return {"type": "json_object"}
+TokenCounter = Callable[[Sequence[Mapping[str, Any]]], int]
 
 
 class LLMClient:
@@ -347,85 +312,135 @@ class LLMClient:
     Args:
         config: How to reach the model.
         cache: Disk cache, or None for none.
+        wire_model: The model string litellm is called with (default
+            ``config.model``; the local model is ``openai/<alias>``).
+        context: The model's context in tokens (default ``config.context``, else
+            litellm's model info where known).
+        counter: Counts a request's prompt tokens (default: litellm's
+            ``token_counter``).
+        on_abandon: Called after a call timed out (the local server restarts, so
+            the request the client gave up on stops generating).
 
     Attributes:
         usage: Usage summed over every call made by this client.
         log: One dict per call (key, cached, tokens, cost).
+        form: How structured output is requested (:mod:`factask.gen.providers`).
+        succeeded: Calls that got an answer (cached ones included).
     """
 
-    def __init__(self, config: LLMConfig, cache: ResponseCache | None = None) -> None:
+    def __init__(self, config: LLMConfig, cache: ResponseCache | None = None, *,
+                 wire_model: str | None = None, context: int | None = None,
+                 counter: TokenCounter | None = None,
+                 on_abandon: Callable[[], None] | None = None) -> None:
         self.config = config
         self.cache = cache
+        self.wire_model = wire_model or config.model
         self.usage = Usage()
         self.log: list[dict[str, Any]] = []
+        self.succeeded = 0
+        self.form: StructuredForm = structured_form(self.wire_model, config.api_base,
+                                                    config.is_local, config.response_format)
+        self._context = context or config.context
+        self._context_known = self._context is not None
+        self._counter = counter
+        self.on_abandon = on_abandon
         self._lock = threading.Lock()
+        self.sleep: Callable[[float], None] = time.sleep
 
+    # ------------------------------------------------------------ budgets
+    @property
+    def context(self) -> int | None:
+        """The model's context in tokens, or None where unknown (no check then)."""
+        if not self._context_known:
+            from factask.gen.providers import context_window
+
+            self._context = context_window(self.wire_model)
+            self._context_known = True
+        return self._context
+
+    def count_tokens(self, messages: Sequence[Mapping[str, Any]]) -> int:
+        """Prompt tokens of ``messages`` (the server's tokenizer for the local model,
+        litellm's ``token_counter`` otherwise)."""
+        if self._counter is not None:
+            return int(self._counter(messages))
+        litellm = import_litellm()
+        msgs = [{"role": str(m["role"]), "content": str(m["content"])} for m in messages]
+        return int(litellm.token_counter(model=self.wire_model, messages=msgs))
+
+    # --------------------------------------------------------------- calls
     def complete(
         self,
         messages: Sequence[Mapping[str, Any]],
         schema: Mapping[str, Any] | None = None,
         schema_name: str = "answer",
+        max_tokens: int | None = None,
+        temperature: float | None = None,
+        seed: int | None = None,
     ) -> LLMReply:
         """Ask the model; answer from the cache when the same request was made before.
 
         Args:
             messages: Chat messages (``role``, ``content``).
-            schema: JSON Schema the answer must follow (requested as structured
-                output where the provider supports it; also part of the cache key).
+            schema: JSON Schema the answer must follow (requested in the provider's
+                form, :attr:`form`; also part of the cache key).
             schema_name: Name of that schema.
+            max_tokens: Cap on this answer (``config.max_tokens`` wins if smaller).
+            temperature: Sampling temperature (default ``config.temperature``).
+            seed: Sampling seed (default ``config.seed``).
 
         Returns:
             The reply with this call's usage.
 
         Raises:
             LLMTransientError: the model could not be reached (after
-                ``num_retries`` retries).
+                ``num_retries`` retries with backoff).
             LLMRequestError: the provider rejected the request.
-            LLMAuthError: the credentials were refused.
+            LLMFatalError: key, model, quota or context error (never retried).
         """
         cfg = self.config
         msgs = [{"role": str(m["role"]), "content": str(m["content"])} for m in messages]
-        key = ResponseCache.key(cfg.model, msgs, cfg.cache_params(), schema)
+        caps = [c for c in (max_tokens, cfg.max_tokens) if c]
+        limit = min(caps) if caps else None
+        temp = cfg.temperature if temperature is None else float(temperature)
+        seed_ = cfg.seed if seed is None else int(seed)
+        params = {**cfg.cache_params(), "temperature": temp, "seed": seed_,
+                  "max_tokens": limit, "response_format": self.form}
+        key = ResponseCache.key(cfg.model, msgs, params, schema)
         if self.cache is not None:
             hit = self.cache.get(key)
             if hit is not None:
                 usage = Usage(calls=1, cached_calls=1)
                 self._record(key, usage, cached=True)
-                return LLMReply(text=hit["text"], usage=usage, cached=True, key=key)
-
-        litellm = _import_litellm()
+                return LLMReply(text=hit["text"], usage=usage, cached=True, key=key,
+                                finish_reason=str(hit.get("finish_reason") or ""))
         kwargs: dict[str, Any] = {
-            "model": cfg.model,
-            "messages": msgs,
-            "temperature": cfg.temperature,
-            "num_retries": cfg.num_retries,
+            "model": self.wire_model, "messages": msgs, "temperature": temp, "seed": seed_,
             "timeout": cfg.timeout,
-            # Providers that lack a parameter (e.g. response_format) get it dropped
-            # instead of failing: the prompt carries the schema as well.
+            # Retries are ours (only transient errors, with backoff): litellm's and
+            # the OpenAI client's own are off.
+            "num_retries": 0, "max_retries": 0,
+            # A parameter a provider lacks is dropped rather than failing the call.
             "drop_params": True,
         }
         if cfg.api_base:
             kwargs["api_base"] = cfg.api_base
         if cfg.api_key:
             kwargs["api_key"] = cfg.api_key
-        elif cfg.api_base and cfg.model.startswith("openai/") and not os.environ.get(
+        elif cfg.api_base and self.wire_model.startswith("openai/") and not os.environ.get(
                 "OPENAI_API_KEY"):
-            # OpenAI-compatible local servers (Ollama, vLLM, the loopback) need no
-            # key, but the OpenAI client refuses to start without one.
+            # OpenAI-compatible local servers (llama.cpp, Ollama, vLLM, the loopback)
+            # need no key, but the OpenAI client refuses to start without one.
             kwargs["api_key"] = "not-needed"
-        if cfg.max_tokens:
-            kwargs["max_tokens"] = cfg.max_tokens
-        fmt = response_format_param(cfg.response_format, schema, schema_name)
+        if limit:
+            kwargs["max_tokens"] = limit
+        fmt = response_format_param(self.form, schema, schema_name)
         if fmt is not None:
             kwargs["response_format"] = fmt
+        response = self._call(kwargs)
         try:
-            response = litellm.completion(**kwargs)
-        except Exception as exc:  # litellm maps every provider error onto its own types
-            kind = classify_llm_exception(exc)
-            raise kind(f"LLM call to {cfg.model} failed: {type(exc).__name__}: {exc}")\
-                from None
-        try:
-            text = response.choices[0].message.content or ""
+            choice = response.choices[0]
+            text = choice.message.content or ""
+            finish = str(getattr(choice, "finish_reason", "") or "")
         except (AttributeError, IndexError) as exc:
             raise LLMTransientError(f"LLM reply from {cfg.model} has no message: {exc}")\
                 from None
@@ -436,17 +451,47 @@ class LLMClient:
             completion_tokens=int(getattr(raw_usage, "completion_tokens", 0) or 0),
         )
         try:
+            litellm = import_litellm()
             usage.cost_usd = float(litellm.completion_cost(completion_response=response) or 0.0)
         except Exception:  # unpriced (custom or local) models: cost unknown, not an error
             usage.cost_unknown_calls = 1
         if self.cache is not None:
-            self.cache.put(key, {"model": cfg.model, "messages": msgs,
-                                 "params": cfg.cache_params(), "text": text,
+            self.cache.put(key, {"model": cfg.model, "messages": msgs, "params": params,
+                                 "text": text, "finish_reason": finish,
                                  "usage": usage.to_dict()})
         self._record(key, usage, cached=False)
-        return LLMReply(text=text, usage=usage, cached=False, key=key)
+        return LLMReply(text=text, usage=usage, cached=False, key=key, finish_reason=finish)
+
+    def _call(self, kwargs: dict[str, Any]) -> Any:
+        """One completion, transient failures retried with backoff, the rest raised typed."""
+        litellm = _import_litellm()
+        delays = [*backoff_delays(self.config.num_retries), None]
+        error: LLMError | None = None
+        for delay in delays:
+            try:
+                return litellm.completion(**kwargs)
+            except Exception as exc:  # litellm maps every provider error onto its own types
+                kind = classify_llm_exception(exc)
+                error = make_error(kind, self.config.model, f"{type(exc).__name__}: {exc}")
+                if kind is not LLMTransientError:
+                    raise error from None
+                if "timeout" in type(exc).__name__.lower() and self.on_abandon is not None:
+                    self.on_abandon()
+                if delay is not None:
+                    self.sleep(delay)
+        assert error is not None
+        raise error
 
     def _record(self, key: str, usage: Usage, cached: bool) -> None:
         with self._lock:
             self.usage.add(usage)
+            self.succeeded += 1
             self.log.append({"key": key, "cached": cached, **usage.to_dict()})
+
+
+__all__ = [
+    "LLMAuthError", "LLMClient", "LLMConfig", "LLMConfigError", "LLMContextError", "LLMError",
+    "LLMFatalError", "LLMModelNotFoundError", "LLMQuotaError", "LLMReply", "LLMRequestError",
+    "LLMTransientError", "ResponseCache", "Usage", "backoff_delays", "classify_llm_exception",
+    "import_litellm", "normalise_api_base",
+]

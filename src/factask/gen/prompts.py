@@ -37,6 +37,7 @@ _PLACEHOLDER_RE = re.compile(r"\{\{\s*([a-z_][a-z0-9_]*)\s*\}\}")
 #: The step templates every strategy needs (file stem -> purpose).
 STEP_TEMPLATES = {
     "system": "shared system message: the vocabulary and the rules",
+    "system_compact": "the system message for small contexts: a vocabulary summary",
     "one_shot": "baseline: the whole graph in one answer",
     "variables": "approach 1 step 1: the state variables",
     "subtask_plan": "approach 1 step 2: subtasks over subsets of the variables",
@@ -108,7 +109,7 @@ def render(step: str, /, **values: Any) -> str:
     """
     template = load_template(step)
     wanted = placeholders(template)
-    vocab = vocabulary()
+    vocab = compact_vocabulary() if step == "system_compact" else vocabulary()
     given = dict(values)
     for k in wanted & set(vocab):
         given.setdefault(k, vocab[k])
@@ -216,3 +217,62 @@ def vocabulary() -> dict[str, str]:
 def schema_text(schema: Mapping[str, Any]) -> str:
     """A step schema for the prompt (titles dropped, compact JSON)."""
     return json.dumps(_strip_titles(dict(schema)), separators=(",", ":"))
+
+
+# ------------------------------------------------------- compact variants
+@lru_cache(maxsize=1)
+def _compact_vocabulary() -> tuple[tuple[str, str], ...]:
+    kinds = "; ".join(f"{s.name} [{', '.join(f'{x:g}' for x in s.default_size)}]"
+                      + ("" if s.movable else " fixed") for s in ASSET_KINDS.values())
+    relations = "; ".join(
+        f"{name}: " + ", ".join(f for f in cls.model_fields if f not in ("type", "tolerances",
+                                                                         "matches"))
+        for name, cls in RELATION_TYPES.items())
+    placements = "table (default, a free spot), pose (x, y, yaw_deg), on (support), " \
+                 "inside (container)"
+    return (("asset_kinds", kinds), ("colors", colors_text()), ("relations", relations),
+            ("placements", placements), ("world", world_text()))
+
+
+def compact_vocabulary() -> dict[str, str]:
+    """The vocabulary in a few lines (names and fields only), for small contexts."""
+    return dict(_compact_vocabulary())
+
+
+def schema_skeleton(schema: Mapping[str, Any], limit: int = 6) -> str:
+    """An outline of the answer a JSON Schema describes: fields with their allowed
+    values (``a|b|c``, at most ``limit`` shown), alternatives joined by ``OR``.
+
+    Args:
+        schema: A strict step schema (:mod:`factask.gen.step_schemas`).
+        limit: Enum values shown before ``...``.
+
+    Returns:
+        Compact text, far shorter than the schema.
+    """
+    def walk(node: Any) -> str:
+        if not isinstance(node, Mapping):
+            return "?"
+        if "const" in node:
+            return json.dumps(node["const"])
+        if "enum" in node:
+            vals = [str(v) for v in node["enum"]]
+            shown = "|".join(vals[:limit]) + ("|..." if len(vals) > limit else "")
+            return f'"{shown}"'
+        if "anyOf" in node:
+            return " OR ".join(walk(n) for n in node["anyOf"])
+        kind = node.get("type")
+        if kind == "object":
+            inner = ", ".join(f'"{k}": {walk(v)}' for k, v in node.get("properties", {}).items())
+            return "{" + inner + "}"
+        if kind == "array":
+            return f"[{walk(node.get('items', {}))}, ...]"
+        if kind == "string":
+            return '"<name>"' if "a-z" in str(node.get("pattern", "")) and \
+                "{0,15}" in str(node.get("pattern", "")) else '"<text>"'
+        if kind in ("number", "integer"):
+            lo, hi = node.get("minimum", node.get("exclusiveMinimum")), node.get("maximum")
+            return f"<{kind} {lo}..{hi}>" if lo is not None and hi is not None else f"<{kind}>"
+        return f"<{kind}>"
+
+    return walk(schema)

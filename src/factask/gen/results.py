@@ -32,6 +32,9 @@ class AttemptRecord:
         cached: The answer came from the disk cache.
         tokens: Tokens of this attempt's LLM call (0 if cached or no call).
         cost_usd: Cost of this attempt's LLM call (0 if cached, unpriced or no call).
+        prompt_level: The prompt variant used (0 = fullest; see
+            :data:`factask.gen.conversation.PROMPT_LEVELS`).
+        temperature: The sampling temperature of the call.
     """
 
     step: str
@@ -42,18 +45,23 @@ class AttemptRecord:
     cached: bool = False
     tokens: int = 0
     cost_usd: float = 0.0
+    prompt_level: int = 0
+    temperature: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
         return {"step": self.step, "attempt": self.attempt, "ok": self.ok, "level": self.level,
                 "feedback": self.feedback, "cached": self.cached, "tokens": self.tokens,
-                "cost_usd": self.cost_usd}
+                "cost_usd": self.cost_usd, "prompt_level": self.prompt_level,
+                "temperature": self.temperature}
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> AttemptRecord:
         return cls(step=data["step"], attempt=int(data["attempt"]), ok=bool(data["ok"]),
                    level=data.get("level", "none"), feedback=data.get("feedback"),
                    cached=bool(data.get("cached", False)), tokens=int(data.get("tokens", 0)),
-                   cost_usd=float(data.get("cost_usd", 0.0)))
+                   cost_usd=float(data.get("cost_usd", 0.0)),
+                   prompt_level=int(data.get("prompt_level", 0)),
+                   temperature=float(data.get("temperature", 0.0)))
 
 
 @dataclass

@@ -1,0 +1,121 @@
+"""Pieces the strategies build from answers: subtask fragments, scopes, merges.
+
+Each function checks what a schema cannot (scopes, conflicts between subtasks,
+the fragment valid as a graph) and raises :class:`~factask.gen.schemas.AnswerError`
+with a message for the model.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from pydantic import ValidationError
+
+from factask.gen.schemas import AnswerError, GoalAnswer, SubtaskDesign, format_problems
+from factask.model.errors import GraphValidationError, Problem
+from factask.model.factors import SubtaskFactor
+from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
+from factask.model.variables import StateVariable
+
+
+def vars_json(variables: list[StateVariable]) -> str:
+    return json.dumps([v.model_dump(mode="json", exclude_none=True) for v in variables],
+                      separators=(",", ":"))
+
+
+def earlier_text(earlier: list[dict[str, Any]]) -> str:
+    if not earlier:
+        return "(this is the first subtask)"
+    return "\n".join(json.dumps(e, separators=(",", ":")) for e in earlier)
+
+
+def closure(variables: list[StateVariable],
+             pool: dict[str, StateVariable]) -> list[StateVariable]:
+    """``variables`` plus every variable their initial placements rest on/inside."""
+    out = list(variables)
+    names = {v.name for v in out}
+    i = 0
+    while i < len(out):
+        for ref in out[i].references():
+            if ref not in names and ref in pool:
+                out.append(pool[ref])
+                names.add(ref)
+        i += 1
+    return out
+
+
+def check_goal_scope(answer: GoalAnswer, subtask: str, scope: list[str],
+                      pool: dict[str, StateVariable]) -> None:
+    """Approach 1: the goal may use only the subtask's planned variables.
+
+    Raises:
+        AnswerError: naming each variable outside the scope, plus any other problem
+            the goal has with those variables (e.g. a zone used as a support).
+    """
+    outside = [n for n in answer.goal.variable_names() if n not in scope]
+    if not outside:
+        return
+    problems = [Problem(subtask, "goal", f"uses {n!r}, which is not one of this subtask's "
+                        f"variables {scope}" + ("" if n in pool else " nor a task variable"),
+                        f"use only {scope}") for n in outside]
+    trial = TaskGraph(name="trial", variables=closure(
+        [pool[n] for n in [*scope, *outside] if n in pool], pool),
+        factors=[SubtaskFactor(name=subtask, goal=answer.goal)])
+    problems += [p for p in graph_problems(trial) if "missing variable" not in p.message]
+    raise AnswerError("The goal does not fit the subtask:\n" + format_problems(problems),
+                      problems)
+
+
+def make_factor(name: str, description: str, goal: Any, scope: list[str] | None,
+                 initial_setup: str = "") -> SubtaskFactor:
+    data: dict[str, Any] = {"name": name, "description": description,
+                            "goal": goal.model_dump(mode="python", exclude_none=True),
+                            "initial_setup": initial_setup}
+    if scope is not None:
+        data["scope"] = scope
+    try:
+        return SubtaskFactor.model_validate(data)
+    except ValidationError as exc:
+        problems = problems_from_pydantic(exc, data)
+        raise AnswerError(f"The subtask is not valid:\n{format_problems(problems)}",
+                          problems) from None
+
+
+def fragment(task: str, factor: SubtaskFactor, variables: list[StateVariable]) -> TaskGraph:
+    """The single-factor fragment (weight 1) with its variables, valid as a whole.
+
+    Raises:
+        AnswerError: the fragment has problems (each naming its node).
+    """
+    name = f"{task}-{factor.name.replace('_', '-')}"[:100]
+    graph = TaskGraph(name=name, description=factor.description, variables=variables,
+                      factors=[factor.model_copy(update={"weight": 1.0, "after": []})])
+    try:
+        graph.ensure_valid()
+    except GraphValidationError as exc:
+        raise AnswerError(f"The subtask is not valid on its own ({len(exc.problems)} "
+                          f"problem(s)):\n{format_problems(exc.problems)}",
+                          exc.problems) from None
+    return graph
+
+
+def merge_problems(design: SubtaskDesign, defined: dict[str, tuple[StateVariable, str]],
+                    moved: dict[str, str]) -> list[Problem]:
+    """Conflicts of a new subtask with the earlier ones (shared names, moved twice)."""
+    problems = []
+    for v in design.variables:
+        if v.name in defined and defined[v.name][0] != v:
+            old, where = defined[v.name]
+            diff = [f"{k}: {getattr(old, k)!r} vs {getattr(v, k)!r}"
+                    for k in type(v).model_fields if getattr(old, k) != getattr(v, k)]
+            problems.append(Problem(v.name, "", f"defined differently by subtask {where!r} "
+                                    f"({'; '.join(diff)})",
+                                    "repeat it exactly, leave it out, or use a new name"))
+    for o in design.goal.objects:
+        if o in moved:
+            problems.append(Problem(o, "goal.objects", f"is already moved by subtask "
+                                    f"{moved[o]!r}; an object has one goal",
+                                    "anchor on it instead (e.g. 'on' with support) or move "
+                                    "another object"))
+    return problems

@@ -1,0 +1,127 @@
+"""Per-provider facts: how structured output is requested, how long the context is.
+
+Providers disagree on structured output. OpenAI (and the providers litellm
+translates it for) take ``response_format = {"type": "json_schema", "json_schema":
+{...}}``; llama.cpp's OpenAI-compatible server rejects that form and takes
+``{"type": "json_object", "schema": {...}}``; an unknown OpenAI-compatible
+server may take neither, so the schema goes in the prompt only. The choice is
+made here, once per client, by :func:`structured_form`; ``FACTASK_RESPONSE_FORMAT``
+(or ``LLMConfig.response_format``) overrides it.
+
+=================  ================================================  ==================
+form               ``response_format`` sent                          for
+=================  ================================================  ==================
+``json_schema``    ``{"type": "json_schema", "json_schema": {...}}``  providers litellm
+                                                                     says support it
+``llama_cpp``      ``{"type": "json_object", "schema": {...}}``       the local model,
+                                                                     llama.cpp servers
+``json_object``    ``{"type": "json_object"}``                        JSON mode only
+``prompt``         nothing (the schema is in the prompt)              anything else
+=================  ================================================  ==================
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from typing import Any, Literal
+
+from factask.gen.llm_errors import provider_of
+
+StructuredForm = Literal["json_schema", "llama_cpp", "json_object", "prompt"]
+#: Every form, and ``auto`` (decide per provider) and ``off`` (= ``prompt``).
+FORM_CHOICES: tuple[str, ...] = ("auto", "json_schema", "llama_cpp", "json_object", "prompt",
+                                 "off")
+
+#: Providers whose own API takes a JSON Schema (litellm translates the OpenAI form).
+_SCHEMA_PROVIDERS = frozenset(["openai", "azure", "anthropic", "gemini", "vertex_ai",
+                               "ollama", "ollama_chat", "mistral", "groq", "fireworks_ai",
+                               "openrouter", "deepseek", "together_ai"])
+
+
+def structured_form(model: str, api_base: str | None, local: bool,
+                    requested: str = "auto") -> StructuredForm:
+    """How to ask ``model`` for structured output.
+
+    Args:
+        model: litellm model string.
+        api_base: The API base, if not the provider's default.
+        local: The model is factask's local llama.cpp server.
+        requested: ``auto`` or a form (``off`` means ``prompt``).
+
+    Returns:
+        The form: a requested one as is; with ``auto``, ``llama_cpp`` for the
+        local server, ``prompt`` for an OpenAI-compatible server of unknown kind
+        (``openai/...`` with an ``api_base``: vLLM, llama.cpp, LM Studio differ),
+        ``json_schema`` for the providers in the table, else ``prompt``.
+    """
+    if requested == "off":
+        return "prompt"
+    if requested != "auto":
+        return requested  # type: ignore[return-value]
+    if local:
+        return "llama_cpp"
+    provider = provider_of(model)
+    if provider == "openai" and api_base:
+        return "prompt"
+    return "json_schema" if provider in _SCHEMA_PROVIDERS else "prompt"
+
+
+def response_format_param(form: StructuredForm, schema: Mapping[str, Any] | None,
+                          name: str) -> dict[str, Any] | None:
+    """The ``response_format`` argument of a request.
+
+    Args:
+        form: See :func:`structured_form`.
+        schema: The step's JSON Schema (None: any JSON object).
+        name: Schema name (letters, digits, ``_`` and ``-``).
+
+    Returns:
+        The parameter, or None to send none.
+    """
+    if form == "prompt":
+        return None
+    if schema is None or form == "json_object":
+        return {"type": "json_object"}
+    if form == "llama_cpp":
+        return {"type": "json_object", "schema": dict(schema)}
+    return {"type": "json_schema",
+            "json_schema": {"name": name, "schema": dict(schema), "strict": False}}
+
+
+def constrained(form: str) -> bool:
+    """True if the form makes the provider enforce the schema (not just JSON)."""
+    return form in ("json_schema", "llama_cpp")
+
+
+def import_litellm() -> Any:
+    """litellm, imported on first use with its bundled cost map (offline it would
+    otherwise try to download it) and its debug banner off."""
+    os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")
+    import litellm
+
+    litellm.suppress_debug_info = True
+    return litellm
+
+
+def context_window(model: str) -> int | None:
+    """The model's input context in tokens as litellm knows it, or None.
+
+    Args:
+        model: litellm model string.
+
+    Returns:
+        ``max_input_tokens`` (else ``max_tokens``) of litellm's model info; None
+        for a model litellm does not know.
+    """
+    litellm = import_litellm()
+    try:
+        info = litellm.get_model_info(model)
+    except Exception:  # unknown to litellm: no limit known
+        return None
+    value = info.get("max_input_tokens") or info.get("max_tokens")
+    return int(value) if value else None
+
+
+__all__ = ["FORM_CHOICES", "StructuredForm", "constrained", "context_window", "import_litellm",
+           "response_format_param", "structured_form"]

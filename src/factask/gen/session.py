@@ -1,0 +1,94 @@
+"""Opening an LLM client for a run: the local server when no model is configured,
+a preflight check of the provider's key otherwise.
+
+:func:`open_client` is a context manager: it yields an :class:`LLMClient` and,
+for a ``local/...`` model, owns the llama.cpp server (started before, stopped
+after, killed on error too).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import replace
+
+from factask.gen.llm import LLMClient, LLMConfig, ResponseCache, import_litellm
+from factask.gen.llm_errors import LLMAuthError, fix_for, provider_of
+from factask.gen.local import LocalLlamaServer, check_local_model
+
+
+def missing_keys(config: LLMConfig) -> list[str]:
+    """Environment variables the provider needs and the environment lacks.
+
+    Nothing is missing for the local model, with an explicit API key, or with an
+    ``api_base`` (a proxy or a local OpenAI-compatible server may need no key).
+
+    Args:
+        config: The configuration.
+
+    Returns:
+        The names of the missing variables (litellm's ``validate_environment``).
+    """
+    if config.is_local or config.api_key or config.api_base:
+        return []
+    litellm = import_litellm()
+    try:
+        report = litellm.validate_environment(model=config.model)
+    except Exception:  # a provider litellm cannot check: let the call tell
+        return []
+    if report.get("keys_in_environment", True):
+        return []
+    return [str(k) for k in report.get("missing_keys", [])]
+
+
+def preflight(config: LLMConfig) -> None:
+    """Fail now, before any call, when the run cannot work.
+
+    Raises:
+        LLMAuthError: the provider's key variable is not set.
+        LocalModelError: the local model is not installed.
+        LLMConfigError: llama-cpp-python is not installed.
+    """
+    if config.is_local:
+        check_local_model(config.model)
+        return
+    missing = missing_keys(config)
+    if missing:
+        raise LLMAuthError(f"{config.model}: no API key ({', '.join(missing)} not set)",
+                           fix_for(LLMAuthError, config.model))
+
+
+@contextmanager
+def open_client(config: LLMConfig, cache: ResponseCache | None = None,
+                startup_timeout: float = 90.0) -> Iterator[LLMClient]:
+    """An LLM client for ``config``; for a local model, with its server running.
+
+    Args:
+        config: How to reach the model (``local/...``: the packaged local model).
+        cache: Disk cache, or None.
+        startup_timeout: Seconds the local server may take to answer.
+
+    Yields:
+        The client.
+
+    Raises:
+        LLMAuthError: a remote provider's key is missing (before any call).
+        LocalModelError: the local model is missing or its server did not start.
+    """
+    preflight(config)
+    if not config.is_local:
+        yield LLMClient(config, cache)
+        return
+    server = LocalLlamaServer(config.model, n_ctx=config.context,
+                              startup_timeout=startup_timeout)
+    try:
+        server.start()
+        local = replace(config, api_base=server.url, context=server.n_ctx)
+        yield LLMClient(local, cache, wire_model=f"openai/{server.alias}",
+                        context=server.n_ctx, counter=server.count_messages,
+                        on_abandon=server.restart)
+    finally:
+        server.stop()
+
+
+__all__ = ["missing_keys", "open_client", "preflight", "provider_of"]
