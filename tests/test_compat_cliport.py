@@ -172,7 +172,7 @@ def test_hanoi_keeps_every_goal_in_queue_order_earlier_moves_are_milestones():
     g = r.graph
     assert len(r.goals) == 7 and len(g.factors) == 7  # one factor per add_goal
     assert g.factor_order() == g.factor_names()
-    assert all(f.after == [prev.name] for prev, f in zip(g.factors, g.factors[1:]))
+    assert all(f.after == [prev.name] for prev, f in zip(g.factors, g.factors[1:], strict=False))
     disks = [f.goal.objects[0] for f in g.factors]
     last = {d: k for k, d in enumerate(disks)}
     assert [f.milestone for f in g.factors] == [last[d] != k for k, d in enumerate(disks)]
@@ -540,7 +540,7 @@ def _fake_worker(behaviour):
         "worker.main(sys.argv[1:])\n"
     )
 
-    def command(path, seed, episodes, graph_out):
+    def command(path, seed, episodes, graph_out, ravens=False):
         return [sys.executable, "-c", script, str(path), "--episodes", str(episodes)]
 
     return command

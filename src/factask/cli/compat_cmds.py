@@ -71,6 +71,11 @@ def import_cliport_batch_cmd(
                                  "(0: do not run the oracle; needs factask.sim.episode)."),
     graphs: Path | None = typer.Option(None, "--graphs", help="Also write each imported "
                                        "graph to this folder as <file stem>.json."),
+    ravens: bool = typer.Option(False, "--ravens", help="Also score every oracle episode "
+                                "as Ravens does (goals in queue order, XY within pos_eps, "
+                                "yaw within rot_eps modulo symmetry, a finished goal never "
+                                "re-checked, success at reward >= 0.99): ravens_success_rate "
+                                "and per-episode scores beside factask's own checks."),
 ) -> None:
     """Run the batch; exit 0 even if files fail (their lines say why)."""
     from factask.compat.cliport.batch import run_batch, task_files
@@ -86,6 +91,11 @@ def import_cliport_batch_cmd(
         ok = rec.get("imported") and not rec.get("error")
         mark = "[green]ok[/green]" if ok else "[red]failed[/red]"
         line = Path(rec["file"]).name
+        if rec.get("oracle_success_rate") is not None:
+            line += f" (oracle {rec['oracle_success_rate']:.0%}"
+            if rec.get("ravens_success_rate") is not None:
+                line += f", Ravens {rec['ravens_success_rate']:.0%}"
+            line += ")"
         if rec.get("error"):
             line += f": {(str(rec['error']).splitlines() or [''])[0][:200]}"
         err_console.print(f"{mark} {escape(line)}", highlight=False)
@@ -93,7 +103,7 @@ def import_cliport_batch_cmd(
     try:
         with out.open("w", encoding="utf-8") as fh:
             records = run_batch(folder, fh, timeout=timeout, seed=seed, episodes=episodes,
-                                graphs_dir=graphs, on_result=show)
+                                graphs_dir=graphs, on_result=show, ravens=ravens)
     except OSError as exc:
         err_console.print(f"[red]{escape(f'cannot write {out}: {exc.strerror or exc}')}[/red]")
         raise typer.Exit(2) from None

@@ -110,7 +110,7 @@ def run(
     An episode succeeds at total reward >= 0.99; the task is completed when at
     least half of its episodes succeed (factask's checks decide, also with --ravens).
     """
-    from factask.compat.cliport.scoring import ravens_reward
+    from factask.compat.cliport.scoring import scored_episode
     from factask.sim.env import FactaskEnv
     from factask.sim.episode import TaskResult, run_episode
 
@@ -131,12 +131,8 @@ def run(
         with _progress(as_json) as progress:
             bar = progress.add_task(f"{graph.name} ({robot})", total=episodes)
             for k in range(episodes):
-                snapshots: list[dict[str, Any]] = []
 
-                def show(i: int, planned: Any, info: dict[str, Any], k: int = k,
-                         snapshots: list[dict[str, Any]] = snapshots) -> None:
-                    if ravens:
-                        snapshots.append(env.object_poses())
+                def show(i: int, planned: Any, info: dict[str, Any], k: int = k) -> None:
                     if as_json:
                         return
                     done = ", ".join(f"{n} {p:.0%}" for n, p in info["factors"].items())
@@ -144,10 +140,16 @@ def run(
                                            f" -> reward {info['total_reward']:.2f} [{done}]",
                                            markup=False, highlight=False)
 
-                results.append(run_episode(graph, seed + k, robot=robot, env=env,
-                                           video=video if k == 0 else None, on_action=show))
                 if ravens:
-                    scores.append(ravens_reward(source, snapshots))
+                    episode, score = scored_episode(source, seed + k, robot=robot, env=env,
+                                                    on_action=show,
+                                                    video=video if k == 0 else None)
+                    results.append(episode)
+                    scores.append(score)
+                else:
+                    results.append(run_episode(graph, seed + k, robot=robot, env=env,
+                                               video=video if k == 0 else None,
+                                               on_action=show))
                 progress.advance(bar)
     finally:
         env.close()

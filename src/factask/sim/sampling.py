@@ -160,7 +160,7 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
                 if not on_table(obj, pose):
                     raise _Placement(inst, f"its fixed pose ({p.x}, {p.y}) leaves part of it "
                                      "hanging off the table", retry=False)
-                blocked = occ.blockers(obj, pose)
+                blocked = _physical_overlaps(objs, obj, occ.blockers(obj, pose))
                 if blocked:
                     raise _Placement(inst, f"its fixed pose overlaps {blocked}", retry=False)
             else:
@@ -202,6 +202,14 @@ def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
             _place_on_host(objs, rng, tries, occ, poses, host, members)
 
 
+def _physical_overlaps(objs: Mapping[str, SceneObject], obj: SceneObject,
+                       blockers: list[str]) -> list[str]:
+    """The overlaps at an author-given pose that physics cannot take: two fixed
+    bodies may interpenetrate (both are welded to the world; the author's shapes
+    are often finer than factask's boxes: kit holes), a movable one may not."""
+    return [b for b in blockers if not (obj.fixed and objs[b].fixed)]
+
+
 def _place_given(objs: Mapping[str, SceneObject], occ: Occupancy, poses: dict[str, Pose],
                  host: str, inst: str, placement: StartOn | StartInside) -> None:
     """Put ``inst`` at the place on ``host`` its placement gives (host frame)."""
@@ -216,7 +224,7 @@ def _place_given(objs: Mapping[str, SceneObject], occ: Occupancy, poses: dict[st
     if not placement_area(hobj, hpose).contains(np.array([x, y]))[0]:
         raise _Placement(inst, f"its given place ({dx:+.3f}, {dy:+.3f}) from {host!r}'s "
                          "centre is off that host", retry=False)
-    blocked = occ.blockers(obj, pose, ignore=[host])
+    blocked = _physical_overlaps(objs, obj, occ.blockers(obj, pose, ignore=[host]))
     if blocked:
         raise _Placement(inst, f"its given place on {host!r} overlaps {blocked}", retry=False)
     poses[inst] = pose

@@ -44,9 +44,11 @@ def _kill_group(proc: subprocess.Popen[str]) -> None:
 
 
 def _worker_command(path: Path, seed: int, episodes: int,
-                    graph_out: str | Path | None) -> list[str]:
+                    graph_out: str | Path | None, ravens: bool = False) -> list[str]:
     cmd = [sys.executable, "-m", "factask.compat.cliport.worker", str(path),
            "--seed", str(seed), "--episodes", str(episodes)]
+    if ravens:
+        cmd.append("--ravens")
     if graph_out is not None:
         cmd += ["--graph-out", str(graph_out)]
     return cmd
@@ -79,7 +81,8 @@ def _last_record(out: str) -> tuple[dict[str, Any] | None, str | None]:
 
 
 def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
-            episodes: int = 0, graph_out: str | Path | None = None) -> dict[str, Any]:
+            episodes: int = 0, graph_out: str | Path | None = None,
+            ravens: bool = False) -> dict[str, Any]:
     """Import one file in a child process; always return a result record.
 
     The child reports each stage it finishes (loaded, imported, compiled) as it
@@ -92,12 +95,13 @@ def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
         seed: Import seed.
         episodes: Oracle episodes per file (0: none).
         graph_out: Where the child writes the graph JSON, if given.
+        ravens: Also score every episode as Ravens does.
 
     Returns:
         The worker's record, or one saying why the child did not finish.
     """
     p = Path(path)
-    proc = subprocess.Popen(_worker_command(p, seed, episodes, graph_out),
+    proc = subprocess.Popen(_worker_command(p, seed, episodes, graph_out, ravens),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
     timed_out = False
@@ -123,8 +127,8 @@ def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
 
 def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT_S,
               seed: int = 0, episodes: int = 0, graphs_dir: str | Path | None = None,
-              on_result: Callable[[dict[str, Any]], None] | None = None
-              ) -> list[dict[str, Any]]:
+              on_result: Callable[[dict[str, Any]], None] | None = None,
+              ravens: bool = False) -> list[dict[str, Any]]:
     """Import every task file of ``folder``; write one JSON line per file to ``out``.
 
     Args:
@@ -135,12 +139,13 @@ def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT
         episodes: Oracle episodes per file (0: none).
         graphs_dir: If given, each imported graph is written there as ``<stem>.json``.
         on_result: Called with each record as it is written (progress display).
+        ravens: Also score every episode as Ravens does.
 
     Returns:
         Every record, in file order.
     """
     records = []
-    for rec in iter_batch(folder, timeout, seed, episodes, graphs_dir):
+    for rec in iter_batch(folder, timeout, seed, episodes, graphs_dir, ravens):
         out.write(json.dumps(rec) + "\n")
         out.flush()
         if on_result is not None:
@@ -150,12 +155,12 @@ def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT
 
 
 def iter_batch(folder: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
-               episodes: int = 0, graphs_dir: str | Path | None = None
-               ) -> Iterator[dict[str, Any]]:
+               episodes: int = 0, graphs_dir: str | Path | None = None,
+               ravens: bool = False) -> Iterator[dict[str, Any]]:
     """Records of :func:`run_one` for each file of ``folder``, one at a time."""
     gdir = Path(graphs_dir) if graphs_dir is not None else None
     if gdir is not None:
         gdir.mkdir(parents=True, exist_ok=True)
     for path in task_files(folder):
         graph_out = gdir / f"{path.stem}.json" if gdir is not None else None
-        yield run_one(path, timeout, seed, episodes, graph_out)
+        yield run_one(path, timeout, seed, episodes, graph_out, ravens)

@@ -43,7 +43,7 @@ from factask.geometry import tilt_deg
 from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
-from factask.model.kinds import kind_spec
+from factask.model.kinds import WALL_THICKNESS, kind_spec
 from factask.model.names import slugify
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
@@ -58,6 +58,10 @@ SUPPORT_SLACK = 0.02
 WEIGHT_WARN_TOLERANCE = 1e-3
 #: Objects tilted more than this (degrees) at the start lose their tilt (with a warning).
 TILT_WARN_DEG = 5.0
+#: Receptacles with walls that the author's placements must clear.
+WALLED_KINDS = ("container",)
+#: Room left between a placement and a wall, metres.
+WALL_CLEARANCE = 0.003
 #: Longest factor name (the graph model allows 64 characters).
 MAX_NAME = 48
 #: Colour of a zone variable created from a zone goal's params.
@@ -102,6 +106,53 @@ def _inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
     return bool(abs(local[0]) <= o.size[0] / 2 and abs(local[1]) <= o.size[1] / 2)
 
 
+def _in_workspace(o: RecordedObject) -> bool:
+    """The object's centre is inside the workspace (tasks park objects far away, e.g.
+    palletizing's boxes waiting to be spawned at y - 10)."""
+    x, y = float(o.pos[0]), float(o.pos[1])
+    return WORKSPACE_X[0] <= x <= WORKSPACE_X[1] and WORKSPACE_Y[0] <= y <= WORKSPACE_Y[1]
+
+
+def _hosts(o: RecordedObject, others: list[RecordedObject]
+           ) -> tuple[list[RecordedObject], list[RecordedObject]]:
+    """The receptacles ``o`` starts in and the supports it starts on."""
+    bottom = float(o.pos[2]) - o.size[2] / 2
+    # Any other object may hold it, whatever the order the task added them in (a
+    # stack added top first); only a lower one can be its support, so no cycles.
+    holders = [c for c in others if _in_workspace(c) and _inside_footprint(o.pos[:2], c)]
+    receptacles = [c for c in holders if kind_spec(c.kind).receptacle
+                   and c.pos[2] - c.size[2] / 2 <= bottom + SUPPORT_SLACK]
+    # A centre inside a support's footprint cannot rest on the table: it is on it.
+    supports = [c for c in holders if kind_spec(c.kind).support
+                and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
+    return receptacles, supports
+
+
+def _settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int],
+            warn: Any) -> None:
+    """Put objects that start in the air on nothing, or tilted, where factask starts
+    them (on the table, upright, same x, y and yaw), before anything reads their
+    poses: targets resting in or on them follow them down (a 6-DoF fixture).
+    """
+    for k, o in enumerate(objects):
+        if (o.random_start and o.obj_id in moved and o.category != "fixed") or (
+                not _in_workspace(o)):
+            continue  # factask samples its start anyway
+        receptacles, supports = _hosts(o, objects[:k] + objects[k + 1:])
+        if receptacles or supports:
+            continue
+        name = names[o.obj_id]
+        bottom = float(o.pos[2]) - o.size[2] / 2
+        if bottom > START_ABOVE_TABLE:
+            warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
+                 "the table instead (targets in or on it follow it down)")
+            o.pos = np.array([o.pos[0], o.pos[1], o.size[2] / 2], dtype=float)
+        if tilt_deg(xyzw_to_wxyz(o.quat)) > TILT_WARN_DEG:
+            warn(f"{name} starts tilted; only its yaw is kept")
+            yaw = yaw_of_xyzw(o.quat)
+            o.quat = np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])
+
+
 def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int, str],
                moved: set[int], warn: Any) -> Any:
     name = names[o.obj_id]
@@ -109,31 +160,18 @@ def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int,
         # The task asked for "a random free spot" (get_random_pose): so does factask,
         # each episode, clear of everything (objects added later included).
         return OnTable()
-    bottom = float(o.pos[2]) - o.size[2] / 2
-    # Any other object may hold it, whatever the order the task added them in (a
-    # stack added top first); only a lower one can be its support, so no cycles.
-    holders = [c for c in others if _inside_footprint(o.pos[:2], c)]
-    receptacles = [c for c in holders if kind_spec(c.kind).receptacle
-                   and c.pos[2] - c.size[2] / 2 <= bottom + SUPPORT_SLACK]
-    if receptacles:
-        host = receptacles[-1]
-        return StartInside(container=names[host.obj_id], **_given_place(o, host))
-    # A centre inside a support's footprint cannot rest on the table: it is on it.
-    below = [c for c in holders if kind_spec(c.kind).support
-             and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
-    if below:
-        support = max(below, key=lambda c: c.pos[2] + c.size[2] / 2)
-        return StartOn(support=names[support.obj_id], **_given_place(o, support))
-    if bottom > START_ABOVE_TABLE:
-        warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
-             "the table instead")
-    if tilt_deg(xyzw_to_wxyz(o.quat)) > TILT_WARN_DEG:
-        warn(f"{name} starts tilted; only its yaw is kept")
     x, y = float(o.pos[0]), float(o.pos[1])
-    if not (WORKSPACE_X[0] <= x <= WORKSPACE_X[1] and WORKSPACE_Y[0] <= y <= WORKSPACE_Y[1]):
+    if not _in_workspace(o):
         warn(f"{name} starts outside the workspace at ({x:.3f}, {y:.3f}); it starts at a "
              "random free spot instead")
         return OnTable()
+    receptacles, below = _hosts(o, others)
+    if receptacles:
+        host = receptacles[-1]
+        return StartInside(container=names[host.obj_id], **_given_place(o, host))
+    if below:
+        support = max(below, key=lambda c: c.pos[2] + c.size[2] / 2)
+        return StartOn(support=names[support.obj_id], **_given_place(o, support))
     return AtFixedPose(x=x, y=y, yaw_deg=math.degrees(yaw_of_xyzw(o.quat)))
 
 
@@ -150,6 +188,33 @@ def _given_place(o: RecordedObject, host: RecordedObject) -> dict[str, Any]:
     yaw = math.degrees(yaw_of_xyzw(o.quat) - host_yaw)
     return {"offset": (round(c * dx + s * dy, 6), round(-s * dx + c * dy, 6)),
             "yaw_deg": round((yaw + 180.0) % 360.0 - 180.0, 6)}
+
+
+def _make_room(host: RecordedObject, goal: RecordedGoal, poses: list[Any],
+               names: dict[int, str], warn: Any) -> None:
+    """Grow a walled receptacle (centre kept) until the author's placements in it
+    clear its walls.
+
+    Ravens' container template has thin walls and its packing tasks fill it to 1 cm
+    of its outer edge; factask's walls are :data:`WALL_THICKNESS` thick, so those
+    placements would sit on the walls. The placements are facts; the walls move out.
+    """
+    yaw = yaw_of_xyzw(host.quat)
+    c, s = math.cos(yaw), math.sin(yaw)
+    need = np.array(host.size[:2], dtype=float) / 2
+    for o, pose in zip(goal.objs, poses, strict=True):
+        dx, dy = pose.x - float(host.pos[0]), pose.y - float(host.pos[1])
+        local = np.abs([c * dx + s * dy, -s * dx + c * dy])
+        rel_yaw = math.radians(pose.yaw_deg) - yaw
+        cr, sr = abs(math.cos(rel_yaw)), abs(math.sin(rel_yaw))
+        half = np.array([cr * o.size[0] + sr * o.size[1], sr * o.size[0] + cr * o.size[1]]) / 2
+        need = np.maximum(need, local + half + WALL_THICKNESS + WALL_CLEARANCE)
+    grown = (float(2 * need[0]), float(2 * need[1]), host.size[2])
+    if grown[:2] != host.size[:2]:
+        warn(f"{names[host.obj_id]}: the author's placements reach its "
+             f"{WALL_THICKNESS * 100:.0f} cm walls; grown from {host.size[0]:.3f} x "
+             f"{host.size[1]:.3f} to {grown[0]:.3f} x {grown[1]:.3f} m (centre kept)")
+        host.size = grown
 
 
 def _zone_variable(goal: RecordedGoal, objects: list[RecordedObject], names: dict[int, str],
@@ -245,7 +310,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                  "(a zero row of matches); they are left out")
             g.objs = [g.objs[i] for i in rows]
             g.matches = g.matches[rows, :]
-    rest = resting_heights(goals, objects, {o.obj_id for g in goals for o in g.objs})
+    goal_objects = {o.obj_id for g in goals for o in g.objs}
+    _settle(objects, names, goal_objects, warn)
+    rest = resting_heights(goals, objects, goal_objects)
     drafts: list[tuple[RecordedGoal, Any]] = []
     for g in goals:
         if not g.objs:
@@ -267,7 +334,11 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         else:
             zone = _zone_variable(g, objects, names, extra, warn)
             taken.add(zone)
-            rel = InZone(objects=objs, zone=zone, poses=zone_poses(g, rest), **extra_kw)
+            poses = zone_poses(g, rest)
+            host = next((o for o in objects if names[o.obj_id] == zone), None)
+            if poses and host is not None and host.kind in WALLED_KINDS:
+                _make_room(host, g, poses, names, warn)
+            rel = InZone(objects=objs, zone=zone, poses=poses, **extra_kw)
         drafts.append((g, rel))
     if not drafts:
         raise CliportImportError("no goal is left to check (every goal lost its objects)")

@@ -198,3 +198,40 @@ def ravens_reward(result: Any, poses_sequence: Sequence[Mapping[str, Any]]) -> R
 def yaw_deg_of(quat_xyzw: Any) -> float:
     """Yaw of an x, y, z, w quaternion in degrees."""
     return math.degrees(yaw_of_xyzw(quat_xyzw))
+
+
+def scored_episode(result: Any, seed: int, robot: str = "floating", env: Any = None,
+                   on_action: Any = None, video: Any = None) -> tuple[Any, RavensScore]:
+    """Run one oracle episode of an imported task and score it both ways.
+
+    Args:
+        result: The :class:`~factask.compat.cliport.loader.ImportResult`.
+        seed: Reset seed of the episode.
+        robot: A robot of the registry.
+        env: Reuse this env (must be of ``result.graph``).
+        on_action: Also called after each action, as by
+            :func:`~factask.sim.episode.run_episode`.
+        video: Write a video of the episode here.
+
+    Returns:
+        (the :class:`~factask.sim.episode.EpisodeResult` with factask's checks,
+        the :class:`RavensScore` of the same episode).
+    """
+    from factask.sim.env import FactaskEnv
+    from factask.sim.episode import run_episode
+
+    own = env if env is not None else FactaskEnv(result.graph, robot=robot)
+    snapshots: list[Mapping[str, Any]] = []
+
+    def record(i: int, planned: Any, info: dict[str, Any]) -> None:
+        snapshots.append(own.object_poses())
+        if on_action is not None:
+            on_action(i, planned, info)
+
+    try:
+        episode = run_episode(result.graph, seed, robot=robot, env=own, on_action=record,
+                              video=video)
+    finally:
+        if env is None:
+            own.close()
+    return episode, ravens_reward(result, snapshots)

@@ -140,6 +140,60 @@ def solve_hanoi_all(n_disks: int) -> list[list[int]]:
     return steps
 
 
+class TreeNode:
+    """A node of GenSim's box-splitting tree: ``bbox`` is (min x, min y, min z,
+    max x, max y, max z)."""
+
+    def __init__(self, parent: TreeNode | None, children: list[TreeNode], bbox: Any) -> None:
+        self.parent = parent
+        self.children = children
+        self.bbox = np.asarray(bbox, dtype=float)
+
+
+#: Leaves one box split may produce at most (a guard against absurd arguments).
+MAX_KD_LEAVES = 10_000
+
+
+def KDTree(node: TreeNode, min_object_dim: float, margin: float,
+           bboxes: list[Any]) -> None:
+    """Split ``node``'s box into boxes no side of which is over twice ``min_object_dim``,
+    ``margin`` apart, appending the leaves to ``bboxes`` (GenSim's ``utils.KDTree``).
+
+    The axis to cut is drawn among those still long enough, the cut position
+    uniformly between ``min_object_dim`` from either end; both draws use
+    ``np.random``, depth first, first child first (so a seed gives GenSim's boxes).
+
+    Raises:
+        Unsupported: the split would make more than :data:`MAX_KD_LEAVES` boxes
+            (``min_object_dim`` far too small for the box).
+    """
+    if not min_object_dim > 0 or not np.all(np.isfinite(node.bbox)):
+        raise Unsupported(f"utils.KDTree: min_object_dim must be > 0 and the box finite, "
+                          f"got {min_object_dim!r} and {node.bbox.tolist()}")
+    stack = [node]
+    leaves = 0
+    while stack:
+        current = stack.pop()
+        size = current.bbox[3:] - current.bbox[:3]
+        long_enough = size > 2 * min_object_dim
+        if not long_enough.any():
+            bboxes.append(current.bbox)
+            leaves += 1
+            if leaves > MAX_KD_LEAVES:
+                raise Unsupported(f"utils.KDTree: more than {MAX_KD_LEAVES} boxes; "
+                                  "min_object_dim is too small for the box")
+            continue
+        weights = long_enough.astype(float) / long_enough.sum()
+        axis = int(np.random.choice(range(len(weights)), 1, p=weights)[0])
+        cut = (np.random.rand() * (size[axis] - 2 * min_object_dim)
+               + current.bbox[axis] + min_object_dim)
+        low, high = current.bbox.copy(), current.bbox.copy()
+        low[3 + axis] = cut - margin / 2
+        high[axis] = cut + margin / 2
+        current.children = [TreeNode(current, [], low), TreeNode(current, [], high)]
+        stack.extend(reversed(current.children))  # the first child is split first
+
+
 def set_seed(seed: int, torch: bool = False) -> None:
     """Seed ``random`` and ``np.random`` (torch is not used here)."""
     random.seed(seed)

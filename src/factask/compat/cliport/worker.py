@@ -1,14 +1,16 @@
 """Child-process entry of the batch import: one task file, one result record.
 
 Run as ``python -m factask.compat.cliport.worker FILE [--seed S] [--episodes N]
-[--graph-out PATH]``. The file **is executed**; the parent
+[--graph-out PATH] [--ravens]``. The file **is executed**; the parent
 (:mod:`factask.compat.cliport.batch`) runs this in its own process with a time
 limit, so a crashing or hanging task never stops the batch.
 
 A record has: ``file``, ``class``, ``task``, ``loaded`` (the file ran and
 has a Task subclass), ``imported`` (its reset produced a valid graph),
 ``compiled`` (the graph compiled to MuJoCo; null if the backend is missing),
-``oracle_success_rate`` (null unless episodes were run), ``warnings`` and
+``oracle_success_rate`` (null unless episodes were run; factask's checks),
+with ``--ravens`` also ``ravens_success_rate`` and per episode ``ravens``
+(seed, factask's success, Ravens' reward and success), ``warnings`` and
 ``error`` (null on success). One JSON line is printed (and flushed) after each
 stage, with a ``stage`` key (``loaded``, ``imported``, ``compiled``), and the
 final one with ``"stage": "done"``: a parent that kills a hanging child keeps
@@ -26,6 +28,7 @@ from typing import Any
 
 from factask.compat.cliport.errors import CliportImportError
 from factask.compat.cliport.loader import import_cliport
+from factask.compat.cliport.scoring import scored_episode
 from factask.sim.compile import compile_graph
 from factask.sim.episode import run_episode
 
@@ -38,7 +41,8 @@ def new_record(path: str) -> dict[str, Any]:
 
 
 def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None = None,
-             emit: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
+             emit: Callable[[dict[str, Any]], None] | None = None,
+             ravens: bool = False) -> dict[str, Any]:
     """Load, import, compile and (optionally) run one task file.
 
     The file is executed once (:func:`import_cliport` loads it and reports the
@@ -53,6 +57,7 @@ def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None 
             (loaded, imported, compiled; not with the final record, which is
             returned), so a parent that has to kill this process still knows how
             far it got.
+        ravens: Also score every episode as Ravens does.
 
     Returns:
         The result record (see the module docstring); never raises: a late
@@ -69,7 +74,7 @@ def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None 
         report()
 
     try:
-        _run_stages(rec, path, seed, episodes, graph_out, loaded, report)
+        _run_stages(rec, path, seed, episodes, graph_out, loaded, report, ravens)
     except Exception as exc:  # never lose the stages already done
         rec["error"] = f"internal error: {type(exc).__name__}: {exc}"
     return rec
@@ -77,7 +82,7 @@ def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None 
 
 def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
                 graph_out: str | None, loaded: Callable[[type], None],
-                report: Callable[[], None]) -> None:
+                report: Callable[[], None], ravens: bool = False) -> None:
     try:
         result = import_cliport(path, seed=seed, on_loaded=loaded)
     except CliportImportError as exc:
@@ -98,10 +103,16 @@ def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
     rec["compiled"] = True
     report()
     if episodes > 0:
-        wins, failures = 0, []
+        wins, failures, scores = 0, [], []
         for k in range(episodes):
             try:
-                ep = run_episode(result.graph, seed=seed + k, robot="floating")
+                if ravens:
+                    ep, score = scored_episode(result, seed + k)
+                    scores.append({"seed": seed + k, "success": ep.success,
+                                   "ravens_reward": score.reward,
+                                   "ravens_success": score.success})
+                else:
+                    ep = run_episode(result.graph, seed=seed + k, robot="floating")
             except Exception as exc:
                 rec["error"] = f"episode {k} failed: {type(exc).__name__}: {exc}"
                 break
@@ -110,7 +121,11 @@ def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
                 failures.append(f"episode {k}: {ep.failure}")
         else:
             rec["oracle_success_rate"] = wins / episodes
+            if ravens:
+                rec["ravens_success_rate"] = sum(s["ravens_success"] for s in scores) / episodes
         rec["oracle_failures"] = failures
+        if ravens:
+            rec["ravens"] = scores
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -126,6 +141,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--episodes", type=int, default=0)
     ap.add_argument("--graph-out", default=None)
+    ap.add_argument("--ravens", action="store_true")
     args = ap.parse_args(argv)
     out = sys.stdout
     sys.stdout = sys.stderr  # user code's prints must not mix with the records
@@ -136,7 +152,8 @@ def main(argv: list[str] | None = None) -> int:
 
     final: dict[str, Any] | None = None
     try:
-        final = run_file(args.file, args.seed, args.episodes, args.graph_out, emit=emit)
+        final = run_file(args.file, args.seed, args.episodes, args.graph_out, emit=emit,
+                         ravens=args.ravens)
     except Exception as exc:  # the last line of defence: always report, never hang the batch
         final = new_record(args.file)
         final["error"] = f"internal error: {type(exc).__name__}: {exc}"
