@@ -69,3 +69,55 @@ def test_demo_writes_graph_picture_video_and_result(tmp_path: Path) -> None:
     assert (tmp_path / "put-block-in-bowl.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")
     episode = json.loads((tmp_path / "episode.json").read_text())
     assert episode["success"] is True
+
+
+def test_run_ravens_scores_a_library_graph_and_a_task_file() -> None:
+    hanoi = runner.invoke(app, ["run", "towers-of-hanoi", "-n", "1", "--json", "--ravens"])
+    assert hanoi.exit_code == 0, hanoi.output
+    data = json.loads(hanoi.stdout)
+    (score,) = data["ravens"]
+    assert score["goals"] == 7 and score["goals_done"] == 7 and score["success"]
+    tasks = Path(__file__).parent / "cliport_tasks"
+    seq = runner.invoke(app, ["run", f"{tasks / 'towers_of_hanoi_seq.py'}", "-n", "1",
+                              "--json", "--ravens"])
+    assert seq.exit_code == 0, seq.output
+    (score,) = json.loads(seq.stdout)["ravens"]
+    assert score["goals"] == 7 and score["success"]
+
+
+def test_import_cliport_batch_ravens_reports_both_rates(tmp_path: Path) -> None:
+    folder = tmp_path / "tasks"
+    folder.mkdir()
+    src = Path(__file__).parent / "cliport_tasks" / "place_red_in_green.py"
+    (folder / src.name).write_text(src.read_text())
+    out = tmp_path / "out.jsonl"
+    result = runner.invoke(app, ["import-cliport-batch", str(folder), "-o", str(out),
+                                 "--episodes", "1", "--ravens"])
+    assert result.exit_code == 0, result.output
+    (rec,) = [json.loads(line) for line in out.read_text().splitlines()]
+    assert rec["oracle_success_rate"] == 1.0 and rec["ravens_success_rate"] == 1.0
+    (episode,) = rec["ravens"]
+    assert episode["success"] and episode["ravens_success"]
+
+
+def test_graph_goal_queue_has_one_goal_per_factor_in_order() -> None:
+    from factask.compat.cliport.scoring import graph_goal_queue
+    from factask.sim.env import FactaskEnv
+
+    graph = get_task("put-block-in-bowl")
+    env = FactaskEnv(graph)
+    try:
+        env.reset(seed=0)
+        queue = graph_goal_queue(graph, env.solved, env.objects, env.initial_layout)
+    finally:
+        env.close()
+    order = graph.factor_order()
+    assert [g.language for g in queue] == [graph.factor(n).description for n in order]
+    assert abs(sum(g.max_reward for g in queue) - 1.0) < 1e-9
+    for goal, name in zip(queue, order, strict=True):
+        relation = graph.factor(name).goal.type
+        assert goal.metric == ("zone" if relation in ("in_zone", "inside") else "pose")
+        if goal.metric == "zone":
+            (zone,) = goal.zones
+            assert zone[4] > 0 and zone[5] > 0
+        assert len(goal.matches) == len(goal.objects)

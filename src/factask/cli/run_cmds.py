@@ -100,10 +100,11 @@ def run(
     video: Path | None = typer.Option(None, "--video", help="Write a GIF of the first episode."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
     ravens: bool = typer.Option(
-        False, "--ravens", help="Also score every episode as Ravens does (CLIPort task files "
-        "only): goals in queue order, XY within pos_eps and yaw within rot_eps modulo "
-        "symmetry (z ignored), a finished goal never re-checked, success at reward >= 0.99. "
-        "Shown beside factask's own checks."),
+        False, "--ravens", help="Also score every episode as Ravens does: goals in queue "
+        "order (a task file's own goals; a graph's factors in order, each worth its "
+        "weight), XY within pos_eps and yaw within rot_eps modulo symmetry (z ignored), "
+        "a finished goal never re-checked, success at reward >= 0.99. Shown beside "
+        "factask's own checks."),
 ) -> None:
     """Run the scripted oracle on a task and report reward and success per episode.
 
@@ -116,10 +117,6 @@ def run(
 
     check_robot(robot)
     graph, source = load_task_source(task, seed)
-    if ravens and source is None:
-        err_console.print("--ravens needs a CLIPort task file (FILE.py[:Class]): a graph has "
-                          "no Ravens goals", markup=False)
-        raise typer.Exit(2)
     try:
         env = FactaskEnv(graph, robot=robot)
     except FactaskError as exc:
@@ -141,8 +138,8 @@ def run(
                                            markup=False, highlight=False)
 
                 if ravens:
-                    episode, score = scored_episode(source, seed + k, robot=robot, env=env,
-                                                    on_action=show,
+                    episode, score = scored_episode(source or graph, seed + k, robot=robot,
+                                                    env=env, on_action=show,
                                                     video=video if k == 0 else None)
                     results.append(episode)
                     scores.append(score)
@@ -158,7 +155,8 @@ def run(
         out = result.to_dict()
         if ravens:
             out["ravens"] = [{"seed": e.seed, "reward": sc.reward, "success": sc.success,
-                              "goals_done": sc.goals_done, "goals": len(source.goals)}
+                              "goals_done": sc.goals_done,
+                              "goals": len(source.goals) if source else len(graph.factors)}
                              for e, sc in zip(results, scores, strict=True)]
         typer.echo(json.dumps(out))
     else:

@@ -23,6 +23,8 @@ from scipy.spatial.transform import Rotation
 from factask.compat.cliport.errors import PoseError
 from factask.compat.cliport.transforms import rotation_wxyz, yaw_of_xyzw
 from factask.geometry import Pose
+from factask.model.graph import TaskGraph
+from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG
 
 #: A goal counts as done when its step reward is within this of its share (Ravens).
 GOAL_DONE_EPS = 0.01
@@ -200,12 +202,68 @@ def yaw_deg_of(quat_xyzw: Any) -> float:
     return math.degrees(yaw_of_xyzw(quat_xyzw))
 
 
-def scored_episode(result: Any, seed: int, robot: str = "floating", env: Any = None,
-                   on_action: Any = None, video: Any = None) -> tuple[Any, RavensScore]:
-    """Run one oracle episode of an imported task and score it both ways.
+#: The region relations Ravens would score with its zone metric.
+ZONE_RELATIONS = ("in_zone", "inside")
+
+
+@dataclass(frozen=True)
+class RavensTask:
+    """What :func:`ravens_reward` needs: the graph (object sizes), the goal queue and
+    Ravens' tolerances. An :class:`~factask.compat.cliport.loader.ImportResult` has
+    the same attributes."""
+
+    graph: Any
+    goals: list[RavensGoal]
+    pos_eps: float = XY_TOLERANCE
+    rot_eps: float = math.radians(YAW_TOLERANCE_DEG)
+
+
+def graph_goal_queue(graph: Any, solved: Mapping[str, Any], objects: Mapping[str, Any],
+                     layout: Mapping[str, Pose]) -> list[RavensGoal]:
+    """A factask task's goals as Ravens would queue them, for one reset.
+
+    Each factor, in :meth:`~factask.model.graph.TaskGraph.factor_order`, becomes one
+    goal worth its weight: a region relation (``in_zone``, ``inside``) a zone goal
+    over the region's footprint, any other a pose goal over its solved slots (XY
+    and yaw modulo the object's symmetry; yaw ignored where the factor ignores it).
 
     Args:
-        result: The :class:`~factask.compat.cliport.loader.ImportResult`.
+        graph: The task graph.
+        solved: The reset's solved factors (``env.solved``).
+        objects: Scene objects by instance name (``env.objects``).
+        layout: Initial poses (``env.initial_layout``: where the regions are).
+    """
+    queue = []
+    for name in graph.factor_order():
+        f, sf = graph.factor(name), solved[name]
+        symmetries = [math.radians(objects[o].symmetry_deg) if sf.check_yaw else 0.0
+                      for o in sf.objects]
+        targets = []
+        for j in range(len(sf.slots)):
+            allowed = [o for i, o in enumerate(sf.objects) if sf.matches[i, j]] or sf.objects
+            pose = sf.target_pose(objects[allowed[0]], j)
+            targets.append((*(float(c) for c in pose.pos), float(pose.yaw)))
+        zones = []
+        if sf.relation in ZONE_RELATIONS and sf.region is not None:
+            rpose, rsize = layout[sf.region], objects[sf.region].size
+            zones = [(*(float(c) for c in rpose.pos), float(rpose.yaw),
+                      float(rsize[0]), float(rsize[1]))]
+        queue.append(RavensGoal(
+            objects=list(sf.objects), symmetries=symmetries,
+            matches=sf.matches.astype(int).tolist(), targets=targets, replace=False,
+            rotations=bool(sf.check_yaw), metric="zone" if zones else "pose", zones=zones,
+            max_reward=f.weight, language=f.description))
+    return queue
+
+
+def scored_episode(result: Any, seed: int, robot: str = "floating", env: Any = None,
+                   on_action: Any = None, video: Any = None) -> tuple[Any, RavensScore]:
+    """Run one oracle episode and score it both ways: factask's checks and Ravens'.
+
+    Args:
+        result: An :class:`~factask.compat.cliport.loader.ImportResult` (its own
+            goal queue), or a :class:`~factask.model.graph.TaskGraph` (its factors
+            in order as the queue: :func:`graph_goal_queue`).
         seed: Reset seed of the episode.
         robot: A robot of the registry.
         env: Reuse this env (must be of ``result.graph``).
@@ -220,7 +278,8 @@ def scored_episode(result: Any, seed: int, robot: str = "floating", env: Any = N
     from factask.sim.env import FactaskEnv
     from factask.sim.episode import run_episode
 
-    own = env if env is not None else FactaskEnv(result.graph, robot=robot)
+    graph = result if isinstance(result, TaskGraph) else result.graph
+    own = env if env is not None else FactaskEnv(graph, robot=robot)
     snapshots: list[Mapping[str, Any]] = []
 
     def record(i: int, planned: Any, info: dict[str, Any]) -> None:
@@ -229,8 +288,11 @@ def scored_episode(result: Any, seed: int, robot: str = "floating", env: Any = N
             on_action(i, planned, info)
 
     try:
-        episode = run_episode(result.graph, seed, robot=robot, env=own, on_action=record,
+        episode = run_episode(graph, seed, robot=robot, env=own, on_action=record,
                               video=video)
+        if isinstance(result, TaskGraph):
+            result = RavensTask(graph, graph_goal_queue(graph, own.solved, own.objects,
+                                                         own.initial_layout))
     finally:
         if env is None:
             own.close()
