@@ -10,10 +10,14 @@ written two ways:
 - ``separate``: ``n`` single-block variables, one ``in_zone`` factor each.
 
 Both give ``n`` free bodies plus ``n`` goal markers plus the floating robot.
-For each ``n`` the median of a few repeats is printed, split into the MJCF build
-(:func:`~factask.sim.compile.build_mjcf` plus ``to_xml_string``) and the MuJoCo
-compile (``MjModel.from_xml_string``). Wall times depend on the machine and its
-load; nothing here asserts a time.
+For each ``n`` (up to 200) the median of a few repeats of
+:func:`~factask.sim.compile.compile_graph` is printed, split into building the
+``MjSpec`` (:func:`~factask.sim.compile.build_spec`) and MuJoCo's compiler
+(``spec.compile()``); beside it, up to 100 objects, the export path that compile
+used before (``build_mjcf`` + ``to_xml_string`` + ``MjModel.from_xml_string``,
+dm_control) and the speed-up. The curve is saved as
+``benchmarks/out/compile_vs_objects.png``. Wall times depend on the machine and
+its load; nothing here asserts a time.
 """
 
 from __future__ import annotations
@@ -22,16 +26,21 @@ import argparse
 import statistics
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import mujoco
 
 import factask as ft
 from factask.sim.assets import XML_PRECISION
-from factask.sim.compile import build_mjcf, compile_graph
+from factask.sim.compile import build_mjcf, build_spec, compile_graph
 
 #: Object counts measured by default and with ``--quick``.
-SIZES = (1, 2, 5, 10, 20, 50, 100)
-QUICK_SIZES = (1, 10, 50)
+SIZES = (1, 2, 5, 10, 20, 50, 100, 150, 200)
+QUICK_SIZES = (1, 10, 50, 100, 200)
+#: The slow MJCF path is timed up to this many objects (it only serves as the "before").
+MJCF_MAX = 100
+#: Where the compile-vs-objects plot goes.
+PLOT = Path(__file__).resolve().parent / "out" / "compile_vs_objects.png"
 #: Largest count per variable in the ``group`` layout (the model allows 64).
 GROUP_MAX = 50
 LAYOUTS = ("group", "separate")
@@ -70,65 +79,125 @@ def blocks_in_zone(n: int, layout: str = "group") -> ft.TaskGraph:
 
 @dataclass(frozen=True)
 class CompileTiming:
-    """Median wall times (s) of one graph's compile and its parts."""
+    """Median wall times (s) of one graph's compile and its parts.
+
+    Attributes:
+        n: Objects (blocks).
+        layout: Graph layout.
+        total: The whole :func:`compile_graph` (MjSpec path, the one factask uses).
+        spec: Building the ``MjSpec`` (:func:`build_spec`, validation included).
+        mujoco: ``spec.compile()``.
+        mjcf: The export path for comparison: ``build_mjcf`` + ``to_xml_string`` +
+            ``MjModel.from_xml_string`` (no robot), 0 when not measured.
+        nbody: Bodies of the compiled model.
+        ngeom: Geoms of the compiled model.
+    """
 
     n: int
     layout: str
     total: float
-    mjcf: float
+    spec: float
     mujoco: float
+    mjcf: float
     nbody: int
     ngeom: int
 
 
 def time_compile(graph: ft.TaskGraph, n: int, layout: str, repeats: int,
-                 robot: str = "floating") -> CompileTiming:
-    """Median over ``repeats`` of compile_graph and of its two halves."""
-    totals, mjcfs, mjs = [], [], []
+                 robot: str = "floating", mjcf: bool = True) -> CompileTiming:
+    """Median over ``repeats`` of compile_graph, of its two halves, and of the MJCF path."""
+    totals, specs, mjs, mjcfs = [], [], [], []
     model = None
     for _ in range(repeats):
         t0 = time.perf_counter()
         scene = compile_graph(graph, robot=robot)
         totals.append(time.perf_counter() - t0)
+        model = scene.model
         t0 = time.perf_counter()
-        root, _ = build_mjcf(graph, robot)
-        xml = root.to_xml_string(precision=XML_PRECISION)
+        spec = build_spec(graph, robot)[0]
         t1 = time.perf_counter()
-        model = mujoco.MjModel.from_xml_string(xml)
-        t2 = time.perf_counter()
-        mjcfs.append(t1 - t0)
-        mjs.append(t2 - t1)
-        del scene
+        spec.compile()
+        mjs.append(time.perf_counter() - t1)
+        specs.append(t1 - t0)
+        if mjcf:
+            t0 = time.perf_counter()
+            root, _ = build_mjcf(graph)
+            mujoco.MjModel.from_xml_string(root.to_xml_string(precision=XML_PRECISION))
+            mjcfs.append(time.perf_counter() - t0)
     assert model is not None
-    return CompileTiming(n, layout, statistics.median(totals), statistics.median(mjcfs),
-                         statistics.median(mjs), model.nbody, model.ngeom)
+    return CompileTiming(n, layout, statistics.median(totals), statistics.median(specs),
+                         statistics.median(mjs), statistics.median(mjcfs) if mjcfs else 0.0,
+                         model.nbody, model.ngeom)
+
+
+def plot(rows: list[CompileTiming], path: Path) -> None:
+    """Save compile time against objects (both paths, both layouts) as a PNG.
+
+    Args:
+        rows: Timings from :func:`run`.
+        path: Where the picture goes.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=110)
+    for layout, style in zip(LAYOUTS, ("-", "--"), strict=True):
+        sel = [r for r in rows if r.layout == layout]
+        if not sel:
+            continue
+        ns = [r.n for r in sel]
+        ax.plot(ns, [1000 * r.total for r in sel], "o" + style, color="tab:blue",
+                label=f"compile_graph (MjSpec), {layout}")
+        ax.plot(ns, [1000 * r.mujoco for r in sel], "." + style, color="tab:green",
+                label=f"of which spec.compile(), {layout}")
+        mj = [(r.n, 1000 * r.mjcf) for r in sel if r.mjcf]
+        if mj:
+            ax.plot(*zip(*mj, strict=True), "s" + style, color="tab:red",
+                    label=f"dm_control MJCF + XML parse (before), {layout}")
+    ax.set_xlabel("objects (blocks; each also has a goal marker)")
+    ax.set_ylabel("wall ms (median)")
+    ax.set_title("Compile time vs objects (floating robot)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path)
+    plt.close(fig)
 
 
 def run(quick: bool = False, repeats: int | None = None,
-        layouts: tuple[str, ...] = LAYOUTS) -> list[CompileTiming]:
-    """Measure and print the table; return the timings."""
+        layouts: tuple[str, ...] = LAYOUTS, plot_path: Path | None = PLOT) -> list[CompileTiming]:
+    """Measure and print the table (and save the plot); return the timings."""
     sizes = QUICK_SIZES if quick else SIZES
     repeats = repeats or (3 if quick else 5)
-    # Warm-up: the first compile pays for imports and asset caches.
+    # Warm-up: the first compile pays for imports and caches.
     compile_graph(blocks_in_zone(1), robot="floating")
-    print(f"compile time vs objects (robot floating, median of {repeats}; seconds)")
-    print(f"{'layout':9s} {'n':>4s} {'bodies':>6s} {'geoms':>6s} {'total':>8s} "
-          f"{'mjcf+xml':>9s} {'mujoco':>8s} {'mjcf %':>7s} {'ms/object':>9s}")
+    build_mjcf(blocks_in_zone(1))
+    print(f"compile time vs objects (robot floating, median of {repeats}; milliseconds)")
+    print(f"{'layout':9s} {'n':>4s} {'bodies':>6s} {'geoms':>6s} {'total':>7s} "
+          f"{'spec':>7s} {'compile':>7s} {'ms/obj':>6s} {'mjcf path':>9s} {'speed-up':>8s}")
     out = []
     for layout in layouts:
         for n in sizes:
-            t = time_compile(blocks_in_zone(n, layout), n, layout, repeats)
+            t = time_compile(blocks_in_zone(n, layout), n, layout, repeats,
+                             mjcf=n <= MJCF_MAX)
             out.append(t)
-            share = 100 * t.mjcf / (t.mjcf + t.mujoco)
-            print(f"{layout:9s} {n:4d} {t.nbody:6d} {t.ngeom:6d} {t.total:8.3f} "
-                  f"{t.mjcf:9.3f} {t.mujoco:8.3f} {share:6.0f}% {1000 * t.total / n:9.1f}")
+            mj = (f"{1000 * t.mjcf:9.2f} {t.mjcf / t.total:7.1f}x" if t.mjcf
+                  else f"{'-':>9s}")
+            print(f"{layout:9s} {n:4d} {t.nbody:6d} {t.ngeom:6d} {1000 * t.total:7.2f} "
+                  f"{1000 * t.spec:7.2f} {1000 * t.mujoco:7.2f} {1000 * t.total / n:6.3f} {mj}")
     for layout in layouts:
         rows = [t for t in out if t.layout == layout]
         if len(rows) >= 2:
             a, b = rows[0], rows[-1]
             slope = (b.total - a.total) / (b.n - a.n) * 1000
-            print(f"{layout}: marginal cost {slope:.1f} ms per extra object "
+            print(f"{layout}: marginal cost {slope:.3f} ms per extra object "
                   f"(n={a.n} -> {b.n}: {b.total / a.total:.1f}x the time)")
+    if plot_path is not None:
+        plot(out, plot_path)
+        print(f"plot: {plot_path}")
     return out
 
 
@@ -138,9 +207,10 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="fewer sizes and repeats")
     parser.add_argument("--repeats", type=int, default=None)
     parser.add_argument("--layout", choices=[*LAYOUTS, "both"], default="both")
+    parser.add_argument("--plot", type=Path, default=PLOT, help="where the PNG goes")
     args = parser.parse_args()
     layouts = LAYOUTS if args.layout == "both" else (args.layout,)
-    run(args.quick, args.repeats, layouts)
+    run(args.quick, args.repeats, layouts, args.plot)
 
 
 if __name__ == "__main__":

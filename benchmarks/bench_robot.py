@@ -13,7 +13,6 @@ import time
 
 import mujoco
 import numpy as np
-from dm_control import mjcf
 
 from factask.geometry import Pose
 from factask.sim.ik import TopDownIK, top_down_pose
@@ -26,15 +25,16 @@ MOVES = (((0.4, 0.2), (0.65, -0.3)), ((0.3, -0.4), (0.7, 0.4)), ((0.6, 0.0), (0.
 
 
 def _scene(kind: str, xy: tuple[float, float]):
-    root = mjcf.RootElement(model="bench")
-    root.option.timestep = 0.002
-    table = root.worldbody.add("body", name="table")
-    table.add("geom", type="box", size=[0.6, 0.7, 0.02], pos=[0.5, 0, -0.02])
-    body = root.worldbody.add("body", name="block", pos=[xy[0], xy[1], BLOCK / 2])
-    body.add("freejoint")
-    body.add("geom", type="box", size=[BLOCK / 2] * 3, mass=0.1)
-    attach_robot(root, kind)
-    model = mujoco.MjModel.from_xml_string(root.to_xml_string())
+    spec = mujoco.MjSpec()
+    spec.modelname = "bench"
+    spec.option.timestep = 0.002
+    table = spec.worldbody.add_body(name="table")
+    table.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.6, 0.7, 0.02], pos=[0.5, 0, -0.02])
+    body = spec.worldbody.add_body(name="block", pos=[xy[0], xy[1], BLOCK / 2])
+    body.add_freejoint()
+    body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[BLOCK / 2] * 3, mass=0.1)
+    attach_robot(spec, kind)
+    model = spec.compile()
     data = mujoco.MjData(model)
     robot = make_robot(kind, model, data)
     for _ in range(50):

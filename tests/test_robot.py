@@ -8,7 +8,6 @@ import math
 import mujoco
 import numpy as np
 import pytest
-from dm_control import mjcf
 
 from factask.geometry import Pose, tilt_deg, yaw_error_deg, yaw_of
 from factask.model.errors import FactaskError
@@ -23,16 +22,18 @@ TIMESTEP = 0.002
 
 def build_scene(kind: str, blocks: tuple[tuple[float, float], ...] = ((0.5, 0.1),)):
     """Table (top at z = 0), free 4 cm blocks at the given XY, and the robot."""
-    root = mjcf.RootElement(model="robot_test")
-    root.option.timestep = TIMESTEP
-    table = root.worldbody.add("body", name="table")
-    table.add("geom", name="table_top", type="box", size=[0.6, 0.7, 0.02], pos=[0.5, 0, -0.02])
+    spec = mujoco.MjSpec()
+    spec.modelname = "robot_test"
+    spec.option.timestep = TIMESTEP
+    table = spec.worldbody.add_body(name="table")
+    table.add_geom(name="table_top", type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.6, 0.7, 0.02],
+                   pos=[0.5, 0, -0.02])
     for i, (x, y) in enumerate(blocks):
-        body = root.worldbody.add("body", name=f"block{i}", pos=[x, y, BLOCK / 2])
-        body.add("freejoint")
-        body.add("geom", type="box", size=[BLOCK / 2] * 3, mass=0.1)
-    attach_robot(root, kind)
-    model = mujoco.MjModel.from_xml_string(root.to_xml_string())
+        body = spec.worldbody.add_body(name=f"block{i}", pos=[x, y, BLOCK / 2])
+        body.add_freejoint()
+        body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[BLOCK / 2] * 3, mass=0.1)
+    attach_robot(spec, kind)
+    model = spec.compile()
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     robot = make_robot(kind, model, data)
@@ -61,7 +62,7 @@ def touch_block_with_cup(model, data, robot) -> None:
 
 def test_unknown_kind_lists_kinds():
     with pytest.raises(RobotError) as err:
-        attach_robot(mjcf.RootElement(), "gripper")
+        attach_robot(mujoco.MjSpec(), "gripper")
     assert isinstance(err.value, FactaskError)
     for kind in ROBOT_NAMES:
         assert kind in str(err.value)

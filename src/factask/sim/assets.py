@@ -1,402 +1,101 @@
-"""MJCF builders of every asset kind and of the table (dm_control.mjcf).
+"""MJCF export of every asset kind and of the table (``dm_control.mjcf``).
 
-Every kind is made of MuJoCo primitives (boxes, cylinders, spheres) so that its
-collision shape is exact and cheap. The geometry of a kind is described first as
-plain data (:func:`kind_parts`: a list of :class:`Part`), which the tests and the
-docs inspect, and then turned into geoms (:func:`build_object`).
+The compile path builds scenes through ``mujoco.MjSpec`` (:mod:`factask.sim.build`);
+this module writes the same bodies as MJCF elements, for the files of
+``mjcf_assets/`` (``scripts/export_assets.py``) and for anyone who wants a scene
+as an MJCF tree. Both read one description, :func:`factask.sim.parts.plan_object`,
+and a test compiles a graph both ways and compares the models.
 
-Frames (see ``docs/assets.md``): for every kind the body origin is the centre of
-the object's bounding box, so an object resting on the table has
-``z = size_z / 2``. Shared conventions (floors, the corner marker's L, the
-fixture's open frame) are those of :mod:`factask.scene.objects`.
-
-Geom names are ``<instance>:<part>`` (``:`` never occurs in factask names), so a
-geom maps back to its object by name as well as by id.
-
-Why one file of ~600 lines: each kind's part geometry and its MJCF builder change
-together (a part list is only ever consumed by the builder next to it); the MjSpec
-compile path (issue 13) replaces the builders and will split the file then.
+The geometry and the constants live in :mod:`factask.sim.parts`; they are
+re-exported here so ``from factask.sim.assets import kind_parts`` keeps working.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any
 
-import numpy as np
 from dm_control import mjcf
 
-from factask.geometry import quat_from_yaw
-from factask.model.errors import SubjectError
-from factask.model.kinds import (
-    ELL_BAR_FRACTION,
-    WALL_THICKNESS,
-    UnknownKindError,
-    default_mass,
-    kind_spec,
-    shape_problem,
+from factask.model.kinds import UnknownKindError
+from factask.model.kinds import kind_spec as _kind_spec
+from factask.sim.parts import (
+    BOWL_SEGMENTS,
+    CAMERA_FOVY,
+    FIXTURE_CLEARANCE,
+    FLOOR_POS,
+    FLOOR_RGBA,
+    FLOOR_SIZE,
+    FRONT_CAMERA,
+    FRONT_CAMERA_POS,
+    GEOM_SEPARATOR,
+    HEADLIGHT_AMBIENT,
+    HEADLIGHT_DIFFUSE,
+    HEADLIGHT_SPECULAR,
+    LIGHTS,
+    MARKER_GROUP,
+    OBJECT_CONDIM,
+    OBJECT_FRICTION,
+    OBJECT_GROUP,
+    OBJECT_SOLIMP,
+    OBJECT_SOLREF,
+    OFFSCREEN_SIZE,
+    SHADOW_SIZE,
+    TABLE_HEIGHT,
+    TABLE_RGBA,
+    TABLE_THICKNESS,
+    TOP_CAMERA,
+    TOP_CAMERA_HEIGHT,
+    TOP_CAMERA_POS,
+    TOP_CAMERA_XYAXES,
+    WORKSPACE_CENTER,
+    AssetError,
+    HollowShape,
+    Part,
+    PartType,
+    fixture_fits,
+    fixture_hollow,
+    fixture_size_for,
+    fmt,
+    kind_parts,
+    look_at_xyaxes,
+    parts_aabb,
+    plan_object,
+    table_top,
 )
-from factask.model.palette import UnknownColorError, rgba
-from factask.model.world import TABLE_X, TABLE_Y, WORKSPACE_X, WORKSPACE_Y
-from factask.scene.objects import corner_arm_width
 
-# ----------------------------------------------------------------- constants
-#: Separator between an instance name and a geom's part name.
-GEOM_SEPARATOR = ":"
-#: Sliding, torsional, rolling friction of object geoms: high sliding friction keeps
-#: stacks and suction grasps from slipping; torsional friction stops spinning.
-OBJECT_FRICTION = (1.0, 0.005, 0.0001)
-#: Contact dimensionality of object geoms (4: sliding + torsional friction).
-OBJECT_CONDIM = 4
-#: Contact stiffness (time constant, damping ratio): stiffer than MuJoCo's default
-#: (0.02) so resting objects sink < 1 mm; needs timestep <= 0.005.
-OBJECT_SOLREF = (0.01, 1.0)
-#: Contact impedance: near-rigid at rest, reached within 1 mm of penetration.
-OBJECT_SOLIMP = (0.95, 0.99, 0.001)
-#: Clearance (m) between a fixture's hollow and the piece it holds, on every side.
-FIXTURE_CLEARANCE = 0.005
-#: Number of wall segments of a bowl (a multiple of 4 keeps its bounding box exact).
-BOWL_SEGMENTS = 16
-#: Geom group of goal markers and other visual-only helpers (hidden by turning it off).
-MARKER_GROUP = 2
-#: Geom group of object geoms.
-OBJECT_GROUP = 0
+__all__ = [
+    "BOWL_SEGMENTS", "CAMERA_FOVY", "FIXTURE_CLEARANCE", "FLOOR_RGBA", "FRONT_CAMERA",
+    "FRONT_CAMERA_POS", "GEOM_SEPARATOR", "MARKER_GROUP", "OBJECT_CLASS", "OBJECT_CONDIM",
+    "OBJECT_FRICTION", "OBJECT_GROUP", "OBJECT_SOLIMP", "OBJECT_SOLREF", "OFFSCREEN_SIZE",
+    "SHADOW_SIZE", "TABLE_HEIGHT", "TABLE_RGBA", "TABLE_THICKNESS", "TOP_CAMERA",
+    "TOP_CAMERA_HEIGHT", "VISUAL_CLASS", "WORKSPACE_CENTER", "XML_PRECISION", "AssetError",
+    "HollowShape", "Part", "PartType", "asset_xml", "build_object", "build_object_like",
+    "build_table", "configure_visual", "ensure_default_classes", "fixture_fits",
+    "fixture_hollow", "fixture_size_for", "kind_parts", "new_root", "parts_aabb", "table_xml",
+]
+
 #: MJCF default classes of colliding object geoms and of visual-only geoms.
 OBJECT_CLASS = "object"
 VISUAL_CLASS = "visual"
-#: Table top thickness (m); its extent is TABLE_X, TABLE_Y of factask.model.world.
-TABLE_THICKNESS = 0.05
-#: Height of the table top above the floor (m).
-TABLE_HEIGHT = 0.70
-TABLE_RGBA = (0.62, 0.60, 0.57, 1.0)
-FLOOR_RGBA = (0.35, 0.37, 0.40, 1.0)
-#: Names of the fixed cameras.
-TOP_CAMERA = "top"
-FRONT_CAMERA = "front"
-#: Camera positions (m) and the point they look at (the workspace centre).
-WORKSPACE_CENTER = (
-    (WORKSPACE_X[0] + WORKSPACE_X[1]) / 2,
-    (WORKSPACE_Y[0] + WORKSPACE_Y[1]) / 2,
-    0.0,
-)
-TOP_CAMERA_HEIGHT = 1.0
-FRONT_CAMERA_POS = (1.2, 0.0, 0.6)
-CAMERA_FOVY = 45.0
-#: Shadow map size: software rendering speed depends on it (4096: 28 fps, 1024: 147 fps).
-SHADOW_SIZE = 1024
-#: Offscreen framebuffer size: the largest image a renderer of the scene can make.
-OFFSCREEN_SIZE = (1280, 960)
 #: Significant digits of numbers in MJCF text.
 XML_PRECISION = 10
 
-HollowShape = Literal["ell", "square"]
-PartType = Literal["box", "cylinder", "sphere"]
 
-
-class AssetError(SubjectError):
-    """An object cannot be built as asked (size too small for its kind, bad colour, ...).
-
-    Attributes:
-        name: The object (instance) the problem is about.
-    """
-
-    @property
-    def name(self) -> str:
-        return self.subject
-
-
-@dataclass(frozen=True)
-class Part:
-    """One primitive of an asset, in the object's body frame.
-
-    Attributes:
-        name: Part name, unique within the object (the geom is ``<instance>:<name>``).
-        type: MuJoCo geom type.
-        size: MuJoCo size parameters: box (half x, half y, half z); cylinder
-            (radius, half height); sphere (radius,).
-        pos: Centre in the body frame (m).
-        yaw: Rotation about the body z axis (radians).
-    """
-
-    name: str
-    type: PartType
-    size: tuple[float, ...]
-    pos: tuple[float, float, float]
-    yaw: float = 0.0
-
-    @property
-    def half_extents(self) -> np.ndarray:
-        """Half extents of the part's axis-aligned box in the body frame."""
-        if self.type == "sphere":
-            return np.full(3, self.size[0])
-        if self.type == "cylinder":
-            return np.array([self.size[0], self.size[0], self.size[1]])
-        hx, hy, hz = self.size
-        c, s = abs(math.cos(self.yaw)), abs(math.sin(self.yaw))
-        return np.array([c * hx + s * hy, s * hx + c * hy, hz])
-
-    @property
-    def volume(self) -> float:
-        """Volume (m^3), used to share an object's mass between its parts."""
-        if self.type == "sphere":
-            return 4.0 / 3.0 * math.pi * self.size[0] ** 3
-        if self.type == "cylinder":
-            return math.pi * self.size[0] ** 2 * 2 * self.size[1]
-        return 8.0 * self.size[0] * self.size[1] * self.size[2]
-
-
-def parts_aabb(parts: list[Part]) -> tuple[np.ndarray, np.ndarray]:
-    """Axis-aligned bounding box (low, high corners) of parts in the body frame.
-
-    Args:
-        parts: At least one part.
-
-    Returns:
-        ``(low, high)``, each of shape (3,).
-    """
-    lows = [np.asarray(p.pos) - p.half_extents for p in parts]
-    highs = [np.asarray(p.pos) + p.half_extents for p in parts]
-    return np.min(lows, axis=0), np.max(highs, axis=0)
-
-
-# ------------------------------------------------------------ kind geometry
-def _box(name: str, lo: tuple[float, float, float], hi: tuple[float, float, float]) -> Part:
-    """A box part spanning the corners ``lo``..``hi``."""
-    half = tuple((h - low) / 2 for low, h in zip(lo, hi, strict=True))
-    centre = tuple((h + low) / 2 for low, h in zip(lo, hi, strict=True))
-    return Part(name, "box", half, centre)  # type: ignore[arg-type]
-
-
-def _require(ok: bool, name: str, message: str, fix: str) -> None:
-    if not ok:
-        raise AssetError(name, message, fix)
-
-
-def _walls_fit(name: str, kind: str, size: tuple[float, float, float], walls: float) -> None:
-    _require(
-        size[0] > walls and size[1] > walls and size[2] > WALL_THICKNESS,
-        name,
-        f"a {kind} of size {tuple(size)} has no room inside its walls "
-        f"({WALL_THICKNESS} m thick)",
-        f"make size x and y larger than {walls:.3f} and size z larger than {WALL_THICKNESS}",
-    )
-
-
-def _bowl_parts(size: tuple[float, float, float]) -> list[Part]:
-    """Floor disk plus a ring of box segments whose outer faces form a regular
-    polygon with apothem ``size x / 2`` (a face normal on each axis keeps the
-    bounding box exact)."""
-    r = size[0] / 2
-    hz = size[2] / 2
-    t = WALL_THICKNESS
-    # Outer face length of a regular N-gon with apothem r; adjacent segments
-    # share their outer vertices and overlap inside.
-    half_len = r * math.tan(math.pi / BOWL_SEGMENTS)
-    parts = [Part("floor", "cylinder", (r - t / 2, t / 2), (0.0, 0.0, -hz + t / 2))]
-    for i in range(BOWL_SEGMENTS):
-        a = 2 * math.pi * i / BOWL_SEGMENTS
-        c = r - t / 2
-        parts.append(
-            Part(f"wall{i}", "box", (t / 2, half_len, hz), (c * math.cos(a), c * math.sin(a), 0.0),
-                 yaw=a)
-        )
-    return parts
-
-
-def _container_parts(size: tuple[float, float, float]) -> list[Part]:
-    """Floor plate and four walls; outer extents equal ``size``."""
-    x, y, z = (s / 2 for s in size)
-    t = WALL_THICKNESS
-    return [
-        _box("floor", (-x + t, -y + t, -z), (x - t, y - t, -z + t)),
-        _box("wall_px", (x - t, -y, -z), (x, y, z)),
-        _box("wall_nx", (-x, -y, -z), (-x + t, y, z)),
-        _box("wall_py", (-x + t, y - t, -z), (x - t, y, z)),
-        _box("wall_ny", (-x + t, -y, -z), (x - t, -y + t, z)),
-    ]
-
-
-def _ell_parts(size: tuple[float, float, float], bar: float) -> list[Part]:
-    """Two non-overlapping bars forming an L: one along x at the -y side, one along
-    y at the -x side; the L's bounding box is centred on the origin."""
-    x, y, z = (s / 2 for s in size)
-    return [
-        _box("bar_x", (-x, -y, -z), (x, -y + bar, z)),
-        _box("bar_y", (-x, -y + bar, -z), (-x + bar, y, z)),
-    ]
-
-
-def fixture_hollow(size: tuple[float, float, float]) -> tuple[float, float]:
-    """Inner x, y extents (m) of a fixture's hollow: the size less two walls."""
-    return size[0] - 2 * WALL_THICKNESS, size[1] - 2 * WALL_THICKNESS
-
-
-def fixture_fits(size: tuple[float, float, float]) -> tuple[float, float, float]:
-    """Size of the ell (or block) a fixture of ``size`` holds with
-    :data:`FIXTURE_CLEARANCE` on every side (same height as the fixture)."""
-    hx, hy = fixture_hollow(size)
-    return hx - 2 * FIXTURE_CLEARANCE, hy - 2 * FIXTURE_CLEARANCE, size[2]
-
-
-def fixture_size_for(piece_size: tuple[float, float, float]) -> tuple[float, float, float]:
-    """Size of the fixture that holds a piece (ell or block) of ``piece_size``:
-    the inverse of :func:`fixture_fits`."""
-    pad = 2 * (WALL_THICKNESS + FIXTURE_CLEARANCE)
-    return piece_size[0] + pad, piece_size[1] + pad, piece_size[2]
-
-
-def _fixture_parts(size: tuple[float, float, float], hollow: HollowShape) -> list[Part]:
-    """A frame with full-height walls (no floor) around a hollow.
-
-    ``square``: four walls of WALL_THICKNESS. ``ell``: the hollow is the ell of
-    :func:`fixture_fits` grown by the clearance, placed like an ell (bars along
-    the -y and -x sides); the rest of the box is solid.
-    """
-    x, y, z = (s / 2 for s in size)
-    t = WALL_THICKNESS
-    if hollow == "square":
-        return _container_parts(size)[1:]
-    ex, _, _ = fixture_fits(size)
-    bar = ELL_BAR_FRACTION * ex + 2 * FIXTURE_CLEARANCE
-    xb = -x + t + bar  # right edge of the hollow's y bar
-    yb = -y + t + bar  # top edge of the hollow's x bar
-    return [
-        _box("wall_ny", (-x, -y, -z), (x, -y + t, z)),
-        _box("wall_nx", (-x, -y + t, -z), (-x + t, y, z)),
-        _box("wall_py", (-x + t, y - t, -z), (xb, y, z)),
-        _box("wall_px", (x - t, -y + t, -z), (x, yb, z)),
-        _box("inner", (xb, yb, -z), (x, y, z)),
-    ]
-
-
-def _corner_parts(size: tuple[float, float, float]) -> list[Part]:
-    """Two bars along the box's -y edge (arm along +x) and -x edge (arm along +y);
-    the L's inner vertex is at (-sx/2 + w, -sy/2 + w) (``factask.scene.objects``)."""
-    w = corner_arm_width(size)
-    x, y, z = (s / 2 for s in size)
-    return [
-        _box("arm_x", (-x, -y, -z), (x, -y + w, z)),
-        _box("arm_y", (-x, -y + w, -z), (-x + w, y, z)),
-    ]
-
-
-def _pallet_parts(size: tuple[float, float, float]) -> list[Part]:
-    """Top plate (a third of the height) on three runners along y."""
-    x, y, z = (s / 2 for s in size)
-    top = size[2] / 3
-    runner = min(0.03, size[0] / 6)
-    parts = [_box("top", (-x, -y, z - top), (x, y, z))]
-    for i, cx in enumerate((-x + runner / 2, 0.0, x - runner / 2)):
-        parts.append(_box(f"runner{i}", (cx - runner / 2, -y, -z), (cx + runner / 2, y, z - top)))
-    return parts
-
-
-def kind_parts(
-    kind: str,
-    size: tuple[float, float, float],
-    *,
-    name: str = "object",
-    hollow: HollowShape = "ell",
-) -> list[Part]:
-    """The primitives an asset of ``kind`` and ``size`` is made of.
-
-    Args:
-        kind: Asset kind (:data:`factask.model.kinds.ASSET_KINDS`).
-        size: Full extents (x, y, z) in metres.
-        name: Object name, only used in error messages.
-        hollow: Shape of a fixture's hollow ("ell" or "square"); other kinds ignore it.
-
-    Returns:
-        The parts in the body frame; their bounding box spans ``size`` (centred on
-        the origin.
-
-    Raises:
-        AssetError: unknown kind, non-positive size, or a size the kind cannot
-            have (a cylinder whose x and y differ, walls that do not fit, ...).
-    """
-    try:
-        kind_spec(kind)
-    except UnknownKindError as exc:
-        raise AssetError(name, str(exc), "use one of the listed kinds") from None
-    size = tuple(float(s) for s in size)  # type: ignore[assignment]
-    _require(len(size) == 3 and all(math.isfinite(s) and s > 0 for s in size), name,
-             f"size must be three positive lengths in metres, got {size}",
-             "give full extents (x, y, z), e.g. (0.04, 0.04, 0.04)")
-    problem = shape_problem(kind, size)
-    if problem is not None:
-        raise AssetError(name, *problem)
-    x, y, z = (s / 2 for s in size)
-    if kind == "cylinder":
-        # MuJoCo cylinder size is (radius, half-height): not (half-height, radius).
-        return [Part("body", "cylinder", (x, z), (0.0, 0.0, 0.0))]
-    if kind == "ball":
-        return [Part("body", "sphere", (x,), (0.0, 0.0, 0.0))]
-    if kind == "bowl":
-        return _bowl_parts(size)
-    if kind == "container":
-        return _container_parts(size)
-    if kind == "fixture":
-        # The hollow must hold a piece of positive size after walls and clearance.
-        _walls_fit(name, kind, size, 2 * (WALL_THICKNESS + FIXTURE_CLEARANCE) + 0.002)
-        if hollow == "ell":
-            ex, ey, _ = fixture_fits(size)
-            _require(ELL_BAR_FRACTION * ex < ey, name,
-                     f"the ell hollow's bar ({ELL_BAR_FRACTION} x {ex:.4f} m) is wider than "
-                     f"the hollow's y extent {ey:.4f} m", "make size y closer to size x")
-        return _fixture_parts(size, hollow)
-    if kind == "ell":
-        return _ell_parts(size, ELL_BAR_FRACTION * size[0])
-    if kind == "corner":
-        return _corner_parts(size)
-    if kind == "pallet":
-        return _pallet_parts(size)
-    # block, box, zone, line, stand, kit: one box of the full extents.
-    return [_box("body", (-x, -y, -z), (x, y, z))]
-
-
-# ------------------------------------------------------------------ builders
-def _fmt(values: Any) -> list[float]:
-    """Round to 1e-9 so the XML text never depends on float noise (and never says -0)."""
-    return [round(float(v), 9) + 0.0 for v in np.atleast_1d(values)]
-
-
-def build_object(
-    parent: Any,
-    name: str,
-    kind: str,
-    size: tuple[float, float, float],
-    color: str = "gray",
-    mass: float | None = None,
-    fixed: bool | None = None,
-    *,
-    hollow: HollowShape = "ell",
-    pos: tuple[float, float, float] | None = None,
-    quat: tuple[float, float, float, float] | None = None,
-    visual_only: bool = False,
-    alpha: float = 1.0,
-    group: int | None = None,
-) -> Any:
-    """Add one object body to ``parent``.
+def build_object(parent: Any, name: str, kind: str, size: tuple[float, float, float],
+                 color: str = "gray", mass: float | None = None, fixed: bool | None = None,
+                 **options: Any) -> Any:
+    """Add one object body to ``parent`` (an MJCF element).
 
     Args:
         parent: The worldbody (or, for free objects only, any body) to add to.
-        name: Instance name; the body is called ``name`` and its geoms
-            ``name:<part>``.
+        name: Instance name (body ``name``, geoms ``name:<part>``).
         kind: Asset kind.
-        size: Full extents (x, y, z) in metres.
+        size: Full extents in metres.
         color: Palette colour name.
-        mass: Mass in kg; defaults from the kind's density.
-        fixed: Fixed objects become mocap bodies (they collide but never move unless
-            the caller moves them); free ones get a free joint. Defaults to the
-            kind's default. Kinds without collision (markers) are always fixed.
-        hollow: Fixture hollow shape ("ell" or "square").
-        pos: Initial body position; default: resting at the world origin.
-        quat: Initial orientation (w, x, y, z).
-        visual_only: Build a collision-free, massless look-alike (goal markers);
-            the body is a mocap body.
-        alpha: Opacity of the colour.
-        group: Geom group; default OBJECT_GROUP, or MARKER_GROUP for visual-only.
+        mass: Mass in kg (default: the kind's density).
+        fixed: Mocap body instead of a free joint (default: the kind's).
+        **options: ``hollow``, ``pos``, ``quat``, ``visual_only``, ``alpha``,
+            ``group`` of :func:`factask.sim.parts.plan_object`.
 
     Returns:
         The new body element.
@@ -405,49 +104,27 @@ def build_object(
         AssetError: bad kind, size, colour or mass, or a fixed body whose parent is
             not the worldbody.
     """
-    spec = _spec_or_error(name, kind)
-    parts = kind_parts(kind, size, name=name, hollow=hollow)
-    ensure_default_classes(parent.root)
-    try:
-        color_rgba = rgba(color, alpha)
-    except UnknownColorError as exc:
-        raise AssetError(name, str(exc), "use a palette colour") from None
-    collides = spec.collides and not visual_only
-    is_fixed = (not spec.movable) if fixed is None else bool(fixed)
-    mocap = is_fixed or not collides
-    if mocap and parent.tag != "worldbody":
+    plan = plan_object(name, kind, size, color, mass, fixed, **options)
+    if plan.mocap and parent.tag != "worldbody":
         raise AssetError(name, "a fixed object (mocap body) must be a child of the worldbody",
                          "pass root.worldbody as the parent")
-    if pos is None:
-        pos = (0.0, 0.0, size[2] / 2)
-    body_kwargs: dict[str, Any] = {"name": name, "pos": _fmt(pos)}
-    if quat is not None:
-        body_kwargs["quat"] = _fmt(quat)
-    if mocap:
+    ensure_default_classes(parent.root)
+    body_kwargs: dict[str, Any] = {"name": name, "pos": list(plan.pos)}
+    if plan.quat is not None:
+        body_kwargs["quat"] = list(plan.quat)
+    if plan.mocap:
         body_kwargs["mocap"] = "true"
     body = parent.add("body", **body_kwargs)
-    if not mocap:
-        body.add("freejoint", name=f"{name}{GEOM_SEPARATOR}free")
-    total_mass = default_mass(kind, size) if mass is None else float(mass)
-    if not (math.isfinite(total_mass) and total_mass > 0):
-        raise AssetError(name, f"mass must be a positive number of kg, got {mass}",
-                         "give a mass such as 0.05")
-    volume = sum(p.volume for p in parts)
-    for part in parts:
-        geom: dict[str, Any] = {
-            "name": f"{name}{GEOM_SEPARATOR}{part.name}",
-            "type": part.type,
-            "size": _fmt(part.size),
-            "pos": _fmt(part.pos),
-            "rgba": _fmt(color_rgba),
-            "group": (MARKER_GROUP if visual_only else OBJECT_GROUP) if group is None else group,
-        }
-        if part.yaw:
-            geom["quat"] = _fmt(quat_from_yaw(part.yaw))
-        geom["dclass"] = OBJECT_CLASS if collides else VISUAL_CLASS
-        if not mocap:
-            # Share the object's mass by volume so its centre of mass is right.
-            geom["mass"] = round(total_mass * part.volume / volume, 12)
+    if not plan.mocap:
+        body.add("freejoint", name=plan.joint_name)
+    for g in plan.geoms:
+        geom: dict[str, Any] = {"name": g.name, "type": g.type, "size": list(g.size),
+                                "pos": list(g.pos), "rgba": list(g.rgba), "group": g.group}
+        if g.quat is not None:
+            geom["quat"] = list(g.quat)
+        geom["dclass"] = OBJECT_CLASS if plan.collides else VISUAL_CLASS
+        if g.mass is not None:
+            geom["mass"] = g.mass
         body.add("geom", **geom)
     return body
 
@@ -486,25 +163,6 @@ def build_object_like(parent: Any, obj: Any, **kwargs: Any) -> Any:
     )
 
 
-def _spec_or_error(name: str, kind: str) -> Any:
-    try:
-        return kind_spec(kind)
-    except UnknownKindError as exc:
-        raise AssetError(name, str(exc), "use one of the listed kinds") from None
-
-
-def _look_at_xyaxes(pos: tuple[float, float, float],
-                    target: tuple[float, float, float]) -> list[float]:
-    """MuJoCo camera ``xyaxes`` for a camera at ``pos`` looking at ``target``,
-    with world z up in the image."""
-    forward = np.asarray(target, float) - np.asarray(pos, float)
-    forward /= np.linalg.norm(forward)
-    right = np.cross(forward, [0.0, 0.0, 1.0])
-    right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
-    return _fmt([*right, *up])
-
-
 def configure_visual(root: Any, shadow_size: int = SHADOW_SIZE) -> None:
     """Set the scene's rendering options (shadow map size, offscreen buffer).
 
@@ -515,10 +173,9 @@ def configure_visual(root: Any, shadow_size: int = SHADOW_SIZE) -> None:
     root.visual.quality.shadowsize = shadow_size
     root.visual.get_children("global").offwidth = OFFSCREEN_SIZE[0]
     root.visual.get_children("global").offheight = OFFSCREEN_SIZE[1]
-    # A dim headlight: the scene's own lights give shape; bright ones wash out the table.
-    root.visual.headlight.ambient = [0.25, 0.25, 0.25]
-    root.visual.headlight.diffuse = [0.2, 0.2, 0.2]
-    root.visual.headlight.specular = [0.0, 0.0, 0.0]
+    root.visual.headlight.ambient = list(HEADLIGHT_AMBIENT)
+    root.visual.headlight.diffuse = list(HEADLIGHT_DIFFUSE)
+    root.visual.headlight.specular = list(HEADLIGHT_SPECULAR)
 
 
 def build_table(worldbody: Any) -> Any:
@@ -534,29 +191,21 @@ def build_table(worldbody: Any) -> Any:
     Returns:
         The table top geom.
     """
-    cx = (TABLE_X[0] + TABLE_X[1]) / 2
-    cy = (TABLE_Y[0] + TABLE_Y[1]) / 2
     ensure_default_classes(worldbody.root)
-    table = worldbody.add(
-        "geom", name="table", type="box", dclass=OBJECT_CLASS,
-        size=_fmt([(TABLE_X[1] - TABLE_X[0]) / 2, (TABLE_Y[1] - TABLE_Y[0]) / 2,
-                   TABLE_THICKNESS / 2]),
-        pos=_fmt([cx, cy, -TABLE_THICKNESS / 2]), rgba=list(TABLE_RGBA),
-    )
-    worldbody.add("geom", name="floor", type="plane", size=[3.0, 3.0, 0.1],
-                  pos=[0.0, 0.0, -TABLE_HEIGHT], rgba=list(FLOOR_RGBA))
-    worldbody.add("light", name="key", directional="true", castshadow="true",
-                  pos=[0.5, 0.3, 2.0], dir=_fmt([0.0, -0.15, -1.0]),
-                  diffuse=[0.45, 0.45, 0.45], specular=[0.05, 0.05, 0.05])
-    worldbody.add("light", name="fill", directional="true", castshadow="false",
-                  pos=[1.5, 0.0, 1.5], dir=_fmt([-0.7, 0.0, -0.7]),
-                  diffuse=[0.15, 0.15, 0.15], specular=[0.0, 0.0, 0.0])
-    top_pos = (WORKSPACE_CENTER[0], WORKSPACE_CENTER[1], TOP_CAMERA_HEIGHT)
-    # Image right = world -y, image up = world +x: the robot is at the bottom.
-    worldbody.add("camera", name=TOP_CAMERA, pos=_fmt(top_pos), xyaxes=[0, -1, 0, 1, 0, 0],
+    size, pos = table_top()
+    table = worldbody.add("geom", name="table", type="box", dclass=OBJECT_CLASS,
+                          size=list(size), pos=list(pos), rgba=list(TABLE_RGBA))
+    worldbody.add("geom", name="floor", type="plane", size=list(FLOOR_SIZE),
+                  pos=list(FLOOR_POS), rgba=list(FLOOR_RGBA))
+    for name, shadow, lpos, ldir, diffuse, specular in LIGHTS:
+        worldbody.add("light", name=name, directional="true",
+                      castshadow="true" if shadow else "false", pos=list(lpos), dir=list(ldir),
+                      diffuse=list(diffuse), specular=list(specular))
+    worldbody.add("camera", name=TOP_CAMERA, pos=list(fmt(TOP_CAMERA_POS)),
+                  xyaxes=[int(v) for v in TOP_CAMERA_XYAXES], fovy=CAMERA_FOVY)
+    worldbody.add("camera", name=FRONT_CAMERA, pos=list(fmt(FRONT_CAMERA_POS)),
+                  xyaxes=list(look_at_xyaxes(FRONT_CAMERA_POS, WORKSPACE_CENTER)),
                   fovy=CAMERA_FOVY)
-    worldbody.add("camera", name=FRONT_CAMERA, pos=_fmt(FRONT_CAMERA_POS),
-                  xyaxes=_look_at_xyaxes(FRONT_CAMERA_POS, WORKSPACE_CENTER), fovy=CAMERA_FOVY)
     return table
 
 
@@ -587,7 +236,10 @@ def asset_xml(kind: str, color: str = "gray") -> str:
     Raises:
         AssetError: unknown kind or colour.
     """
-    spec = _spec_or_error(kind, kind)
+    try:
+        spec = _kind_spec(kind)
+    except UnknownKindError as exc:
+        raise AssetError(kind, str(exc), "use one of the listed kinds") from None
     root = new_root(f"asset_{kind}")
     build_object(root.worldbody, kind, kind, spec.default_size, color)
     return str(root.to_xml_string(precision=XML_PRECISION))

@@ -1,4 +1,4 @@
-"""Compile a task graph into a MuJoCo scene: graph -> MJCF -> ``mujoco.MjModel``.
+"""Compile a task graph into a MuJoCo scene: graph -> ``mujoco.MjSpec`` -> ``MjModel``.
 
 The scene holds the table, one body per object instance (free objects have a
 free joint; fixed ones are mocap bodies so they can be moved at every reset
@@ -6,8 +6,12 @@ without recompiling), one translucent goal marker per moved object instance per
 factor (a collision-free mocap look-alike in geom group
 :data:`~factask.sim.assets.MARKER_GROUP`) and, optionally, the robot.
 
-The same graph always gives byte-identical XML: every element is named, numbers
-are rounded, and nothing global is cached.
+The scene is built in code through ``mujoco.MjSpec`` (:mod:`factask.sim.build`)
+and compiled in place; ids come from the spec's element handles. The same graph
+always gives the same model and byte-identical XML (``CompiledScene.xml``): every
+element is named, numbers are rounded, and nothing global is cached.
+:func:`build_mjcf` writes the same scene (without a robot) as a
+``dm_control.mjcf`` tree, for export.
 """
 
 from __future__ import annotations
@@ -25,16 +29,15 @@ from factask.model.errors import SubjectError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.scene.objects import SceneObject, scene_objects
-from factask.sim.assets import (
+from factask.sim.build import BodyHandles, add_object, add_table, new_spec
+from factask.sim.parts import (
     GEOM_SEPARATOR,
     MARKER_GROUP,
     TABLE_HEIGHT,
-    XML_PRECISION,
     AssetError,
     HollowShape,
-    build_object,
-    build_table,
-    new_root,
+    ObjectPlan,
+    plan_object,
 )
 from factask.sim.robot import attach_robot
 from factask.sim.robots import ROBOT_NAMES
@@ -104,7 +107,7 @@ class CompiledScene:
 
     Attributes:
         graph: The graph it was compiled from.
-        xml: The MJCF text (deterministic for a given graph and robot).
+        spec: The ``mujoco.MjSpec`` the model was compiled from.
         model: The MuJoCo model.
         objects: Instance name -> :class:`ObjectHandle`, in graph order.
         markers: (factor name, slot index) -> mocap id of the goal marker of the
@@ -115,13 +118,19 @@ class CompiledScene:
     """
 
     graph: TaskGraph
-    xml: str
+    spec: mujoco.MjSpec = field(repr=False)
     model: mujoco.MjModel
     objects: dict[str, ObjectHandle]
     markers: dict[tuple[str, int], int]
     marker_objects: dict[tuple[str, int], str]
     robot: str | None
     geom_object: np.ndarray = field(repr=False)
+
+    @property
+    def xml(self) -> str:
+        """The scene's MJCF text (written on demand; the same graph and robot give the
+        same text)."""
+        return str(self.spec.to_xml())
 
     @property
     def object_names(self) -> list[str]:
@@ -227,13 +236,45 @@ def _variable_of_error(message: str, objects: list[SceneObject]) -> str:
 
 
 # ------------------------------------------------------------------ compile
-def build_mjcf(graph: TaskGraph, robot: str | None = "floating",
-               timestep: float = 0.002) -> tuple[Any, list[SceneObject]]:
-    """Build the MJCF root of a graph's scene (no MuJoCo compilation).
+def _scene_plans(graph: TaskGraph) -> tuple[list[SceneObject], list[ObjectPlan], list[ObjectPlan]]:
+    """The scene objects and the plans of their bodies and of the goal markers.
+
+    Raises:
+        CompileError: an object cannot be built (names the variable).
+    """
+    objects = scene_objects(graph)
+    hollows = fixture_hollows(graph)
+    positions = grid_positions(objects)
+    plans = []
+    for obj, pos in zip(objects, positions, strict=True):
+        try:
+            plans.append(plan_object(obj.name, obj.kind, obj.size, obj.color, obj.mass,
+                                     obj.fixed, hollow=hollows.get(obj.variable, "ell"),
+                                     pos=pos))
+        except AssetError as exc:
+            raise CompileError(obj.variable, exc.message, exc.fix) from None
+    index = {o.name: i for i, o in enumerate(objects)}
+    markers = []
+    for factor, slot, inst in _marker_slots(graph):
+        obj = objects[index[inst]]
+        pos = positions[index[inst]]
+        # Hidden under the table top until the environment moves it to the target.
+        markers.append(plan_object(
+            f"{MARKER_PREFIX}:{factor}:{slot}", obj.kind, obj.size, obj.color,
+            hollow=hollows.get(obj.variable, "ell"), pos=(pos[0], pos[1], -TABLE_HEIGHT / 2),
+            visual_only=True, alpha=MARKER_ALPHA, group=MARKER_GROUP))
+    return objects, plans, markers
+
+
+def build_mjcf(graph: TaskGraph, timestep: float = 0.002) -> tuple[Any, list[SceneObject]]:
+    """The MJCF tree of a graph's scene without a robot (``dm_control.mjcf``).
+
+    This is the export path: :func:`compile_graph` builds the same bodies through
+    ``mujoco.MjSpec`` (and ``CompiledScene.xml`` gives its MJCF text, robot
+    included).
 
     Args:
         graph: A task graph; it is validated first.
-        robot: A name of the robot registry (:mod:`factask.sim.robots`) or None.
         timestep: Physics timestep in seconds.
 
     Returns:
@@ -241,11 +282,13 @@ def build_mjcf(graph: TaskGraph, robot: str | None = "floating",
 
     Raises:
         GraphValidationError: the graph is not valid.
-        CompileError: no factors, a bad robot or timestep, or an object that cannot
-            be built (names the variable).
+        CompileError: no factors, a bad timestep, or an object that cannot be built
+            (names the variable).
     """
-    _check_args(graph, robot, timestep)
-    objects = scene_objects(graph)
+    from factask.sim.assets import build_object, build_table, new_root  # dm_control: lazily
+
+    _check_args(graph, None, timestep)
+    objects, plans, markers = _scene_plans(graph)
     root = new_root(graph.name)
     root.option.timestep = timestep
     root.option.gravity = list(GRAVITY)
@@ -254,30 +297,51 @@ def build_mjcf(graph: TaskGraph, robot: str | None = "floating",
     root.option.impratio = IMPRATIO
     build_table(root.worldbody)
     hollows = fixture_hollows(graph)
-    positions = grid_positions(objects)
+    for obj, plan in zip(objects, plans, strict=True):
+        build_object(root.worldbody, obj.name, obj.kind, obj.size, obj.color, obj.mass,
+                     obj.fixed, hollow=hollows.get(obj.variable, "ell"), pos=plan.pos)
     by_name = {o.name: o for o in objects}
-    for obj, pos in zip(objects, positions, strict=True):
-        try:
-            build_object(root.worldbody, obj.name, obj.kind, obj.size, obj.color, obj.mass,
-                         obj.fixed, hollow=hollows.get(obj.variable, "ell"), pos=pos)
-        except AssetError as exc:
-            raise CompileError(obj.variable, exc.message, exc.fix) from None
-    for factor, slot, inst in _marker_slots(graph):
+    for (_, _, inst), plan in zip(_marker_slots(graph), markers, strict=True):
         obj = by_name[inst]
-        pos = positions[objects.index(obj)]
-        # Hidden under the table top until the environment moves it to the target.
-        build_object(root.worldbody, f"{MARKER_PREFIX}:{factor}:{slot}", obj.kind, obj.size,
-                     obj.color, hollow=hollows.get(obj.variable, "ell"),
-                     pos=(pos[0], pos[1], -TABLE_HEIGHT / 2), visual_only=True,
+        build_object(root.worldbody, plan.name, obj.kind, obj.size, obj.color,
+                     hollow=hollows.get(obj.variable, "ell"), pos=plan.pos, visual_only=True,
                      alpha=MARKER_ALPHA, group=MARKER_GROUP)
-    if robot is not None:
-        attach_robot(root, robot)
     return root, objects
+
+
+def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float = 0.002,
+               ) -> tuple[mujoco.MjSpec, list[SceneObject], list[BodyHandles],
+                          list[BodyHandles]]:
+    """Build (not compile) the ``mujoco.MjSpec`` of a graph's scene.
+
+    Args:
+        graph: A task graph; it is validated first.
+        robot: A name of the robot registry (:mod:`factask.sim.robots`) or None.
+        timestep: Physics timestep in seconds.
+
+    Returns:
+        The spec, the scene objects in body order, their handles, and the goal
+        markers' handles in :func:`_marker_slots` order.
+
+    Raises:
+        GraphValidationError: the graph is not valid.
+        CompileError: no factors, a bad robot or timestep, or an object that cannot
+            be built (names the variable).
+    """
+    _check_args(graph, robot, timestep)
+    objects, plans, marker_plans = _scene_plans(graph)
+    spec = new_spec(graph.name, timestep, GRAVITY, IMPRATIO)
+    add_table(spec)
+    handles = [add_object(spec, plan) for plan in plans]
+    markers = [add_object(spec, plan) for plan in marker_plans]
+    if robot is not None:
+        attach_robot(spec, robot)
+    return spec, objects, handles, markers
 
 
 def compile_graph(graph: TaskGraph, robot: str | None = "floating",
                   timestep: float = 0.002) -> CompiledScene:
-    """Compile a task graph into a MuJoCo model.
+    """Compile a task graph into a MuJoCo model (through ``mujoco.MjSpec``).
 
     Args:
         graph: A task graph with at least one factor; validated first.
@@ -293,25 +357,23 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
         CompileError: no factors, a bad robot or timestep, an object that cannot be
             built, or MuJoCo rejected the model (the variable is named when known).
     """
-    root, objects = build_mjcf(graph, robot, timestep)
-    xml = root.to_xml_string(precision=XML_PRECISION)
+    spec, objects, bodies, marker_bodies = build_spec(graph, robot, timestep)
     try:
-        model = mujoco.MjModel.from_xml_string(xml)
+        model = spec.compile()
     except ValueError as exc:
         raise CompileError(_variable_of_error(str(exc), objects),
                            f"MuJoCo rejected the scene: {exc}") from None
     handles: dict[str, ObjectHandle] = {}
     geom_object = np.full(model.ngeom, -1, dtype=np.int64)
-    for index, obj in enumerate(objects):
-        body = model.body(obj.name).id
-        geoms = tuple(int(g) for g in np.flatnonzero(model.geom_bodyid == body))
+    for index, (obj, h) in enumerate(zip(objects, bodies, strict=True)):
+        body = h.body.id
+        geoms = tuple(g.id for g in h.geoms)
         geom_object[list(geoms)] = index
         mocap = int(model.body_mocapid[body])
         qpos_adr = qvel_adr = None
-        if mocap < 0:
-            joint = model.body_jntadr[body]
-            qpos_adr = int(model.jnt_qposadr[joint])
-            qvel_adr = int(model.jnt_dofadr[joint])
+        if h.joint is not None:
+            qpos_adr = int(model.jnt_qposadr[h.joint.id])
+            qvel_adr = int(model.jnt_dofadr[h.joint.id])
         handles[obj.name] = ObjectHandle(
             name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size, body_id=body,
             geom_ids=geoms, qpos_adr=qpos_adr, qvel_adr=qvel_adr,
@@ -319,11 +381,10 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
         )
     markers: dict[tuple[str, int], int] = {}
     marker_objects: dict[tuple[str, int], str] = {}
-    for factor, slot, inst in _marker_slots(graph):
-        body = model.body(f"{MARKER_PREFIX}:{factor}:{slot}").id
-        markers[(factor, slot)] = int(model.body_mocapid[body])
+    for (factor, slot, inst), h in zip(_marker_slots(graph), marker_bodies, strict=True):
+        markers[(factor, slot)] = int(model.body_mocapid[h.body.id])
         marker_objects[(factor, slot)] = inst
-    return CompiledScene(graph=graph, xml=xml, model=model, objects=handles, markers=markers,
+    return CompiledScene(graph=graph, spec=spec, model=model, objects=handles, markers=markers,
                          marker_objects=marker_objects, robot=robot, geom_object=geom_object)
 
 

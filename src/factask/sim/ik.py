@@ -1,7 +1,7 @@
 """Top-down inverse kinematics of the suction arm with mink.
 
-IK runs on a private arm-only model (the same MJCF the scene got, compiled
-alone), so free objects in the scene never enter the IK problem and the solve
+IK runs on a private arm-only model (the same spec elements the scene got,
+compiled alone), so free objects in the scene never enter the IK problem and the solve
 stays ~6x6. Its joint order is ``robot_arm.JOINT_NAMES``; the caller maps it to
 the scene's joints by name.
 """
@@ -14,7 +14,6 @@ from collections.abc import Sequence
 import mink
 import mujoco
 import numpy as np
-from dm_control import mjcf
 
 from factask.geometry import Pose, quat_from_yaw, slerp
 from factask.sim.robot_arm import HOME_QPOS, build_arm
@@ -53,9 +52,10 @@ class TopDownIK:
     """
 
     def __init__(self, arm: DHArm = DEFAULT_ARM, home: Sequence[float] = HOME_QPOS) -> None:
-        root = mjcf.RootElement(model="ik_arm")
-        build_arm(root, arm)
-        self.model = mujoco.MjModel.from_xml_string(root.to_xml_string())
+        spec = mujoco.MjSpec()
+        spec.modelname = "ik_arm"
+        build_arm(spec, arm)
+        self.model = spec.compile()
         self.home = np.asarray(home, dtype=float)
         self.configuration = mink.Configuration(self.model, self.home.copy())
         self.frame_task = mink.FrameTask(

@@ -27,7 +27,6 @@ from dataclasses import dataclass
 
 import mujoco
 import numpy as np
-from dm_control import mjcf
 
 from factask.geometry import Pose, quat_from_yaw, wrap_angle
 from factask.sim.health import FATAL_WARNINGS, physics_problem, warning_counts
@@ -122,11 +121,11 @@ class _PrimitiveAbort(Exception):
         self.reason = reason
 
 
-def attach_robot(root: mjcf.RootElement, kind: str) -> None:
-    """Add a suction robot (tool, ``suction_tip`` site, ``suction`` weld) to ``root``.
+def attach_robot(spec: mujoco.MjSpec, kind: str) -> None:
+    """Add a suction robot (tool, ``suction_tip`` site, ``suction`` weld) to ``spec``.
 
     Args:
-        root: The scene's MJCF root; the robot base sits at the world origin.
+        spec: The scene's spec; the robot base sits at the world origin.
         kind: A name of the robot registry (:data:`factask.sim.robots.ROBOT_NAMES`).
 
     Raises:
@@ -134,13 +133,11 @@ def attach_robot(root: mjcf.RootElement, kind: str) -> None:
     """
     entry = robot_entry(kind)
     if entry.arm is None:
-        cup = root.worldbody.add(
-            "body", name=FLOATING_BODY, mocap=True, pos=list(FLOATING_HOME),
-        )
+        cup = spec.worldbody.add_body(name=FLOATING_BODY, mocap=True, pos=list(FLOATING_HOME))
         add_tool(cup, down=False)
-        add_suction_weld(root, cup)
+        add_suction_weld(spec, cup)
     else:
-        build_arm(root, entry.arm)
+        build_arm(spec, entry.arm)
 
 
 def make_robot(kind: str, model: mujoco.MjModel, data: mujoco.MjData) -> SuctionRobot:

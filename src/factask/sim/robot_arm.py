@@ -1,4 +1,4 @@
-"""MJCF of the UR-like 6-DoF suction arm, built from published DH kinematics.
+"""The UR-like 6-DoF suction arm as MjSpec elements, built from published DH kinematics.
 
 No mesh and no download: each link is a body placed by the standard DH transform
 ``Rz(q_i) Tz(d_i) Tx(a_i) Rx(alpha_i)`` with a capsule collision shape along the
@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 
+import mujoco
 import numpy as np
-from dm_control import mjcf
 
 from factask.geometry import quat_from_axis_angle
 from factask.sim.robots import DEFAULT_ARM, DHArm
@@ -47,37 +47,36 @@ FLANGE_BODY = "flange"
 LINK_BODY = "link{}"
 
 
-def build_arm(root: mjcf.RootElement, arm: DHArm = DEFAULT_ARM) -> mjcf.Element:
+def build_arm(spec: mujoco.MjSpec, arm: DHArm = DEFAULT_ARM) -> mujoco.MjsBody:
     """Add the arm (base at the origin), its tool, actuators and suction weld.
 
     Args:
-        root: MJCF root to add to.
+        spec: Spec to add to (its angles must be in radians: ``compiler.degree``
+            False, as :func:`factask.sim.build.new_spec` makes it).
         arm: DH parameters of the arm.
 
     Returns:
         The flange body (carrying the suction tool).
     """
+    spec.compiler.degree = False
     # The DH base frame has the arm reaching along -x at q = 0; turning the base
     # by pi about z puts the home pose over the Ravens workspace (+x).
-    base = root.worldbody.add("body", name="arm_base", pos=[0, 0, 0], quat=BASE_QUAT)
-    base.add(
-        "geom", name="arm_base_geom", type="cylinder", size=[arm.radii[0], BASE_HEIGHT / 2],
-        pos=[0, 0, BASE_HEIGHT / 2], rgba=[0.6, 0.6, 0.65, 1],
-        contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
+    base = spec.worldbody.add_body(name="arm_base", pos=[0, 0, 0], quat=list(BASE_QUAT))
+    base.add_geom(
+        name="arm_base_geom", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+        size=[arm.radii[0], BASE_HEIGHT / 2, 0.0], pos=[0, 0, BASE_HEIGHT / 2],
+        rgba=[0.6, 0.6, 0.65, 1], contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
     )
     parent = base
     child_pos: list[float] = [0.0, 0.0, 0.0]
     child_quat: list[float] = [1.0, 0.0, 0.0, 0.0]
-    # Joint ranges follow the root's compiler angle unit (MJCF's default is degrees).
-    unit = 1.0 if root.compiler.angle == "radian" else math.degrees(1.0)
     for i in range(6):
-        lo, hi = JOINT_RANGES[i]
-        body = parent.add(
-            "body", name=LINK_BODY.format(i + 1), pos=child_pos, quat=child_quat, gravcomp=1,
-        )
-        joint = body.add(
-            "joint", name=JOINT_NAMES[i], type="hinge", axis=[0, 0, 1],
-            range=[lo * unit, hi * unit], armature=ARMATURE, damping=1.0,
+        body = parent.add_body(name=LINK_BODY.format(i + 1), pos=child_pos, quat=child_quat,
+                               gravcomp=1.0)
+        body.add_joint(
+            name=JOINT_NAMES[i], type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
+            range=list(JOINT_RANGES[i]), limited=mujoco.mjtLimited.mjLIMITED_TRUE,
+            armature=ARMATURE, damping=1.0,
         )
         # Next DH frame, expressed in this body's (rotated) frame.
         child_pos = [arm.a[i], 0.0, arm.d[i]]
@@ -89,20 +88,21 @@ def build_arm(root: mjcf.RootElement, arm: DHArm = DEFAULT_ARM) -> mjcf.Element:
         end = np.array(child_pos)
         if np.linalg.norm(end - start) < 1e-6:
             end = start + np.array([0.0, 0.0, 0.02])
-        body.add(
-            "geom", name=f"link{i + 1}_geom", type="capsule", size=[arm.radii[i]],
-            fromto=[*start, *end], mass=LINK_MASS[i], rgba=[0.55, 0.6, 0.7, 1],
-            contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
+        body.add_geom(
+            name=f"link{i + 1}_geom", type=mujoco.mjtGeom.mjGEOM_CAPSULE,
+            size=[arm.radii[i], 0.0, 0.0], fromto=[*start, *end], mass=LINK_MASS[i],
+            rgba=[0.55, 0.6, 0.7, 1], contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
         )
-        root.actuator.add(
-            "position", name=f"{JOINT_NAMES[i]}_servo", joint=joint,
-            # No ctrlrange: the controller clamps targets to JOINT_RANGES itself,
-            # which keeps radians whatever the root's angle unit is.
-            kp=KP[i], kv=KV[i],
+        servo = spec.add_actuator(
+            name=f"{JOINT_NAMES[i]}_servo", target=JOINT_NAMES[i],
+            trntype=mujoco.mjtTrn.mjTRN_JOINT,
+            # No ctrlrange: the controller clamps targets to JOINT_RANGES itself.
+            forcelimited=mujoco.mjtLimited.mjLIMITED_TRUE,
             forcerange=[-FORCE_LIMIT[i], FORCE_LIMIT[i]],
         )
+        servo.set_to_position(kp=KP[i], kv=KV[i])
         parent = body
-    flange = parent.add("body", name=FLANGE_BODY, pos=child_pos, quat=child_quat, gravcomp=1)
+    flange = parent.add_body(name=FLANGE_BODY, pos=child_pos, quat=child_quat, gravcomp=1.0)
     add_tool(flange, down=True)
-    add_suction_weld(root, flange)
+    add_suction_weld(spec, flange)
     return flange

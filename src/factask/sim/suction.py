@@ -1,4 +1,4 @@
-"""Suction cup: its MJCF (tool geometry, tip site, weld) and the runtime gripper.
+"""Suction cup: its spec elements (tool geometry, tip site, weld) and the runtime gripper.
 
 Suction is ONE weld equality constraint named ``suction`` whose ``body1`` is the
 cup body. It is compiled with ``body2`` = the world and inactive. When suction
@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import mujoco
 import numpy as np
-from dm_control import mjcf
 
 from factask.sim.robots import RobotError
 
@@ -48,46 +47,54 @@ ROBOT_CONTYPE = 2
 ROBOT_CONAFFINITY = 1
 
 
-def add_tool(body: mjcf.Element, down: bool) -> None:
+def add_tool(body: mujoco.MjsBody, down: bool) -> mujoco.MjsGeom:
     """Add the suction tool (stem, cup geom, ``suction_tip`` site) to ``body``.
 
     Args:
-        body: The body that carries the tool (arm flange or floating cup body).
+        body: The spec body that carries the tool (arm flange or floating cup body).
         down: True when ``body``'s z axis points out of the tool (arm flange: the
             tip lies at +z); False when the body frame IS the tip frame with z up
             (floating cup: the stem lies at +z above the tip).
+
+    Returns:
+        The cup geom.
     """
     sign = 1.0 if down else -1.0
     tip = TOOL_LENGTH if down else 0.0
+    cylinder = mujoco.mjtGeom.mjGEOM_CYLINDER
     # Stem from the tool's base to the back of the cup.
     stem_c = tip - sign * (2 * CUP_HALF_HEIGHT + STEM_LENGTH / 2)
-    body.add(
-        "geom", name="suction_stem", type="cylinder", size=[STEM_RADIUS, STEM_LENGTH / 2],
+    body.add_geom(
+        name="suction_stem", type=cylinder, size=[STEM_RADIUS, STEM_LENGTH / 2, 0.0],
         pos=[0, 0, stem_c], rgba=[0.3, 0.3, 0.3, 1], mass=0.05,
         contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
     )
-    body.add(
-        "geom", name=CUP_GEOM, type="cylinder", size=[CUP_RADIUS, CUP_HALF_HEIGHT],
+    cup = body.add_geom(
+        name=CUP_GEOM, type=cylinder, size=[CUP_RADIUS, CUP_HALF_HEIGHT, 0.0],
         pos=[0, 0, tip - sign * CUP_HALF_HEIGHT], rgba=[0.1, 0.1, 0.1, 1], mass=0.02,
         contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY, friction=[1.0, 0.01, 0.001],
     )
     # Tip frame: z up the tool, so a top-down tool at yaw y has quat = quat_from_yaw(y).
-    body.add(
-        "site", name=TIP_SITE, pos=[0, 0, tip], quat=[0, 1, 0, 0] if down else [1, 0, 0, 0],
-        size=[0.004], rgba=[1, 0, 0, 1], group=4,
+    body.add_site(
+        name=TIP_SITE, pos=[0, 0, tip], quat=[0, 1, 0, 0] if down else [1, 0, 0, 0],
+        size=[0.004, 0.0, 0.0], rgba=[1, 0, 0, 1], group=4,
     )
+    return cup
 
 
-def add_suction_weld(root: mjcf.RootElement, cup_body: mjcf.Element) -> None:
+def add_suction_weld(spec: mujoco.MjSpec, cup_body: mujoco.MjsBody) -> mujoco.MjsEquality:
     """Add the inactive ``suction`` weld between ``cup_body`` and the world.
 
     Args:
-        root: MJCF root to add the equality to.
+        spec: The spec to add the equality to.
         cup_body: The body carrying the cup geom.
+
+    Returns:
+        The weld.
     """
-    root.equality.add(
-        "weld", name=SUCTION_WELD, body1=cup_body, active=False,
-        solref=list(WELD_SOLREF), solimp=list(WELD_SOLIMP),
+    return spec.add_equality(
+        name=SUCTION_WELD, type=mujoco.mjtEq.mjEQ_WELD, objtype=mujoco.mjtObj.mjOBJ_BODY,
+        name1=cup_body.name, active=False, solref=list(WELD_SOLREF), solimp=list(WELD_SOLIMP),
     )
 
 
