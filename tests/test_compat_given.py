@@ -102,3 +102,25 @@ def test_one_given_place_for_several_objects_is_refused() -> None:
                            initial=StartOn(support="stand", offset=(0.0, 0.0)))
     with pytest.raises(GraphValidationError, match="one place given for 2 objects"):
         TaskGraph(name="t", variables=[host, blocks]).ensure_valid()
+
+
+def test_a_refusal_the_task_catches_is_still_reported(tmp_path: Path) -> None:
+    task = tmp_path / "swallows.py"
+    task.write_text('''
+import numpy as np
+from cliport.tasks.task import Task
+
+
+class Swallows(Task):
+    def reset(self, env):
+        super().reset(env)
+        ids = []
+        try:
+            ids.append(env.add_object("google/object-template.urdf",
+                                      ((0.5, 0.0, 0.02), (0, 0, 0, 1))))
+        except Exception:
+            pass
+        np.random.randint(1, len(ids) + 1 - 1 or 1)  # fails later, as GenSim code does
+''')
+    with pytest.raises(Unsupported, match="refused .*Google scanned objects"):
+        import_cliport(task, seed=0)

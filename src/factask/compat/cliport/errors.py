@@ -2,7 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+
 from factask.model.errors import FactaskError, InvalidValueError
+
+#: Messages of the Unsupported errors raised while a task file runs (user code may
+#: catch them: the import still reports them).
+_REFUSALS: ContextVar[list[str] | None] = ContextVar("cliport_refusals", default=None)
 
 
 class CliportImportError(FactaskError):
@@ -19,8 +27,26 @@ class Unsupported(CliportImportError):
 
     Examples: deformables (cloth, rope, piles), spatula pushing, Google scanned
     objects, an unknown URDF, a PyBullet call with no recorded meaning. The
-    message names the call or the asset.
+    message names the call or the asset. Every one raised inside
+    :func:`recording_refusals` is remembered, even if the task's code catches it.
     """
+
+    def __init__(self, *args: object) -> None:
+        super().__init__(*args)
+        seen = _REFUSALS.get()
+        if seen is not None:
+            seen.append(str(self))
+
+
+@contextmanager
+def recording_refusals() -> Iterator[list[str]]:
+    """Collect the messages of every :class:`Unsupported` raised in the block."""
+    seen: list[str] = []
+    token = _REFUSALS.set(seen)
+    try:
+        yield seen
+    finally:
+        _REFUSALS.reset(token)
 
 
 class PoseError(InvalidValueError):

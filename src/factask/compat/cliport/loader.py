@@ -28,7 +28,12 @@ from pydantic import ValidationError
 
 from factask.compat.cliport import cameras, grippers, primitives, pybullet_stub, task, utils
 from factask.compat.cliport.convert import build_graph, kebab, object_names
-from factask.compat.cliport.errors import CliportImportError, PoseError, Unsupported
+from factask.compat.cliport.errors import (
+    CliportImportError,
+    PoseError,
+    Unsupported,
+    recording_refusals,
+)
 from factask.compat.cliport.recorder import FAKE_ASSETS_ROOT, RecordingEnv, Session, session_scope
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.task import RAVENS_POS_EPS, RAVENS_ROT_EPS, Task
@@ -248,13 +253,23 @@ def import_cliport(path: str | Path, class_name: str | None = None,
             cls = _pick_class(module, p, class_name)
             if on_loaded is not None:
                 on_loaded(cls)
-            try:
-                instance = cls()
-                instance.set_assets_root(FAKE_ASSETS_ROOT)
-                env = RecordingEnv(session, instance)
-                instance.reset(env)
-            except Exception as exc:
-                raise _user_error(f"{cls.__name__}.reset failed", exc, p) from exc
+            with recording_refusals() as refused:
+                try:
+                    instance = cls()
+                    instance.set_assets_root(FAKE_ASSETS_ROOT)
+                    env = RecordingEnv(session, instance)
+                    instance.reset(env)
+                except Unsupported:
+                    raise
+                except Exception as exc:
+                    if refused:  # the task caught factask's refusal and failed later
+                        raise Unsupported(f"{p}: {cls.__name__}.reset failed after factask "
+                                          f"refused {refused[0]} (the task caught that and "
+                                          f"went on): {type(exc).__name__}: {exc}") from exc
+                    raise _user_error(f"{cls.__name__}.reset failed", exc, p) from exc
+            for message in dict.fromkeys(refused):
+                session.warn(f"the task caught factask's refusal and went on without it: "
+                             f"{message}")
             try:
                 graph, goals = build_graph(instance, session, cls.__name__)
             except CliportImportError as exc:
