@@ -122,5 +122,5 @@ class Swallows(Task):
             pass
         np.random.randint(1, len(ids) + 1 - 1 or 1)  # fails later, as GenSim code does
 ''')
-    with pytest.raises(Unsupported, match="refused .*Google scanned objects"):
+    with pytest.raises(Unsupported, match=r"refused .*Google scanned objects"):
         import_cliport(task, seed=0)
