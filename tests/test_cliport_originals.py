@@ -2,9 +2,10 @@
 
 Runs ``benchmarks/cliport_corpus.py`` over ``../shared/data/cliport_tasks/`` when it
 is present (as in CI) with the floating robot, 4 episodes per class. Every rigid
-class must be completed (the oracle succeeds in at least half of its episodes),
-except those listed in :data:`NOT_YET` with the reason — issue 11 works them off;
-a class leaving the list shows as an unexpected pass, not a failure.
+class (all but ropes, piles and Google scanned objects) must be completed in at
+least 3 of its 4 episodes, under factask's checks and under Ravens' scoring of
+the same episodes. (The arm's figures come from the same script with
+``--robot arm``; see the closing note of issue 11.)
 """
 
 from __future__ import annotations
@@ -21,14 +22,8 @@ ROOT = Path(__file__).resolve().parents[1]
 CORPUS = CLIPORT_ORIGINALS
 #: Classes outside the rigid scope (ropes, piles: issue 15; Google objects: no assets).
 OUT_OF_SCOPE = ("rope", "piles", "google")
-#: Rigid classes factask does not complete yet, with why.
-NOT_YET = {
-    "BlockInsertionSixDof": "6-DoF fixture: the top-down oracle runs out of actions",
-    "PackingBoxes": "boxes end tilted against the container walls of the packing plan",
-    "PackingBoxesPairsFull": "as PackingBoxes",
-    "PackingBoxesPairsSeenColors": "as PackingBoxes",
-    "PackingBoxesPairsUnseenColors": "as PackingBoxes",
-}
+#: Episodes per class that must succeed, of the 4 run.
+MIN_SUCCESSES = 3
 
 
 @pytest.fixture(scope="module")
@@ -60,7 +55,7 @@ def _rigid_classes() -> list[str]:
 @pytest.mark.xdist_group("cliport_originals")  # one corpus run, on one worker
 @pytest.mark.parametrize("cls", _rigid_classes())
 def test_every_rigid_cliport_class_is_completed(cls: str, corpus_records: dict) -> None:
-    if cls in NOT_YET:
-        pytest.xfail(NOT_YET[cls])
     rec = corpus_records[cls]
     assert rec["level"] == "completion", rec
+    assert rec["successes"] >= MIN_SUCCESSES, rec
+    assert rec["ravens_successes"] >= MIN_SUCCESSES, rec
