@@ -4,17 +4,17 @@ Run: ``.venv/bin/python benchmarks/bench_env.py [--quick] [--task NAME] [--robot
 
 For each robot ("floating" mocap cup, "arm" suction arm) on one library task:
 
-- **bare mj_step**: physics steps per second of ``mujoco.mj_step`` alone on the
-  environment's own model, from a copy of its state just after ``reset``;
-- **env per physics step**: wall time of one ``env.step`` (a whole pick-and-place
-  chosen by the oracle; the oracle's planning is not timed) divided by the physics
-  steps it took (``env.history[-1].sim_steps``), and its ratio to bare mj_step:
-  the price of the primitive's command generation, health checks, IK (arm) and
-  the goal checks after the action;
-- **mj_step inside env.step**: the same actions' time spent in ``mujoco.mj_step``
-  itself (timed by wrapping it during ``env.step``), per physics step and as a
-  share of ``env.step``: contacts while carrying cost more than the settled
-  scene of the bare figure, the rest is Python around the physics;
+- **settled us**: ``mujoco.mj_step`` alone on the environment's own model, from a
+  copy of its state just after ``reset`` (a settled scene: no contacts changing);
+- **bare us/step**: ``mujoco.mj_step`` alone from the very states the actions
+  went through (:mod:`physics_floor`: the same actions are replayed and every
+  10th state is kept), the physics lower bound of a step;
+- **env us/step**: wall time of the ``env.step`` calls (whole pick-and-places
+  chosen by the oracle; the oracle's planning is not timed) divided by the
+  physics steps they took, and **ratio** = env / bare: the price of everything
+  around the physics (motion planning, IK for the arm, contact tests during
+  guarded moves, health checks, the goal checks after each action);
+  **physics %** = bare / env;
 - **wall s per pick-and-place** (median over the episode's actions) and the
   simulated seconds it stood for (real-time factor = simulated / wall);
 - **reset**: median wall time of ``env.reset(seed=k)`` (layout sampling, relation
@@ -29,12 +29,10 @@ import argparse
 import copy
 import statistics
 import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import Any
 
 import mujoco
+import physics_floor
 
 from factask.library import get_task
 from factask.sim.env import FactaskEnv
@@ -79,31 +77,6 @@ def bare_steps_per_second(model: mujoco.MjModel, data: mujoco.MjData, steps: int
     return steps / (time.perf_counter() - t0)
 
 
-class StepTimer:
-    """Accumulates the wall time spent inside ``mujoco.mj_step`` while active."""
-
-    def __init__(self) -> None:
-        self.seconds = 0.0
-        self.calls = 0
-
-    @contextmanager
-    def active(self) -> Iterator[StepTimer]:
-        """Replace ``mujoco.mj_step`` by a timed wrapper inside the ``with`` block."""
-        original = mujoco.mj_step
-
-        def timed(*args: Any, **kwargs: Any) -> None:
-            t0 = time.perf_counter()
-            original(*args, **kwargs)
-            self.seconds += time.perf_counter() - t0
-            self.calls += 1
-
-        mujoco.mj_step = timed
-        try:
-            yield self
-        finally:
-            mujoco.mj_step = original
-
-
 def bench_task(task: str, robot: str, max_actions: int, resets: int,
                bare_steps: int) -> EnvTiming:
     """Measure one task with one robot (see the module docstring)."""
@@ -117,32 +90,32 @@ def bench_task(task: str, robot: str, max_actions: int, resets: int,
         env.reset(seed=0)
         bare = bare_steps_per_second(env.model, env.data, bare_steps)
         oracle = Oracle(env, seed=0)
-        walls, sims, per_step, inner, shares = [], [], [], [], []
+        actions, walls, sims = [], [], []
         for _ in range(max_actions):
             action = oracle.act()
             if action is None:
                 break
-            timer = StepTimer()
-            with timer.active():
-                t0 = time.perf_counter()
-                _, _, terminated, truncated, _ = env.step(action)
-                wall = time.perf_counter() - t0
-            steps = env.history[-1].sim_steps
-            walls.append(wall)
-            sims.append(steps * env.model.opt.timestep)
-            if steps:
-                per_step.append(wall / steps)
-                inner.append(timer.seconds / timer.calls)
-                shares.append(timer.seconds / wall)
+            t0 = time.perf_counter()
+            _, _, terminated, truncated, _ = env.step(action)
+            walls.append(time.perf_counter() - t0)
+            actions.append(action)
+            sims.append(env.history[-1].sim_steps * env.model.opt.timestep)
             if terminated or truncated:
                 break
-        env_us = statistics.median(per_step) * 1e6 if per_step else float("nan")
-        bare_us = 1e6 / bare
+        # The same actions again from the same reset (deterministic physics), recording
+        # the states they pass through: the bare mj_step of exactly those states.
+        env.reset(seed=0)
+        with physics_floor.record() as rec:
+            for action in actions:
+                env.step(action)
+        step_s = physics_floor.bare_step_seconds(rec)
+        steps = sum(h.sim_steps for h in env.history)
+        env_us = sum(walls) / steps * 1e6 if steps else float("nan")
+        bare_us = step_s * 1e6
         return EnvTiming(
             task=task, robot=robot, bare_steps_per_s=bare, env_step_us=env_us,
             bare_step_us=bare_us, ratio=env_us / bare_us,
-            inner_step_us=statistics.median(inner) * 1e6 if inner else float("nan"),
-            physics_share=statistics.median(shares) if shares else float("nan"),
+            inner_step_us=1e6 / bare, physics_share=bare_us / env_us,
             pick_place_s=statistics.median(walls) if walls else float("nan"),
             pick_place_sim_s=statistics.median(sims) if sims else float("nan"),
             actions=len(walls), reset_s=statistics.median(reset_times),
@@ -159,12 +132,12 @@ def run(quick: bool = False, task: str = DEFAULT_TASK,
     bare_steps = 2000 if quick else 10000
     out = [bench_task(task, r, max_actions, resets, bare_steps) for r in robots]
     print(f"env step cost vs bare mujoco.mj_step (task {task}; medians over the actions)")
-    print(f"{'robot':9s} {'bare steps/s':>12s} {'bare us/step':>12s} {'env us/step':>11s} "
-          f"{'ratio':>6s} {'in-env mj_step us':>17s} {'physics %':>9s} {'wall s/p&p':>10s} "
+    print(f"{'robot':9s} {'settled us':>10s} {'bare us/step':>12s} {'env us/step':>11s} "
+          f"{'ratio':>6s} {'physics %':>9s} {'wall s/p&p':>10s} "
           f"{'sim s/p&p':>9s} {'x realtime':>10s} {'actions':>7s} {'reset s':>8s}")
     for t in out:
-        print(f"{t.robot:9s} {t.bare_steps_per_s:12.0f} {t.bare_step_us:12.1f} "
-              f"{t.env_step_us:11.1f} {t.ratio:6.2f} {t.inner_step_us:17.1f} "
+        print(f"{t.robot:9s} {t.inner_step_us:10.1f} {t.bare_step_us:12.1f} "
+              f"{t.env_step_us:11.1f} {t.ratio:6.2f} "
               f"{t.physics_share:9.0%} {t.pick_place_s:10.3f} "
               f"{t.pick_place_sim_s:9.2f} {t.realtime_factor:10.1f} {t.actions:7d} "
               f"{t.reset_s:8.3f}")

@@ -36,6 +36,13 @@ POS_TOL = 1e-3
 #: Largest target move per iteration when :meth:`TopDownIK.solve` walks a path (m).
 MAX_TARGET_STEP = 0.02
 ROT_TOL = 1e-2
+#: Damped least squares (:meth:`TopDownIK.solve_near`): damping, iterations,
+#: largest joint step per iteration (rad) and convergence thresholds (m, rad).
+DLS_DAMPING = 1e-6
+DLS_ITERATIONS = 40
+DLS_MAX_STEP = 0.3
+DLS_POS_TOL = 1e-4
+DLS_ROT_TOL = 1e-3
 
 
 def top_down_pose(pos: Sequence[float], yaw: float) -> Pose:
@@ -67,6 +74,12 @@ class TopDownIK:
         self.posture_task.set_target(self.home)
         self.limits = [mink.ConfigurationLimit(self.model)]
         self.solve_calls = 0
+        # Damped least squares on the same private model (see :meth:`solve_near`).
+        self._data = mujoco.MjData(self.model)
+        self._site = self.model.site(TIP_SITE).id
+        self._jac = np.zeros((6, self.model.nv))
+        self._lo = self.model.jnt_range[:, 0].copy()
+        self._hi = self.model.jnt_range[:, 1].copy()
 
     @property
     def q(self) -> np.ndarray:
@@ -150,3 +163,60 @@ class TopDownIK:
             pos_err, rot_err = self.error(target)
         return self.q, pos_err, rot_err
 
+    def fk(self, q: np.ndarray) -> np.ndarray:
+        """Tip position of joint angles ``q`` (forward kinematics, no IK state change).
+
+        Args:
+            q: Joint angles.
+
+        Returns:
+            The tip position (3,).
+        """
+        d = self._data
+        d.qpos[:] = q
+        mujoco.mj_kinematics(self.model, d)
+        return d.site_xpos[self._site].copy()
+
+    def solve_near(self, q0: np.ndarray, pos: np.ndarray, yaw: float,
+                   iterations: int = DLS_ITERATIONS) -> tuple[np.ndarray, float]:
+        """Top-down IK from ``q0`` by damped least squares (Newton steps on the
+        pose error); fast, for targets near the pose of ``q0``.
+
+        Args:
+            q0: Start joint angles (the current or the previous waypoint's).
+            pos: Tip target position.
+            yaw: Tip target yaw (tool straight down).
+
+        Returns:
+            (joint angles, position error m); :meth:`solve` (mink) is the fallback
+            when the error stays large.
+        """
+        m, d = self.model, self._data
+        target = np.zeros(9)
+        mujoco.mju_quat2Mat(target, quat_from_yaw(yaw))
+        rt = target.reshape(3, 3)
+        q = np.array(q0, dtype=float)
+        err = np.zeros(6)
+        for _ in range(iterations):
+            d.qpos[:] = q
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            err[:3] = pos - d.site_xpos[self._site]
+            rc = d.site_xmat[self._site].reshape(3, 3)
+            # Rotation error: half the sum of axis cross products (small-angle axis-angle).
+            err[3:] = 0.5 * (np.cross(rc[:, 0], rt[:, 0]) + np.cross(rc[:, 1], rt[:, 1])
+                             + np.cross(rc[:, 2], rt[:, 2]))
+            if float(err[:3] @ err[:3]) < DLS_POS_TOL ** 2 and \
+                    float(err[3:] @ err[3:]) < DLS_ROT_TOL ** 2:
+                break
+            mujoco.mj_jacSite(m, d, self._jac[:3], self._jac[3:], self._site)
+            j = self._jac
+            dq = j.T @ np.linalg.solve(j @ j.T + DLS_DAMPING * np.eye(6), err)
+            # Bounded steps keep the Newton iteration from jumping to another branch.
+            biggest = float(np.abs(dq).max())
+            if biggest > DLS_MAX_STEP:
+                dq *= DLS_MAX_STEP / biggest
+            q = np.clip(q + dq, self._lo, self._hi)
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        return q, float(np.linalg.norm(pos - d.site_xpos[self._site]))

@@ -28,6 +28,8 @@ class DHArm:
         a: Link lengths a1..a6.
         alpha: Link twists alpha1..alpha6.
         radii: Capsule radius of each of the 6 links.
+        max_speed: Joint speed limits (rad/s), base to wrist: the datasheet's.
+        max_accel: Joint acceleration limits (rad/s^2) of planned motions.
     """
 
     name: str
@@ -35,9 +37,14 @@ class DHArm:
     a: tuple[float, ...]
     alpha: tuple[float, ...]
     radii: tuple[float, ...]
+    max_speed: tuple[float, ...] = (math.pi,) * 6
+    max_accel: tuple[float, ...] = (12.0,) * 6
 
 
 _HALF_PI = math.pi / 2
+#: Datasheet joint speeds: 180 deg/s; the UR10e's base and shoulder 120 deg/s.
+_DEG180 = math.pi
+_DEG120 = 2 * math.pi / 3
 
 #: UR5e, from Universal Robots' published DH table.
 UR5E = DHArm(
@@ -56,6 +63,7 @@ UR10E = DHArm(
     a=(0.0, -0.6127, -0.57155, 0.0, 0.0, 0.0),
     alpha=(_HALF_PI, 0.0, 0.0, _HALF_PI, -_HALF_PI, 0.0),
     radii=(0.075, 0.065, 0.055, 0.045, 0.045, 0.04),
+    max_speed=(_DEG120, _DEG120, _DEG180, _DEG180, _DEG180, _DEG180),
 )
 
 

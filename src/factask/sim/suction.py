@@ -162,6 +162,22 @@ class SuctionGripper:
             b for b in range(model.nbody) if int(model.body_rootid[b]) == root and b != 0
         )
         self._held: int | None = None
+        # Per-geom arrays, built once, so that the per-step tests are NumPy only.
+        self._robot_body = np.zeros(model.nbody, dtype=bool)
+        self._robot_body[list(self.robot_bodies)] = True
+        self.geom_root = model.body_rootid[model.geom_bodyid].astype(np.int64)
+        collides = (model.geom_contype != 0) | (model.geom_conaffinity != 0)
+        not_robot = ~np.isin(self.geom_root, list(self.robot_bodies))
+        #: Colliding geoms of objects (not the robot, not the static world).
+        self.object_geoms = np.flatnonzero(collides & not_robot & (self.geom_root != 0))
+        self._aabb_c = model.geom_aabb[self.object_geoms, :3].copy()
+        self._aabb_h = model.geom_aabb[self.object_geoms, 3:].copy()
+        free = [j for j in range(model.njnt)
+                if int(model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_FREE)
+                and int(model.body_rootid[model.jnt_bodyid[j]]) not in self.robot_bodies]
+        #: qvel indices of the free objects' linear and angular velocities.
+        self.object_dofs = np.array([int(model.jnt_dofadr[j]) + k for j in free for k in range(6)],
+                                    dtype=np.int64)
 
     @property
     def held(self) -> int | None:
@@ -196,31 +212,98 @@ class SuctionGripper:
                 out.append(b)
         return out
 
+    def _touching(self) -> np.ndarray:
+        """Geom pairs (ncon', 2) of the contacts closer than TOUCH_DISTANCE."""
+        d = self.data
+        if d.ncon == 0:
+            return np.zeros((0, 2), dtype=np.int64)
+        con = d.contact
+        return con.geom[con.dist <= TOUCH_DISTANCE]
+
     def cup_in_contact(self) -> bool:
         """True when the cup geom touches anything (object, table, fixture)."""
-        d = self.data
-        for k in range(d.ncon):
-            c = d.contact[k]
-            if c.dist <= TOUCH_DISTANCE and self.cup_geom in (c.geom1, c.geom2):
-                return True
-        return False
+        return bool((self._touching() == self.cup_geom).any())
 
     def held_in_contact(self) -> bool:
         """True when the held object touches something other than the robot."""
         if self._held is None:
             return False
-        m, d = self.model, self.data
-        for k in range(d.ncon):
-            c = d.contact[k]
-            if c.dist > TOUCH_DISTANCE:
-                continue
-            r1 = int(m.body_rootid[m.geom_bodyid[c.geom1]])
-            r2 = int(m.body_rootid[m.geom_bodyid[c.geom2]])
-            if self._held in (r1, r2):
-                other = r2 if r1 == self._held else r1
-                if other != self._held and other not in self.robot_bodies:
-                    return True
-        return False
+        roots = self.geom_root[self._touching()]
+        mine = roots == self._held
+        one = mine[:, 0] ^ mine[:, 1]  # exactly one side is the held object
+        if not one.any():
+            return False
+        other = np.where(mine[:, 0], roots[:, 1], roots[:, 0])[one]
+        return bool((~self._robot_body[other]).any())
+
+    def _object_boxes(self) -> tuple[np.ndarray, np.ndarray]:
+        """Centres and half extents (n, 3) of every object geom's world-aligned box."""
+        d = self.data
+        ids = self.object_geoms
+        rot = d.geom_xmat[ids].reshape(-1, 3, 3)
+        centre = d.geom_xpos[ids] + np.einsum("nij,nj->ni", rot, self._aabb_c)
+        half = np.einsum("nij,nj->ni", np.abs(rot), self._aabb_h)
+        return centre, half
+
+    def _object_z_extents(self) -> tuple[np.ndarray, np.ndarray]:
+        """Lowest and highest z of every object geom's box (world frame)."""
+        centre, half = self._object_boxes()
+        return centre[:, 2] - half[:, 2], centre[:, 2] + half[:, 2]
+
+    def obstacle_top(self, start: np.ndarray | None = None, goal: np.ndarray | None = None,
+                     margin: float = 0.0) -> float:
+        """Highest point (m) of the objects other than the held one (0: the table).
+
+        Args:
+            start: With ``goal``: only objects within ``margin`` of the straight
+                line from ``start`` to ``goal`` (x, y) count.
+            goal: See ``start``.
+            margin: Half width (m) of that corridor beyond each object's box.
+
+        Returns:
+            The height of the highest object top that counts.
+        """
+        if len(self.object_geoms) == 0:
+            return 0.0
+        centre, half = self._object_boxes()
+        keep = np.ones(len(centre), dtype=bool)
+        if self._held is not None:
+            keep &= self.geom_root[self.object_geoms] != self._held
+        if start is not None and goal is not None:
+            a, b = np.asarray(start[:2], float), np.asarray(goal[:2], float)
+            ab = b - a
+            t = np.clip((centre[:, :2] - a) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0)
+            gap = np.abs(centre[:, :2] - (a + t[:, None] * ab)) - half[:, :2]
+            keep &= (np.maximum(gap, 0.0) ** 2).sum(axis=1) <= margin ** 2
+        top = centre[keep, 2] + half[keep, 2]
+        return float(top.max()) if len(top) else 0.0
+
+    def held_footprint(self) -> float:
+        """Largest horizontal distance (m) from the tip axis to the held object's box
+        (0 when nothing is held)."""
+        if self._held is None:
+            return 0.0
+        centre, half = self._object_boxes()
+        mine = self.geom_root[self.object_geoms] == self._held
+        if not mine.any():
+            return 0.0
+        tip = self.data.xpos[self.cup_body, :2]
+        reach = np.abs(centre[mine, :2] - tip) + half[mine, :2]
+        return float(np.sqrt((reach ** 2).sum(axis=1)).max())
+
+    def held_bottom(self) -> float | None:
+        """Lowest point (m) of the held object, or None when nothing is held."""
+        if self._held is None:
+            return None
+        low, _ = self._object_z_extents()
+        mine = self.geom_root[self.object_geoms] == self._held
+        return float(low[mine].min()) if mine.any() else None
+
+    def objects_resting(self, speed: float) -> bool:
+        """True when no free object moves faster than ``speed`` (m/s or rad/s)."""
+        if len(self.object_dofs) == 0:
+            return True
+        return float(np.abs(self.data.qvel[self.object_dofs]).max()) < speed
 
     def grasp(self) -> bool:
         """Switch suction on: weld the closest touching free object where it is.
