@@ -172,3 +172,63 @@ def test_cache_key_includes_the_normalised_api_base_but_no_key() -> None:
     assert "pw" not in json.dumps(d.cache_params())
     key = ResponseCache.key
     assert key("m", MSGS, a.cache_params(), None) != key("m", MSGS, c.cache_params(), None)
+
+
+# ------------------------------------------------------- retries and fatal errors
+class _Failing:
+    """Loopback responder: raise (-> HTTP 500) for the first ``n`` requests."""
+
+    def __init__(self, n: int) -> None:
+        self.n, self.seen = n, 0
+
+    def __call__(self, request):
+        self.seen += 1
+        if self.seen <= self.n:
+            raise RuntimeError("overloaded")
+        return '{"ok": true}'
+
+
+def test_transient_errors_are_retried_with_bounded_backoff() -> None:
+    responder = _Failing(2)
+    with LoopbackServer(responder) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=2, timeout=10))
+        waits: list[float] = []
+        client.sleep = waits.append
+        assert client.complete(MSGS).text == '{"ok": true}'
+    assert responder.seen == 3 and waits == [1.0, 2.0]
+    responder = _Failing(5)
+    with LoopbackServer(responder) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=1, timeout=10))
+        client.sleep = lambda s: None
+        with pytest.raises(LLMError, match="failed"):
+            client.complete(MSGS)
+    assert responder.seen == 2  # one try + one retry, then the error
+
+
+def test_fatal_errors_are_raised_at_once_with_the_fix(monkeypatch) -> None:
+    from types import SimpleNamespace
+
+    import httpx
+    import litellm
+
+    import factask.gen.llm as llm
+
+    calls = []
+
+    def completion(**kwargs):
+        calls.append(kwargs)
+        req = httpx.Request("POST", "http://x")
+        raise litellm.exceptions.AuthenticationError(
+            message="Incorrect API key provided", llm_provider="openai", model="gpt-4o",
+            response=httpx.Response(401, request=req))
+
+    monkeypatch.setattr(llm, "_import_litellm", lambda: SimpleNamespace(completion=completion))
+    client = LLMClient(LLMConfig(model="openai/gpt-4o", num_retries=3))
+    client.sleep = lambda s: pytest.fail("a fatal error must not be retried")
+    with pytest.raises(llm.LLMAuthError) as info:
+        client.complete(MSGS)
+    assert len(calls) == 1 and calls[0]["num_retries"] == 0 and calls[0]["max_retries"] == 0
+    line = info.value.line()
+    assert "\n" not in line and "Incorrect API key" in line and "OPENAI_API_KEY" in line

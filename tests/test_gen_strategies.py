@@ -90,7 +90,7 @@ def test_repairs_that_never_succeed_are_bounded_and_reported() -> None:
     seeds = [r["seed"] for r in server.requests]
     temps = [r["temperature"] for r in server.requests]
     assert len(set(seeds)) == 3 and temps[0] == 0 and temps[1] > 0 and temps[2] > temps[1]
-    assert all(r["max_tokens"] == 1600 for r in server.requests)
+    assert all(r["max_tokens"] == 1200 for r in server.requests)
 
 
 def test_a_repeated_answer_stops_the_step_early() -> None:

@@ -27,9 +27,11 @@ from factask.gen.llm_errors import LLMContextError, fix_for
 Message = dict[str, str]
 
 #: max_tokens per step: room for the answer the step asks for, no more.
+#: A variable takes about 50 tokens, a factor about 70, a planned subtask 45; the
+#: step schemas allow at most 12 variables, 8 factors and 8 subtasks.
 ANSWER_TOKENS: dict[str, int] = {
-    "one_shot": 1600, "assembly": 1600, "variables": 900, "subtask_plan": 700,
-    "subtask_goal": 300, "subtask_outline": 450, "subtask_design": 900,
+    "one_shot": 1200, "assembly": 1200, "variables": 640, "subtask_plan": 400,
+    "subtask_goal": 160, "subtask_outline": 280, "subtask_design": 520,
 }
 #: Feedback longer than this (characters) is cut before it goes back.
 MAX_FEEDBACK_CHARS = 2500
@@ -108,6 +110,16 @@ class Budget:
     def context(self) -> int | None:
         return getattr(self.client, "context", None)
 
+    def limit(self, max_tokens: int) -> int | None:
+        """Most prompt tokens for an answer of ``max_tokens``: what the context leaves,
+        at most the client's ``prompt_budget``; None when nothing is known."""
+        ctx = self.context
+        room = None if ctx is None else ctx - max_tokens
+        budget = getattr(self.client, "prompt_budget", None)
+        if budget is None:
+            return room
+        return budget if room is None else min(room, budget)
+
     def tokens(self, messages: Sequence[Mapping[str, Any]]) -> int:
         return int(self.client.count_tokens(messages))
 
@@ -115,6 +127,10 @@ class Budget:
         """True if the messages and an answer of ``max_tokens`` fit the context."""
         ctx = self.context
         return ctx is None or self.tokens(messages) + max_tokens <= ctx
+
+    def _fits_budget(self, tokens: int, max_tokens: int) -> bool:
+        limit = self.limit(max_tokens)
+        return limit is None or tokens <= limit
 
     def choose(self, step: str, build: Callable[[PromptLevel], list[Message]],
                max_tokens: int) -> tuple[list[Message], int]:
@@ -129,16 +145,19 @@ class Budget:
             (messages, level index).
 
         Raises:
-            LLMContextError: not even the most compact variant fits.
+            LLMContextError: not even the most compact variant fits the context
+                (a client's ``prompt_budget`` only picks the variant).
         """
         smallest = 0
         for i, level in enumerate(PROMPT_LEVELS):
             messages = build(level)
-            if self.context is None:
+            if self.limit(max_tokens) is None:
                 return messages, i
             smallest = self.tokens(messages)
-            if smallest + max_tokens <= self.context:
+            if self._fits_budget(smallest, max_tokens):
                 return messages, i
+        if self.context is not None and smallest + max_tokens <= self.context:
+            return messages, len(PROMPT_LEVELS) - 1  # over the budget, within the context
         raise LLMContextError(
             f"{self.model}: step {step}: the most compact prompt takes {smallest} tokens and "
             f"its answer up to {max_tokens}, more than the model's context of "

@@ -320,6 +320,12 @@ class LLMClient:
             ``token_counter``).
         on_abandon: Called after a call timed out (the local server restarts, so
             the request the client gave up on stops generating).
+        seconds_per_token: Slowest expected generation speed (the local model on
+            CPU): a request's timeout is at least ``30 + max_tokens * this`` plus
+            the prompt's tokens at a tenth of it.
+        prompt_budget: Most prompt tokens worth sending (None: the context is the
+            only limit). On a CPU the prompt's processing dominates: the local model
+            gets the compact prompt variants.
 
     Attributes:
         usage: Usage summed over every call made by this client.
@@ -331,7 +337,9 @@ class LLMClient:
     def __init__(self, config: LLMConfig, cache: ResponseCache | None = None, *,
                  wire_model: str | None = None, context: int | None = None,
                  counter: TokenCounter | None = None,
-                 on_abandon: Callable[[], None] | None = None) -> None:
+                 on_abandon: Callable[[], None] | None = None,
+                 seconds_per_token: float = 0.0,
+                 prompt_budget: int | None = None) -> None:
         self.config = config
         self.cache = cache
         self.wire_model = wire_model or config.model
@@ -344,6 +352,8 @@ class LLMClient:
         self._context_known = self._context is not None
         self._counter = counter
         self.on_abandon = on_abandon
+        self.seconds_per_token = seconds_per_token
+        self.prompt_budget = prompt_budget
         self._lock = threading.Lock()
         self.sleep: Callable[[float], None] = time.sleep
 
@@ -433,6 +443,11 @@ class LLMClient:
             kwargs["api_key"] = "not-needed"
         if limit:
             kwargs["max_tokens"] = limit
+            prompt_s = 0.0
+            if self.seconds_per_token and self._counter is not None:
+                prompt_s = 0.1 * self.seconds_per_token * self.count_tokens(msgs)
+            kwargs["timeout"] = max(cfg.timeout,
+                                    30 + limit * self.seconds_per_token + prompt_s)
         fmt = response_format_param(self.form, schema, schema_name)
         if fmt is not None:
             kwargs["response_format"] = fmt

@@ -226,8 +226,9 @@ class LocalLlamaServer:
         """
         if self.running:
             return self
-        for _ in range(3):  # a port taken between free_port() and bind: try another
-            self.port = free_port()
+        keep = self.port  # a restart keeps its port: clients hold the URL
+        for attempt in range(3):  # a port taken between free_port() and bind: try another
+            self.port = keep if keep and attempt == 0 else free_port()
             self._log = tempfile.TemporaryFile()  # noqa: SIM115 (closed by stop())
             env = {**os.environ, "PYTHONUNBUFFERED": "1"}
             self._proc = subprocess.Popen(self.command(self.port), stdout=self._log,

@@ -8,13 +8,23 @@ after, killed on error too).
 
 from __future__ import annotations
 
+import signal
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import replace
+from types import FrameType
 
 from factask.gen.llm import LLMClient, LLMConfig, ResponseCache, import_litellm
 from factask.gen.llm_errors import LLMAuthError, fix_for, provider_of
 from factask.gen.local import LocalLlamaServer, check_local_model
+
+#: The slowest generation speed planned for on a busy 2-core CPU (3 tokens/s with a
+#: grammar); a request's timeout leaves room for its whole answer at that speed.
+LOCAL_SECONDS_PER_TOKEN = 0.35
+#: Prompt tokens worth sending to the local model: its prompt processing on a CPU
+#: dominates a call, and a 135M model gains little from a long prompt.
+LOCAL_PROMPT_BUDGET = 3000
 
 
 def missing_keys(config: LLMConfig) -> list[str]:
@@ -81,14 +91,30 @@ def open_client(config: LLMConfig, cache: ResponseCache | None = None,
         return
     server = LocalLlamaServer(config.model, n_ctx=config.context,
                               startup_timeout=startup_timeout)
+    previous = _exit_on_sigterm()
     try:
         server.start()
         local = replace(config, api_base=server.url, context=server.n_ctx)
         yield LLMClient(local, cache, wire_model=f"openai/{server.alias}",
                         context=server.n_ctx, counter=server.count_messages,
-                        on_abandon=server.restart)
+                        on_abandon=server.restart, seconds_per_token=LOCAL_SECONDS_PER_TOKEN,
+                        prompt_budget=LOCAL_PROMPT_BUDGET)
     finally:
         server.stop()
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _terminate(signum: int, frame: FrameType | None) -> None:
+    raise SystemExit(128 + signum)
+
+
+def _exit_on_sigterm() -> object | None:
+    """Make SIGTERM unwind the stack (so the local server is stopped, not orphaned);
+    returns the previous handler, or None off the main thread (nothing changed)."""
+    if threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.signal(signal.SIGTERM, _terminate)
 
 
 __all__ = ["missing_keys", "open_client", "preflight", "provider_of"]

@@ -28,6 +28,12 @@ from factask.relations import RELATION_TYPES
 
 Schema = dict[str, Any]
 
+#: What a step's schema allows (tighter than the plan limits the graph model
+#: checks, so an answer always fits its token budget).
+STEP_MAX_VARIABLES = min(12, MAX_VARIABLES)
+STEP_MAX_FACTORS = min(8, MAX_FACTORS)
+STEP_MAX_SUBTASKS = min(8, MAX_SUBTASKS)
+
 #: A name: snake_case, no double underscore, at most 64 characters.
 NAME_REGEX = r"^[a-z][a-z0-9]{0,15}(_[a-z0-9]{1,15}){0,3}$"
 #: Free text: printable ASCII without quote or backslash (so no escapes, no control
@@ -35,7 +41,7 @@ NAME_REGEX = r"^[a-z][a-z0-9]{0,15}(_[a-z0-9]{1,15}){0,3}$"
 #: pattern makes llama.cpp's grammar sampling an order of magnitude slower.
 TEXT_PATTERN = r"^[ !#-\[\]-~]*$"
 #: Longest description / setup text.
-MAX_TEXT = 160
+MAX_TEXT = 100
 #: Fields of a relation no step asks for (their defaults are right for generation).
 OMITTED_RELATION_FIELDS = frozenset(["tolerances", "matches"])
 OMITTED_PER_RELATION: dict[str, frozenset[str]] = {"in_zone": frozenset(["poses"])}
@@ -111,21 +117,15 @@ def _nullable(schema: Schema) -> Schema:
 
 # ------------------------------------------------------------------ variables
 def placement_schema(names: Sequence[str] | None = None) -> Schema:
-    """A variable's initial placement (``table``, ``region``, ``on``, ``inside``, ``pose``).
+    """A variable's initial placement: ``table``, ``on`` or ``inside`` another variable.
 
     Args:
         names: Variables it may rest on or inside (None: any name).
     """
     receptacles = None if names is None else list(names)
-    pose = StateVariable.model_json_schema()["$defs"]["AtFixedPose"]["properties"]
-    bounds = {k: {kk: vv for kk, vv in pose[k].items() if kk in ("minimum", "maximum")}
-              for k in ("x", "y")}
-    options = [
-        obj({"type": {"const": "table"}}),
-        obj({"type": {"const": "pose"}, "x": {"type": "number", **bounds["x"]},
-             "y": {"type": "number", **bounds["y"]},
-             "yaw_deg": {"type": "number", "minimum": -180, "maximum": 180}}),
-    ]
+    # No ``pose`` or ``region``: coordinates are what the library computes, and a
+    # grammar cannot hold a number to bounds (llama.cpp ignores minimum/maximum).
+    options = [obj({"type": {"const": "table"}})]
     if receptacles is None or receptacles:
         options += [obj({"type": {"const": "on"}, "support": name(receptacles)}),
                     obj({"type": {"const": "inside"}, "container": name(receptacles)})]
@@ -142,14 +142,15 @@ def variable_schema(names: Sequence[str] | None = None) -> Schema:
         "name": name(),
         "description": text(),
         "kind": {"type": "string", "enum": list(ASSET_KINDS)},
-        "size": array(_field_schema(StateVariable, "size")["prefixItems"][0], 3, 3),
+        # null: the kind's default size (the safe choice for a small model).
+        "size": _nullable(array(_field_schema(StateVariable, "size")["prefixItems"][0], 3, 3)),
         "color": {"type": "string", "enum": list(COLOR_NAMES)},
         "count": _field_schema(StateVariable, "count"),
         "initial": placement_schema(names),
     })
 
 
-def variables_answer(max_variables: int = MAX_VARIABLES) -> Schema:
+def variables_answer(max_variables: int = STEP_MAX_VARIABLES) -> Schema:
     """Approach 1, step 1: ``{"variables": [...]}``."""
     return obj({"variables": array(variable_schema(), 1, max_variables)})
 
@@ -226,7 +227,7 @@ def factor_schema(factor_names: Sequence[str] | None = None,
         "description": text(),
         "goal": goal_schema(variables),
         "weight": {"type": "number", "exclusiveMinimum": 0, "maximum": 1},
-        "after": array(name(factor_names), 0, MAX_FACTORS),
+        "after": array(name(factor_names), 0, STEP_MAX_FACTORS),
         "initial_setup": text(),
     }
     if "milestone" in SubtaskFactor.model_fields:
@@ -239,8 +240,8 @@ def graph_schema(task_name: str) -> Schema:
     return obj({
         "name": {"const": task_name},
         "description": text(),
-        "variables": array(variable_schema(), 1, MAX_VARIABLES),
-        "factors": array(factor_schema(), 1, MAX_FACTORS),
+        "variables": array(variable_schema(), 1, STEP_MAX_VARIABLES),
+        "factors": array(factor_schema(), 1, STEP_MAX_FACTORS),
     })
 
 
@@ -252,7 +253,7 @@ def subtask_plan(variable_names: Sequence[str]) -> Schema:
         "description": text(),
         "variables": array(name(variable_names), 1, len(variable_names)),
         "initial_setup": text(),
-    }), 1, MAX_SUBTASKS)})
+    }), 1, STEP_MAX_SUBTASKS)})
 
 
 def goal_answer(scope: Mapping[str, str]) -> Schema:
@@ -267,7 +268,7 @@ def goal_answer(scope: Mapping[str, str]) -> Schema:
 def subtask_outline() -> Schema:
     """Approach 2, step 1: subtask names and descriptions."""
     return obj({"subtasks": array(obj({"name": name(), "description": text()}), 1,
-                                  MAX_SUBTASKS)})
+                                  STEP_MAX_SUBTASKS)})
 
 
 def subtask_design(earlier: Sequence[str] = ()) -> Schema:
@@ -278,7 +279,7 @@ def subtask_design(earlier: Sequence[str] = ()) -> Schema:
             placement may rest on them; the goal may use them or new ones).
     """
     del earlier  # names declared in the same answer cannot be enumerated up front
-    return obj({"variables": array(variable_schema(), 0, MAX_VARIABLES),
+    return obj({"variables": array(variable_schema(), 0, STEP_MAX_VARIABLES),
                 "goal": goal_schema(), "description": text()})
 
 
