@@ -8,7 +8,11 @@ For every library task and robot, one environment is compiled (its time is the
 (default K = 2). Printed per row: mean wall seconds per episode (reset + oracle
 planning + physics), mean simulated seconds per episode (the actions' physics
 time), mean pick-and-place actions per episode and the success rate
-(total reward >= 0.99). Rows are printed as they finish; totals at the end.
+(total reward >= 0.99), and the physics lower bound of an episode (its physics
+steps x a bare ``mj_step`` from the states it went through, :mod:`physics_floor`,
+measured by replaying the same seeds) with wall / lower bound. The plot
+``benchmarks/out/oracle_vs_physics.png`` shows both per row. Rows are printed as
+they finish; totals at the end.
 ``--quick`` runs three small tasks with K = 1. Wall times depend on the machine
 and its load; nothing here asserts a time.
 """
@@ -20,6 +24,9 @@ import statistics
 import sys
 import time
 from dataclasses import dataclass
+from pathlib import Path
+
+import physics_floor
 
 from factask.library import get_task, task_names
 from factask.model.errors import FactaskError
@@ -30,6 +37,8 @@ from factask.sim.episode import EpisodeResult, run_episode
 ROBOTS = ("floating", "arm")
 #: Tasks of ``--quick``: one placing, one stacking, one structure task.
 QUICK_TASKS = ("place-red-in-green", "rainbow-stack", "build-bridge")
+#: Where the wall-vs-physics plot goes.
+PLOT = Path(__file__).resolve().parent / "out" / "oracle_vs_physics.png"
 
 
 @dataclass(frozen=True)
@@ -45,6 +54,12 @@ class OracleTiming:
     success_rate: float
     episodes: int
     error: str | None = None
+    floor_s: float = float("nan")
+
+    @property
+    def overhead(self) -> float:
+        """Wall time over the physics lower bound (1.0: nothing but physics)."""
+        return self.wall_s / self.floor_s if self.floor_s > 0 else float("nan")
 
 
 def bench_task(task: str, robot: str, episodes: int) -> OracleTiming:
@@ -62,6 +77,13 @@ def bench_task(task: str, robot: str, episodes: int) -> OracleTiming:
             t0 = time.perf_counter()
             results.append(run_episode(env.graph, seed, robot=robot, env=env))
             walls.append(time.perf_counter() - t0)
+        # Same episodes again (deterministic) to count their physics steps and time a
+        # bare mj_step from the states they pass through: the physics lower bound.
+        floors = []
+        for seed in range(episodes):
+            with physics_floor.record(every=20) as rec:
+                run_episode(env.graph, seed, robot=robot, env=env)
+            floors.append(rec.steps * physics_floor.bare_step_seconds(rec))
     finally:
         env.close()
     failures = [r.failure for r in results if not r.success and r.failure]
@@ -70,25 +92,25 @@ def bench_task(task: str, robot: str, episodes: int) -> OracleTiming:
         sim_s=statistics.fmean(r.sim_seconds for r in results),
         actions=statistics.fmean(r.steps for r in results),
         success_rate=sum(r.success for r in results) / len(results), episodes=len(results),
-        error=failures[0] if failures else None,
+        error=failures[0] if failures else None, floor_s=statistics.fmean(floors),
     )
 
 
-HEADER = (f"{'task':42s} {'robot':8s} {'compile s':>9s} {'wall s/ep':>9s} {'sim s/ep':>8s} "
-          f"{'actions/ep':>10s} {'success':>7s}")
+HEADER = (f"{'task':42s} {'robot':8s} {'compile s':>9s} {'wall s/ep':>9s} {'floor s':>7s} "
+          f"{'wall/floor':>10s} {'sim s/ep':>8s} {'actions/ep':>10s} {'success':>7s}")
 
 
 def format_row(t: OracleTiming) -> str:
     """One aligned table row (with the first failure reason, shortened, if any)."""
-    row = (f"{t.task:42s} {t.robot:8s} {t.compile_s:9.2f} {t.wall_s:9.2f} {t.sim_s:8.1f} "
-           f"{t.actions:10.1f} {t.success_rate:7.0%}")
+    row = (f"{t.task:42s} {t.robot:8s} {t.compile_s:9.3f} {t.wall_s:9.3f} {t.floor_s:7.3f} "
+           f"{t.overhead:10.2f} {t.sim_s:8.1f} {t.actions:10.1f} {t.success_rate:7.0%}")
     if t.error:
         row += f"  ({t.error[:70]})"
     return row
 
 
 def run(quick: bool = False, episodes: int | None = None, robots: tuple[str, ...] = ROBOTS,
-        tasks: list[str] | None = None) -> list[OracleTiming]:
+        tasks: list[str] | None = None, plot_path: Path | None = PLOT) -> list[OracleTiming]:
     """Measure, printing rows as they finish and totals at the end."""
     names = tasks or (list(QUICK_TASKS) if quick else task_names())
     k = episodes or (1 if quick else 2)
@@ -110,11 +132,49 @@ def run(quick: bool = False, episodes: int | None = None, robots: tuple[str, ...
         sim = sum(t.sim_s * t.episodes for t in rows)
         acts = sum(t.actions * t.episodes for t in rows)
         ok = sum(t.success_rate * t.episodes for t in rows)
-        print(f"{robot}: {n_ep} episodes, mean {wall / n_ep:.2f} wall s/episode, "
+        floor = sum(t.floor_s * t.episodes for t in rows)
+        print(f"{robot}: {n_ep} episodes, mean {wall / n_ep:.3f} wall s/episode, physics "
+              f"lower bound {floor / n_ep:.3f} s ({wall / floor:.2f}x), "
               f"{sim / n_ep:.1f} sim s/episode ({sim / wall:.1f}x real time), "
               f"{wall / acts:.2f} wall s/action, success {ok / n_ep:.0%}, "
               f"compile mean {statistics.fmean(t.compile_s for t in rows):.2f} s")
+    if plot_path is not None and out:
+        plot(out, plot_path)
+        print(f"plot: {plot_path}")
     return out
+
+
+def plot(rows: list[OracleTiming], path: Path) -> None:
+    """Save wall time per episode beside its physics lower bound, per task and robot.
+
+    Args:
+        rows: Timings from :func:`run`.
+        path: Where the PNG goes.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = [r for r in rows if r.episodes]
+    labels = [f"{r.task} ({r.robot})" for r in rows]
+    y = range(len(rows))
+    fig, ax = plt.subplots(figsize=(7.0, 0.9 + 0.32 * len(rows)), dpi=110)
+    ax.barh([i + 0.2 for i in y], [r.wall_s for r in rows], height=0.4, color="tab:blue",
+            label="wall s per episode (reset + oracle + physics)")
+    ax.barh([i - 0.2 for i in y], [r.floor_s for r in rows], height=0.4, color="tab:gray",
+            label="physics lower bound (steps x bare mj_step)")
+    for i, r in zip(y, rows, strict=True):
+        ax.text(r.wall_s, i + 0.2, f" {r.overhead:.2f}x", va="center", fontsize=7)
+    ax.set_yticks(list(y), labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("seconds")
+    ax.set_title("Oracle episode: wall time vs the physics limit")
+    ax.legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path)
+    plt.close(fig)
 
 
 def main() -> None:

@@ -145,8 +145,10 @@ class CompiledScene:
 
 
 # ----------------------------------------------------------------- helpers
-def _check_args(graph: TaskGraph, robot: str | None, timestep: float) -> None:
-    graph.ensure_valid()
+def _check_args(graph: TaskGraph, robot: str | None, timestep: float,
+                validate: bool = True) -> None:
+    if validate:
+        graph.ensure_valid()
     if not graph.factors:
         raise CompileError("", f"graph {graph.name!r} has no factors",
                            "add at least one subtask factor")
@@ -310,7 +312,7 @@ def build_mjcf(graph: TaskGraph, timestep: float = 0.002) -> tuple[Any, list[Sce
 
 
 def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float = 0.002,
-               ) -> tuple[mujoco.MjSpec, list[SceneObject], list[BodyHandles],
+               validate: bool = True) -> tuple[mujoco.MjSpec, list[SceneObject], list[BodyHandles],
                           list[BodyHandles]]:
     """Build (not compile) the ``mujoco.MjSpec`` of a graph's scene.
 
@@ -318,6 +320,8 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float
         graph: A task graph; it is validated first.
         robot: A name of the robot registry (:mod:`factask.sim.robots`) or None.
         timestep: Physics timestep in seconds.
+        validate: Check the graph first (False: benchmarks of scenes beyond the graph
+            model's size limits; an invalid graph may then fail anywhere).
 
     Returns:
         The spec, the scene objects in body order, their handles, and the goal
@@ -328,7 +332,7 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float
         CompileError: no factors, a bad robot or timestep, or an object that cannot
             be built (names the variable).
     """
-    _check_args(graph, robot, timestep)
+    _check_args(graph, robot, timestep, validate)
     objects, plans, marker_plans = _scene_plans(graph)
     spec = new_spec(graph.name, timestep, GRAVITY, IMPRATIO)
     add_table(spec)
@@ -340,7 +344,7 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float
 
 
 def compile_graph(graph: TaskGraph, robot: str | None = "floating",
-                  timestep: float = 0.002) -> CompiledScene:
+                  timestep: float = 0.002, *, validate: bool = True) -> CompiledScene:
     """Compile a task graph into a MuJoCo model (through ``mujoco.MjSpec``).
 
     Args:
@@ -348,6 +352,7 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
         robot: A name of the robot registry (:mod:`factask.sim.robots`: "floating",
             "ur10e" alias "arm", "ur5e"), or None for no robot.
         timestep: Physics timestep in seconds, in (0, 0.01].
+        validate: Check the graph first (see :func:`build_spec`).
 
     Returns:
         The :class:`CompiledScene`.
@@ -357,7 +362,7 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
         CompileError: no factors, a bad robot or timestep, an object that cannot be
             built, or MuJoCo rejected the model (the variable is named when known).
     """
-    spec, objects, bodies, marker_bodies = build_spec(graph, robot, timestep)
+    spec, objects, bodies, marker_bodies = build_spec(graph, robot, timestep, validate)
     try:
         model = spec.compile()
     except ValueError as exc:
