@@ -39,6 +39,7 @@ from factask.sim.parts import (
     OBJECT_SOLIMP,
     OBJECT_SOLREF,
     OFFSCREEN_SIZE,
+    ROLLING_CONDIM,
     SHADOW_SIZE,
     TABLE_HEIGHT,
     TABLE_RGBA,
@@ -123,6 +124,8 @@ def build_object(parent: Any, name: str, kind: str, size: tuple[float, float, fl
         if g.quat is not None:
             geom["quat"] = list(g.quat)
         geom["dclass"] = OBJECT_CLASS if plan.collides else VISUAL_CLASS
+        if plan.collides and g.type == "sphere":
+            geom["condim"] = ROLLING_CONDIM
         if g.mass is not None:
             geom["mass"] = g.mass
         body.add("geom", **geom)

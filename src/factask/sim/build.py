@@ -36,6 +36,7 @@ from factask.sim.parts import (
     OBJECT_SOLIMP,
     OBJECT_SOLREF,
     OFFSCREEN_SIZE,
+    ROLLING_CONDIM,
     SHADOW_SIZE,
     TABLE_RGBA,
     TOP_CAMERA,
@@ -196,6 +197,8 @@ def add_object(spec: mujoco.MjSpec, plan: ObjectPlan) -> BodyHandles:
             geom.quat = list(g.quat)
         if plan.collides:
             _object_contacts(geom)
+            if g.type == "sphere":
+                geom.condim = ROLLING_CONDIM
         else:
             geom.contype = geom.conaffinity = 0
         if g.mass is not None:

@@ -52,6 +52,9 @@ GEOM_SEPARATOR = ":"
 OBJECT_FRICTION = (1.0, 0.005, 0.0001)
 #: Contact dimensionality of object geoms (4: sliding + torsional friction).
 OBJECT_CONDIM = 4
+#: ... of spheres (6: rolling friction too): a real ball on a table stops rolling;
+#: without it the last mm/s of a release carries a ball out of its zone.
+ROLLING_CONDIM = 6
 #: Contact stiffness (time constant, damping ratio): stiffer than MuJoCo's default
 #: (0.02) so resting objects sink < 1 mm; needs timestep <= 0.005.
 OBJECT_SOLREF = (0.01, 1.0)

@@ -95,6 +95,10 @@ RETREAT = 0.03
 REST_SPEED = 0.02
 #: ... or after this long (s).
 REST_MAX_TIME = 0.3
+#: Before release, objects must move slower than this (m/s or rad/s) ...
+RELEASE_SPEED = 0.003
+#: ... or this many seconds pass.
+RELEASE_MAX_TIME = 0.5
 #: Arm: a move has settled when the tip is this close to its target (m) ...
 SETTLE_TOL = 0.002
 #: ... and no joint turns faster than this (rad/s), or after SETTLE_MAX_TIME (s).
@@ -105,6 +109,11 @@ REACH_TOL = 0.005
 #: Arm: joint-space moves may sag below the straight Cartesian line by this much (m)
 #: before a via point is added.
 SAG_TOL = 0.01
+#: ... or stray sideways from it by this much (m): obstacles are searched along the
+#: straight line, within the cup's clearance of it.
+DRIFT_TOL = 0.02
+#: Halvings of a move at most when placing via points (2**4 = 16 segments).
+VIA_DEPTH = 4
 #: Default cap on physics steps of one primitive (40 s at dt = 2 ms).
 DEFAULT_MAX_STEPS = 20_000
 #: Default number of physics steps between ``on_step`` calls.
@@ -355,6 +364,9 @@ class SuctionRobot(ABC):
         self._settle()
         if self.gripper.held is None:
             raise _PrimitiveAbort("object lost during transport")
+        # Release only once everything is still: a ball let go while it still swings
+        # on the cup rolls away (nothing slows a rolling ball on the table).
+        self._wait_for_rest(RELEASE_SPEED, RELEASE_MAX_TIME)
         self.suction_off()
         self._follow(self._path([(self._cmd_pos + RETREAT * up, self._cmd_yaw)]))
         self._wait_for_rest()
@@ -391,10 +403,11 @@ class SuctionRobot(ABC):
         """
         return self._cmd_yaw, self._cmd_yaw + wrap_angle(place.yaw - pick.yaw)
 
-    def _wait_for_rest(self) -> None:
-        """Step, the controls held, until the free objects rest (at most REST_MAX_TIME)."""
-        for k in range(max(1, math.ceil(REST_MAX_TIME / self.dt))):
-            if k % REST_EVERY == 0 and k and self.gripper.objects_resting(REST_SPEED):
+    def _wait_for_rest(self, speed: float = REST_SPEED, max_time: float = REST_MAX_TIME) -> None:
+        """Step, the controls held, until no free object moves faster than ``speed``
+        (at most ``max_time`` seconds)."""
+        for k in range(max(1, math.ceil(max_time / self.dt))):
+            if k % REST_EVERY == 0 and k and self.gripper.objects_resting(speed):
                 return
             self._step()
 
@@ -556,12 +569,17 @@ class ArmSuctionRobot(SuctionRobot):
         return q
 
     def _vias(self, qa: np.ndarray, qb: np.ndarray, pa: np.ndarray, pb: np.ndarray,
-              ya: float, yb: float, depth: int = 2) -> list[np.ndarray]:
+              ya: float, yb: float, depth: int = VIA_DEPTH) -> list[np.ndarray]:
         """Joint via points so that the joint-space move from qa to qb sags at most
-        SAG_TOL below the straight tip line from pa to pb."""
-        sag = max(float(pa[2] + s * (pb[2] - pa[2]) - self.ik.fk(qa + s * (qb - qa))[2])
-                  for s in (0.25, 0.5, 0.75))
-        if sag <= SAG_TOL or depth == 0:
+        SAG_TOL below the straight tip line from pa to pb and strays at most
+        DRIFT_TOL from it sideways (obstacles are looked for along that line only:
+        a joint-space arc can swing the cup through a tower beside it)."""
+        sag = drift = 0.0
+        for s in (0.25, 0.5, 0.75):
+            tip, line = self.ik.fk(qa + s * (qb - qa)), pa + s * (pb - pa)
+            sag = max(sag, float(line[2] - tip[2]))
+            drift = max(drift, float(np.linalg.norm(tip[:2] - line[:2])))
+        if (sag <= SAG_TOL and drift <= DRIFT_TOL) or depth == 0:
             return []
         pm, ym = 0.5 * (pa + pb), 0.5 * (ya + yb)
         qm = self._solve(qa, pa, ya, pm, ym)
