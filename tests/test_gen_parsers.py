@@ -174,3 +174,17 @@ def test_every_step_schema_is_strict_and_its_skeleton_is_short() -> None:
         Draft202012Validator.check_schema(schema)
         walk(schema)
         assert len(schema_skeleton(schema)) < len(json.dumps(schema)) / 2, step
+
+
+def test_llama_grammar_schema_keeps_the_length_bound_and_drops_only_the_text_pattern() -> None:
+    from factask.gen.providers import for_llama_grammar, response_format_param
+
+    schema = SCHEMAS["subtask_outline"]
+    sent = response_format_param("llama_cpp", schema, "outline")
+    assert sent is not None and sent["type"] == "json_object"
+    desc = sent["schema"]["properties"]["subtasks"]["items"]["properties"]["description"]
+    assert desc == {"type": "string", "maxLength": 100}
+    name = sent["schema"]["properties"]["subtasks"]["items"]["properties"]["name"]
+    assert "pattern" in name  # names keep their pattern (no maxLength beside it)
+    assert for_llama_grammar(schema) != schema and schema_problems(
+        {"subtasks": [{"name": "a", "description": "x\ny"}]}, schema)  # the check keeps it

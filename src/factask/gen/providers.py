@@ -84,9 +84,26 @@ def response_format_param(form: StructuredForm, schema: Mapping[str, Any] | None
     if schema is None or form == "json_object":
         return {"type": "json_object"}
     if form == "llama_cpp":
-        return {"type": "json_object", "schema": dict(schema)}
+        return {"type": "json_object", "schema": for_llama_grammar(schema)}
     return {"type": "json_schema",
             "json_schema": {"name": name, "schema": dict(schema), "strict": False}}
+
+
+def for_llama_grammar(schema: Any) -> Any:
+    """The schema as llama.cpp's grammar converter should see it: a string with both
+    a ``pattern`` and a ``maxLength`` keeps only the length (the converter ignores
+    ``maxLength`` next to a pattern, so a small model would write text until its
+    token budget runs out, and a bounded repetition inside the pattern makes the
+    grammar an order of magnitude slower). The answer is still checked against the
+    whole schema, pattern included."""
+    if isinstance(schema, list):
+        return [for_llama_grammar(v) for v in schema]
+    if not isinstance(schema, Mapping):
+        return schema
+    out = {k: for_llama_grammar(v) for k, v in schema.items()}
+    if out.get("type") == "string" and "pattern" in out and "maxLength" in out:
+        del out["pattern"]
+    return out
 
 
 def constrained(form: str) -> bool:
@@ -123,5 +140,6 @@ def context_window(model: str) -> int | None:
     return int(value) if value else None
 
 
-__all__ = ["FORM_CHOICES", "StructuredForm", "constrained", "context_window", "import_litellm",
+__all__ = ["FORM_CHOICES", "StructuredForm", "constrained", "context_window", "for_llama_grammar",
+           "import_litellm",
            "response_format_param", "structured_form"]
