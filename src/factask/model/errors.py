@@ -9,6 +9,36 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+#: User text quoted in a message is cut to this many characters.
+QUOTE_LIMIT = 80
+#: A validation report lists at most this many problems, then says how many more.
+MAX_PROBLEMS_LISTED = 25
+
+
+def quote(text: object, limit: int = QUOTE_LIMIT) -> str:
+    """User text as it may appear in a message: escaped like ``repr`` (newlines and
+    control characters cannot fake further lines) and cut to ``limit`` characters,
+    with the full length stated when cut."""
+    raw = text if isinstance(text, str) else str(text)
+    if len(raw) <= limit:
+        return repr(raw)
+    return f"{raw[:limit]!r}... ({len(raw):,} characters)"
+
+
+def clip(text: object, limit: int = 200) -> str:
+    """Free text (an error from elsewhere, a line of code) cut to ``limit``
+    characters on one line, with the full length stated when cut."""
+    raw = str(text).replace("\r", " ").replace("\n", " ")
+    return raw if len(raw) <= limit else f"{raw[:limit]}... ({len(raw):,} characters)"
+
+
+def name_list(names: list[str], limit: int = 8) -> str:
+    """At most ``limit`` names, for a fix such as "use one of [...]" (a message
+    listing every name would grow with the square of the graph)."""
+    shown = [n if len(n) <= QUOTE_LIMIT else n[:QUOTE_LIMIT] + "..." for n in names[:limit]]
+    more = f" and {len(names) - limit} more" if len(names) > limit else ""
+    return f"{shown}{more}"
+
 
 class FactaskError(Exception):
     """Base class of every error factask raises on purpose."""
@@ -31,13 +61,20 @@ class Problem:
     fix: str = ""
 
     def __str__(self) -> str:
-        where = self.node or "<graph>"
+        # Node names come from the user's input: quoted when they could mislead.
+        node = self.node if _plain(self.node) else quote(self.node)
+        where = node or "<graph>"
         if self.field:
-            where = f"{where}.{self.field}"
+            where = f"{where}.{self.field if _plain(self.field) else quote(self.field)}"
         text = f"{where}: {self.message}"
         if self.fix:
             text += f" (fix: {self.fix})"
         return text
+
+
+def _plain(text: str) -> bool:
+    """Short, printable, one line: safe to show as it is."""
+    return len(text) <= QUOTE_LIMIT and text.isprintable()
 
 
 class InvalidValueError(FactaskError, ValueError):
@@ -57,7 +94,10 @@ class GraphValidationError(FactaskError):
 
     def __init__(self, problems: list[Problem], what: str = "task graph") -> None:
         self.problems = list(problems)
-        lines = "\n".join(f"  - {p}" for p in self.problems)
+        shown = self.problems[:MAX_PROBLEMS_LISTED]
+        lines = "\n".join(f"  - {clip(p, 600)}" for p in shown)
+        if len(self.problems) > len(shown):
+            lines += f"\n  ... and {len(self.problems) - len(shown)} more"
         super().__init__(f"invalid {what}: {len(self.problems)} problem(s)\n{lines}")
 
     @property

@@ -6,6 +6,7 @@ from typing import Annotated
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from factask.model.limits import MAX_REFERENCES, Text
 from factask.model.names import Name
 from factask.relations import Relation
 
@@ -32,13 +33,13 @@ class SubtaskFactor(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     name: Name
-    description: str = ""
+    description: Text = ""
     goal: Relation
-    scope: list[Name] | None = None
+    scope: Annotated[list[Name], Field(max_length=MAX_REFERENCES)] | None = None
     weight: Annotated[float, Field(gt=0, le=1, allow_inf_nan=False)] = 1.0
-    after: list[Name] = Field(default_factory=list)
+    after: list[Name] = Field(default_factory=list, max_length=MAX_REFERENCES)
     milestone: bool = False
-    initial_setup: str = ""
+    initial_setup: Text = ""
     template: Name | None = None
 
     @model_validator(mode="after")

@@ -18,9 +18,10 @@ from typing import Any
 import networkx as nx
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from factask.model.errors import GraphValidationError, Problem
+from factask.model.errors import GraphValidationError, Problem, name_list
 from factask.model.factors import SubtaskFactor
 from factask.model.kinds import kind_spec, shape_problem
+from factask.model.limits import MAX_FACTORS, MAX_OBJECTS, MAX_VARIABLES, Text, size_problem
 from factask.model.names import TaskName
 from factask.model.order import (
     cycle_problems,
@@ -64,9 +65,9 @@ class TaskGraph(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     name: TaskName
-    description: str = ""
-    variables: list[StateVariable] = Field(default_factory=list)
-    factors: list[SubtaskFactor] = Field(default_factory=list)
+    description: Text = ""
+    variables: list[StateVariable] = Field(default_factory=list, max_length=MAX_VARIABLES)
+    factors: list[SubtaskFactor] = Field(default_factory=list, max_length=MAX_FACTORS)
     limits: Limits = Field(default_factory=Limits)
 
     # ------------------------------------------------------------------ access
@@ -76,7 +77,8 @@ class TaskGraph(BaseModel):
             if v.name == name:
                 return v
         raise GraphValidationError(
-            [Problem(name, "", "no such variable", f"use one of {self.variable_names()}")]
+            [Problem(name, "", "no such variable",
+                     f"use one of {name_list(self.variable_names())}")]
         )
 
     def factor(self, name: str) -> SubtaskFactor:
@@ -85,7 +87,7 @@ class TaskGraph(BaseModel):
             if f.name == name:
                 return f
         raise GraphValidationError(
-            [Problem(name, "", "no such factor", f"use one of {self.factor_names()}")]
+            [Problem(name, "", "no such factor", f"use one of {name_list(self.factor_names())}")]
         )
 
     def variable_names(self) -> list[str]:
@@ -175,13 +177,21 @@ class TaskGraph(BaseModel):
         return graph_problems(self)
 
     def ensure_valid(self) -> TaskGraph:
-        """Check the graph as a whole; return it unchanged if valid.
+        """Check every field again, then the graph as a whole; return it unchanged if
+        valid. Entry points (compile, env, oracle, generation) call it, so a graph
+        changed after it was built (``g.variables[0].kind = "nonsense"``) is caught
+        where it enters, naming the node and field.
 
         (Not called ``validate``: that name is pydantic's.)
 
         Raises:
             GraphValidationError: listing every problem found.
         """
+        data = self.model_dump(mode="python", exclude_none=True)
+        try:
+            TaskGraph.model_validate(data)
+        except ValidationError as exc:
+            raise GraphValidationError(problems_from_pydantic(exc, data)) from None
         found = self.problems()
         if found:
             raise GraphValidationError(found)
@@ -218,8 +228,13 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
 
     # Variables: shapes their kind can have; initial placements refer to existing,
     # suitable variables.
+    objects = sum(v.count for v in graph.variables)
+    if objects > MAX_OBJECTS:
+        out.append(Problem("", "variables", f"the scene has {objects} objects (the sum of the "
+                           f"counts), more than {MAX_OBJECTS}",
+                           "use fewer or smaller variables, or split the task"))
     for v in graph.variables:
-        shape = shape_problem(v.kind, v.extents)
+        shape = size_problem(v.extents) or shape_problem(v.kind, v.extents)
         if shape is not None:
             out.append(Problem(v.name, "size", *shape))
         if getattr(v.initial, "offset", None) is not None and v.count > 1:
@@ -232,7 +247,7 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
                                    "name another variable"))
             elif ref not in variables:
                 out.append(Problem(v.name, "initial", f"starts on/inside unknown variable "
-                                   f"{ref!r}", f"use one of {var_names}"))
+                                   f"{ref!r}", f"use one of {name_list(var_names)}"))
             else:
                 need = "receptacle" if isinstance(v.initial, StartInside) else "support"
                 host = variables[ref]
@@ -261,15 +276,18 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
         for name in scope:
             if name not in variables:
                 out.append(Problem(f.name, "scope", f"scope names missing variable {name!r}",
-                                   f"define variable {name!r} or use one of {var_names}"))
+                                   f"define variable {name!r} or use one of "
+                                   f"{name_list(var_names)}"))
         for name in f.goal.variable_names():
             if name not in variables and name not in scope:
                 out.append(Problem(f.name, "goal", f"goal uses missing variable {name!r} "
                                    "(and it is not in the scope)",
-                                   f"define variable {name!r} or use one of {var_names}"))
+                                   f"define variable {name!r} or use one of "
+                                   f"{name_list(var_names)}"))
             elif name not in scope:
                 out.append(Problem(f.name, "goal", f"goal uses variable {name!r} outside the "
-                                   f"factor's scope {scope}", f"add {name!r} to the scope"))
+                                   f"factor's scope {name_list(scope)}",
+                                   f"add {name!r} to the scope"))
         overlap = set(f.goal.objects) & set(f.goal.anchors())
         for name in sorted(overlap):
             out.append(Problem(f.name, "goal", f"variable {name!r} is both moved and an anchor",
@@ -288,7 +306,7 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
                                    "remove it from 'after'"))
             elif a not in factors:
                 out.append(Problem(f.name, "after", f"'after' names unknown factor {a!r}",
-                                   f"use one of {fac_names}"))
+                                   f"use one of {name_list(fac_names)}"))
         if not math.isfinite(f.weight) or f.weight <= 0:
             out.append(Problem(f.name, "weight", "weight must be a positive number",
                                "give a weight in (0, 1]"))
@@ -358,6 +376,8 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
         return source.ensure_valid()
     data: Any = source
     if isinstance(source, (str, bytes)):
+        if isinstance(source, str):
+            source = source.removeprefix("\ufeff")  # as json.loads does for bytes
         try:
             data = json.loads(source)
         except RecursionError:
@@ -373,6 +393,13 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
             [Problem("", "", f"expected a JSON object, got {type(data).__name__}",
                      "send one JSON object with name, variables and factors")]
         )
+    # Refuse absurd sizes before validating every item (a million variables).
+    too_many = [Problem("", key, f"{len(data[key]):,} {key}, more than {limit}",
+                        f"keep at most {limit} {key} in one graph")
+                for key, limit in (("variables", MAX_VARIABLES), ("factors", MAX_FACTORS))
+                if isinstance(data.get(key), list) and len(data[key]) > limit]
+    if too_many:
+        raise GraphValidationError(too_many)
     try:
         graph = TaskGraph.model_validate(data)
     except ValidationError as exc:
@@ -383,7 +410,10 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
         raise GraphValidationError(
             [Problem("", "", "input nested too deeply", "send one flat task-graph object")]
         ) from None
-    return graph.ensure_valid()
+    found = graph.problems()  # its fields were just validated
+    if found:
+        raise GraphValidationError(found)
+    return graph
 
 
 def _problems_of_valid_parts(data: Mapping[str, Any]) -> list[Problem]:

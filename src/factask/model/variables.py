@@ -8,11 +8,12 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 
 from factask.model.errors import InvalidValueError
 from factask.model.kinds import AssetKind, default_mass, kind_spec, yaw_symmetry_deg
+from factask.model.limits import MAX_COUNT, MAX_HORIZONTAL, MIN_LENGTH, Text
 from factask.model.names import Name, instance_names
 from factask.model.palette import normalize_color
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 
-PositiveLength = Annotated[float, Field(gt=0, le=2.0, allow_inf_nan=False)]
+PositiveLength = Annotated[float, Field(ge=MIN_LENGTH, le=MAX_HORIZONTAL, allow_inf_nan=False)]
 
 
 class OnTable(BaseModel):
@@ -109,11 +110,11 @@ class StateVariable(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     name: Name
-    description: str = ""
+    description: Text = ""
     kind: AssetKind
     size: tuple[PositiveLength, PositiveLength, PositiveLength] | None = None
     color: str = "gray"
-    count: int = Field(1, ge=1, le=64)
+    count: int = Field(1, ge=1, le=MAX_COUNT)
     mass: Annotated[float, Field(gt=0, le=50, allow_inf_nan=False)] | None = None
     fixed: bool | None = None
     symmetry_deg: Annotated[float, Field(ge=0, le=360, allow_inf_nan=False)] | None = None

@@ -10,16 +10,20 @@ import numpy as np
 from pydantic import Field
 
 from factask.model.names import Name
-from factask.model.world import TABLE_Z
+from factask.model.world import TABLE_Z, WORKSPACE_X
 from factask.relations.base import RelationBase
 from factask.relations.packing import clear_radius
-from factask.relations.solving import Plan, SolveContext, SolvedFactor, make_plan
+from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import CheckScene, Verdict, check_slots
 from factask.scene.collision import CLEARANCE, TABLE
 from factask.scene.objects import SceneObject, footprint_corners, rest_surface_z, resting_pose
 
 #: Extra chord (m) between neighbours on a ring, over the clearance.
 RING_SLACK = 0.001
+
+
+#: The workspace's shorter side (x), metres.
+WORKSPACE_DEPTH = WORKSPACE_X[1] - WORKSPACE_X[0]
 
 
 class Circle(RelationBase):
@@ -84,6 +88,10 @@ class Circle(RelationBase):
                     plan.random = True
             return plan
         r = self.radius or radius
+        across = 2 * r + diag
+        if across > WORKSPACE_DEPTH:  # necessary: a free circle fits the workspace's depth
+            raise Infeasible(f"a circle of {n} is {across:.3f} m across; the workspace is "
+                             f"{WORKSPACE_DEPTH:.2f} m deep", retry=False)
         return ctx.search(movers, lambda xy, _yaw: ring(xy, r, TABLE_Z, []),
                           f"a circle of {n}")
 

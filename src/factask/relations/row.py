@@ -11,7 +11,7 @@ from pydantic import Field
 
 from factask.geometry import wrap_angle
 from factask.model.names import Name
-from factask.model.world import TABLE_Z
+from factask.model.world import TABLE_Z, WORKSPACE_X, WORKSPACE_Y
 from factask.relations.base import RelationBase
 from factask.relations.solving import (
     Infeasible,
@@ -35,6 +35,8 @@ from factask.scene.objects import (
 
 #: Extra gap in a row with no explicit spacing: widest object + this (metres).
 ROW_GAP = 0.01
+#: The longest straight line in the workspace, metres.
+WORKSPACE_DIAGONAL = math.hypot(WORKSPACE_X[1] - WORKSPACE_X[0], WORKSPACE_Y[1] - WORKSPACE_Y[0])
 
 
 class Row(RelationBase):
@@ -118,6 +120,11 @@ class Row(RelationBase):
                     raise Infeasible(f"a row of {n} spaced {spacing:.3f} m is longer than "
                                      f"{self.along!r}", retry=False)
             return plan
+        length = (n - 1) * spacing + max(max(o.size[:2]) for o in movers)
+        if length > WORKSPACE_DIAGONAL:  # necessary: a free row fits the workspace
+            raise Infeasible(f"a row of {n} spaced {spacing:.3f} m is {length:.2f} m long; "
+                             f"the longest line in the workspace is {WORKSPACE_DIAGONAL:.2f} m",
+                             retry=False)
         return ctx.search(movers, lambda xy, yaw: line(xy, yaw, TABLE_Z, []),
                           f"a row of {n}")
 

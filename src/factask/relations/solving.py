@@ -25,6 +25,8 @@ from factask.model.world import TABLE_Z, WORKSPACE_Z
 from factask.scene.collision import (
     GIVEN_CLEARANCE,
     MAX_TRIES_PER_OBJECT,
+    NO_DEADLINE,
+    Deadline,
     Occupancy,
     centre_in_workspace,
     in_workspace,
@@ -122,6 +124,7 @@ class SolveContext:
         rng: Random generator (free spots, phases, offsets).
         attempt: Index of this attempt; odd attempts pack by random spots instead of
             a grid.
+        deadline: When the whole reset gives up (checked between candidate spots).
     """
 
     graph: TaskGraph
@@ -130,6 +133,7 @@ class SolveContext:
     occ: Occupancy
     rng: np.random.Generator
     attempt: int = 0
+    deadline: Deadline = NO_DEADLINE
 
     def inst(self, var: str) -> list[str]:
         """Instance names of variable ``var``."""
@@ -195,6 +199,7 @@ class SolveContext:
         last = "no candidate"
         for xy, yaw in spots if spots is not None else table_spots(self.rng,
                                                                     MAX_TRIES_PER_OBJECT):
+            self.deadline.check(what, last)
             plan = build(xy, yaw)
             plan.random = True
             try:

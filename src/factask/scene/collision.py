@@ -19,6 +19,7 @@ a height interval too, so nothing starts on top of them.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
@@ -353,3 +354,38 @@ class LayoutError(FactaskError):
         if fix:
             text += f"; fix: {fix}"
         super().__init__(text)
+
+
+@dataclass(frozen=True)
+class Deadline:
+    """A wall-clock budget for a search (a reset must end in bounded time).
+
+    Attributes:
+        at: ``time.monotonic()`` value after which the search gives up.
+        budget: The budget it was made with, seconds (for messages).
+    """
+
+    at: float
+    budget: float
+
+    @classmethod
+    def after(cls, seconds: float) -> Deadline:
+        """A deadline ``seconds`` from now (``math.inf``: never)."""
+        return cls(time.monotonic() + seconds, seconds)
+
+    def check(self, what: str, last: str = "") -> None:
+        """Raise if the budget is spent.
+
+        Raises:
+            LayoutError: naming ``what``, the budget and the last reason (not
+                retryable: another layout would cost the same time again).
+        """
+        if time.monotonic() > self.at:
+            why = f"; last problem: {last}" if last else ""
+            raise LayoutError(what, f"no layout within the {self.budget:g} s budget{why}",
+                              retryable=False, fix="use fewer or smaller objects, or "
+                              "give them more room")
+
+
+#: A deadline that never passes.
+NO_DEADLINE = Deadline(math.inf, math.inf)

@@ -3,7 +3,9 @@
 :func:`reset_layout` samples an initial layout (:mod:`factask.sim.sampling`),
 solves every factor's targets from it (:mod:`factask.sim.solving`) and resamples
 — at most :data:`MAX_RESETS` times — when the targets cannot be solved from it or
-when it already satisfies a goal.
+when it already satisfies a goal. The whole loop has a wall-clock budget
+(:data:`RESET_TIME_BUDGET_S`): a layout the sampler cannot find ends in a
+:class:`~factask.scene.collision.LayoutError` in bounded time.
 """
 
 from __future__ import annotations
@@ -13,7 +15,7 @@ import numpy as np
 from factask.geometry import Pose
 from factask.model.graph import TaskGraph
 from factask.relations.solving import SolvedFactor
-from factask.scene.collision import LayoutError
+from factask.scene.collision import Deadline, LayoutError
 from factask.scene.objects import objects_by_name
 from factask.sim.checks import check_task
 from factask.sim.sampling import sample_layout
@@ -21,6 +23,8 @@ from factask.sim.solving import solve_targets
 
 #: Initial layouts tried by :func:`reset_layout`.
 MAX_RESETS = 10
+#: Wall-clock seconds a reset may search before it gives up.
+RESET_TIME_BUDGET_S = 8.0
 
 
 def moving_factors(graph: TaskGraph) -> list[str]:
@@ -29,7 +33,7 @@ def moving_factors(graph: TaskGraph) -> list[str]:
 
 
 def reset_layout(graph: TaskGraph, rng: np.random.Generator,
-                 max_resets: int = MAX_RESETS
+                 max_resets: int = MAX_RESETS, time_budget: float = RESET_TIME_BUDGET_S
                  ) -> tuple[dict[str, Pose], dict[str, SolvedFactor]]:
     """Sample an initial layout and solve every factor's targets.
 
@@ -40,6 +44,8 @@ def reset_layout(graph: TaskGraph, rng: np.random.Generator,
         graph: The task graph.
         rng: Random generator (same seed, same result).
         max_resets: Initial layouts tried.
+        time_budget: Wall-clock seconds before giving up (same seed, same result
+            whenever the budget is not hit).
 
     Returns:
         (initial poses, solved factors).
@@ -48,11 +54,12 @@ def reset_layout(graph: TaskGraph, rng: np.random.Generator,
         LayoutError: no layout worked; the message has the last reason.
     """
     objs = objects_by_name(graph)
+    deadline = Deadline.after(time_budget)
     last: LayoutError | None = None
     for _ in range(max_resets):
         try:
-            layout = sample_layout(graph, rng)
-            solved = solve_targets(graph, layout, rng)
+            layout = sample_layout(graph, rng, deadline=deadline)
+            solved = solve_targets(graph, layout, rng, deadline=deadline)
         except LayoutError as exc:
             last = exc
             if not exc.retryable:

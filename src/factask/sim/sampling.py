@@ -24,8 +24,10 @@ from factask.model.world import TABLE_Z
 from factask.scene.collision import (
     CLEARANCE,
     MAX_TRIES_PER_OBJECT,
+    NO_DEADLINE,
     WORKSPACE_CENTER,
     WORKSPACE_HALF,
+    Deadline,
     LayoutError,
     Occupancy,
     area_candidates,
@@ -110,7 +112,8 @@ def _table_candidates(obj: SceneObject, placement: object, rng: np.random.Genera
 
 def sample_layout(graph: TaskGraph, rng: np.random.Generator,
                   max_attempts: int = MAX_TRIES_PER_OBJECT,
-                  max_restarts: int = MAX_LAYOUT_RESTARTS) -> dict[str, Pose]:
+                  max_restarts: int = MAX_LAYOUT_RESTARTS,
+                  deadline: Deadline = NO_DEADLINE) -> dict[str, Pose]:
     """Sample an initial pose for every object instance of ``graph``.
 
     Args:
@@ -118,6 +121,7 @@ def sample_layout(graph: TaskGraph, rng: np.random.Generator,
         rng: Random generator (same seed, same layout).
         max_attempts: Candidate poses tried per object.
         max_restarts: Whole layouts tried.
+        deadline: When to give up (checked before each whole layout).
 
     Returns:
         Instance name -> pose (centre of its box), for fixed and free objects.
@@ -132,6 +136,7 @@ def sample_layout(graph: TaskGraph, rng: np.random.Generator,
     last: _Placement | None = None
     what = graph.name
     for _ in range(max_restarts):
+        deadline.check(what, last.reason if last else "")
         try:
             return _sample_once(graph, objs, rng, max_attempts)
         except _Placement as exc:

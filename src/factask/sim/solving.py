@@ -18,7 +18,7 @@ import numpy as np
 from factask.geometry import Pose
 from factask.model.graph import TaskGraph
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor
-from factask.scene.collision import LayoutError, Occupancy
+from factask.scene.collision import NO_DEADLINE, Deadline, LayoutError, Occupancy
 from factask.scene.objects import objects_by_name
 
 #: Attempts (other random choices) per factor before :func:`solve_targets` gives up.
@@ -26,7 +26,8 @@ MAX_SOLVE_ATTEMPTS = 20
 
 
 def solve_targets(graph: TaskGraph, layout: Mapping[str, Pose], rng: np.random.Generator,
-                  max_attempts: int = MAX_SOLVE_ATTEMPTS) -> dict[str, SolvedFactor]:
+                  max_attempts: int = MAX_SOLVE_ATTEMPTS,
+                  deadline: Deadline = NO_DEADLINE) -> dict[str, SolvedFactor]:
     """Turn every factor's relation into concrete target slots.
 
     Args:
@@ -34,6 +35,7 @@ def solve_targets(graph: TaskGraph, layout: Mapping[str, Pose], rng: np.random.G
         layout: Initial pose of every instance (from :func:`sample_layout`).
         rng: Random generator (free spots, phases, offsets).
         max_attempts: Attempts per factor with other random choices.
+        deadline: When to give up (checked between attempts and candidate spots).
 
     Returns:
         Factor name -> :class:`SolvedFactor`, in ``graph.factor_order()``.
@@ -46,7 +48,7 @@ def solve_targets(graph: TaskGraph, layout: Mapping[str, Pose], rng: np.random.G
     if missing:
         raise LayoutError(f"layout of {graph.name!r}", f"no initial pose for {missing}",
                           retryable=False, fix="pass the dict sample_layout returns")
-    ctx = SolveContext(graph, objs, dict(layout), Occupancy(), rng)
+    ctx = SolveContext(graph, objs, dict(layout), Occupancy(), rng, deadline=deadline)
     # Obstacles for targets: what will still stand where it started. Flat markers
     # do not collide, and an object some factor moves vacates its start (the
     # oracle moves it out of the way first if a target needs the spot); its own
@@ -63,6 +65,7 @@ def solve_targets(graph: TaskGraph, layout: Mapping[str, Pose], rng: np.random.G
         plan: Plan | None = None
         tries = 0
         for attempt in range(max_attempts):
+            deadline.check(f"factor {fname!r} ({f.goal.type})", last.reason if last else "")
             tries += 1
             ctx.attempt = attempt
             plan = None

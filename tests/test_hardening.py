@@ -1,0 +1,136 @@
+"""Bad input gets a short, typed, named error in bounded time (issue 12).
+
+Each test here reproduces one defect found by trying factask as a new user and as
+an attacker would; docs/limits.md lists every limit and what a user sees.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+
+import numpy as np
+import pytest
+
+from factask.model import GraphValidationError, parse_graph
+from factask.model.errors import MAX_PROBLEMS_LISTED, Problem, quote
+from factask.model.limits import MAX_OBJECTS, MAX_TEXT, MAX_VARIABLES, MIN_LENGTH
+from factask.scene.collision import LayoutError
+from factask.sim.reset import reset_layout
+
+BASE = {"name": "t",
+        "variables": [{"name": "b", "kind": "block"}, {"name": "z", "kind": "zone"}],
+        "factors": [{"name": "f", "goal": {"type": "in_zone", "objects": ["b"], "zone": "z"}}]}
+
+
+def _with(**changes: object) -> dict:
+    data = json.loads(json.dumps(BASE))
+    data.update(changes)
+    return data
+
+
+def _variable(**fields: object) -> dict:
+    return _with(variables=[{"name": "b", "kind": "block", **fields},
+                            {"name": "z", "kind": "zone"}])
+
+
+@pytest.mark.parametrize("size", [[1e-310, 0.04, 0.04], [1e-6, 0.04, 0.04]])
+def test_subnormal_and_tiny_sizes_are_refused_naming_the_field(size: list[float]) -> None:
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(_variable(size=size))
+    (p,) = err.value.problems
+    assert (p.node, p.field) == ("b", "size.0") and str(MIN_LENGTH) in p.message
+
+
+@pytest.mark.parametrize(("size", "word"), [([0.6, 0.6, 0.1], "depth"),
+                                            ([0.2, 0.2, 0.4], "taller"),
+                                            ([1.5, 0.1, 0.1], "less than or equal to 1")])
+def test_sizes_the_workspace_cannot_hold_are_refused(size: list[float], word: str) -> None:
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(_variable(kind="box", size=size))
+    assert err.value.problems[0].node == "b" and word in str(err.value)
+
+
+def test_too_many_variables_are_refused_before_validating_each() -> None:
+    data = _with(variables=[{"name": f"v{i}", "kind": "block"} for i in range(300_000)])
+    start = time.monotonic()
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(data)
+    assert time.monotonic() - start < 5.0  # one length check, not 300,000 validations
+    (p,) = err.value.problems
+    assert p.field == "variables" and str(MAX_VARIABLES) in p.message
+
+
+def test_too_many_objects_in_one_scene_are_refused() -> None:
+    with pytest.raises(GraphValidationError, match=f"more than {MAX_OBJECTS}"):
+        parse_graph(_with(variables=[{"name": f"v{i}", "kind": "block", "count": 60}
+                                     for i in range(2)] + [{"name": "z", "kind": "zone"}],
+                          factors=[{"name": "f", "goal": {"type": "in_zone", "objects": ["v0"],
+                                                          "zone": "z"}}]))
+
+
+def test_many_bad_entries_give_a_report_of_bounded_length() -> None:
+    data = _with(variables=[{"name": f"v{i}", "kind": "nonsense"} for i in range(MAX_VARIABLES)])
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(data)
+    text = str(err.value)
+    assert len(err.value.problems) >= MAX_VARIABLES  # all kept for programs
+    assert f"and {len(err.value.problems) - MAX_PROBLEMS_LISTED} more" in text
+    assert len(text) < 40_000
+
+
+def test_a_name_with_newlines_cannot_fake_more_problems() -> None:
+    data = _with(variables=[{"name": "a\n  - fake: problem", "kind": "block"},
+                            {"name": "z", "kind": "zone"}])
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(json.dumps(data))
+    lines = str(err.value).splitlines()
+    assert not any(line.startswith("  - fake") for line in lines)
+    assert any("'a\\n  - fake: problem'" in line for line in lines)
+
+
+def test_a_huge_string_is_quoted_short() -> None:
+    huge = "x" * 5_000_000
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(_with(description=huge))
+    assert len(str(err.value)) < 2_000 and str(MAX_TEXT) in str(err.value)
+    assert len(str(Problem(huge, "name", "bad"))) < 200
+    assert "5,000,000 characters" in quote(huge)
+
+
+def test_a_bom_in_a_str_is_accepted_like_in_bytes() -> None:
+    text = "\ufeff" + json.dumps(BASE)
+    assert parse_graph(text) == parse_graph(text.encode("utf-8"))
+
+
+def test_a_graph_changed_after_construction_is_caught_where_it_enters() -> None:
+    from factask.sim.compile import compile_graph
+
+    graph = parse_graph(BASE)
+    graph.variables[0].kind = "nonsense"  # type: ignore[assignment]
+    with pytest.raises(GraphValidationError) as err:
+        compile_graph(graph)
+    assert (err.value.problems[0].node, err.value.problems[0].field) == ("b", "kind")
+
+
+@pytest.mark.parametrize(("relation", "count", "why"), [("row", 40, "longest line"),
+                                                       ("circle", 32, "deep")])
+def test_a_shape_larger_than_the_workspace_fails_before_any_search(
+        relation: str, count: int, why: str) -> None:
+    graph = parse_graph(_with(variables=[{"name": "b", "kind": "block", "count": count}],
+                              factors=[{"name": "f", "goal": {"type": relation,
+                                                              "objects": ["b"]}}]))
+    start = time.monotonic()
+    with pytest.raises(LayoutError, match=why) as err:
+        reset_layout(graph, np.random.default_rng(0))
+    assert time.monotonic() - start < 10.0 and not err.value.retryable
+
+
+def test_every_reset_has_a_time_budget() -> None:
+    # 22 blocks in a free row fit the diagonal only: random spots almost never do.
+    graph = parse_graph(_with(variables=[{"name": "b", "kind": "block", "count": 22}],
+                              factors=[{"name": "f", "goal": {"type": "row", "objects": ["b"]}}]))
+    start = time.monotonic()
+    with pytest.raises(LayoutError, match="budget") as err:
+        reset_layout(graph, np.random.default_rng(0), time_budget=0.5)
+    assert time.monotonic() - start < 10.0 and not err.value.retryable
