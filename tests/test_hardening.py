@@ -134,3 +134,50 @@ def test_every_reset_has_a_time_budget() -> None:
     with pytest.raises(LayoutError, match="budget") as err:
         reset_layout(graph, np.random.default_rng(0), time_budget=0.5)
     assert time.monotonic() - start < 10.0 and not err.value.retryable
+
+
+# ------------------------------------------------------------------ the CLI
+def _cli(*args: str):
+    from typer.testing import CliRunner
+
+    from factask.cli import app
+
+    return CliRunner().invoke(app, list(args))
+
+
+@pytest.mark.parametrize("name", ["[/red]", "x[bold]y", "a\nb"])
+def test_markup_in_user_text_is_printed_not_interpreted(name: str) -> None:
+    result = _cli("run", name)
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output and "MarkupError" not in result.output
+    shown = _cli("show", name)
+    assert shown.exit_code == 2 and "MarkupError" not in shown.output
+
+
+@pytest.mark.parametrize("args", [("--seed", "-1"), ("--seed", str(2**40)),
+                                  ("--video", "out.txt"), ("--episodes", "0")])
+def test_bad_options_stop_before_any_work(args: tuple[str, str], tmp_path) -> None:
+    start = time.monotonic()
+    result = _cli("run", "place-red-in-green", *args)
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output
+    assert time.monotonic() - start < 30.0  # no episode was run first
+
+
+@pytest.mark.parametrize(("source", "said"), [
+    ("import sys\nsys.exit(0)\n", "sys.exit(0)"),
+    ("from cliport.tasks.task import Task\nclass T(Task):\n    def reset(self, env):\n"
+     "        import sys; sys.exit(0)\n", "sys.exit(0)"),
+    ("x = " + "(" * 100_000 + ")" * 100_000 + "\n", "nested"),
+    ("def f():\n    return f()\nf()\n", "RecursionError"),
+])
+def test_task_files_that_exit_or_recurse_fail_with_a_non_zero_code(
+        tmp_path, source: str, said: str) -> None:
+    task = tmp_path / "bad_task.py"
+    task.write_text(source)
+    for args in (("import-cliport", str(task), "-o", str(tmp_path / "o.json")),
+                 ("run", str(task))):
+        result = _cli(*args)
+        assert result.exit_code != 0, (args, result.output)
+        assert said in result.output and "Traceback" not in result.output
+        assert len(result.output) < 2_000

@@ -17,6 +17,31 @@ app = typer.Typer(
 
 #: Help text of every ``--robot`` option: the registry's names and what each models.
 ROBOT_HELP = f"Robot, one of the registry's: {describe_robots()}."
+#: Largest seed an option accepts (gymnasium and numpy take 32-bit seeds).
+MAX_SEED = 2**31 - 1
+#: Most episodes one command runs.
+MAX_EPISODES = 100_000
+#: File types ``--video`` can write.
+VIDEO_SUFFIXES = (".gif", ".mp4")
+
+
+def check_video(path: object) -> None:
+    """Exit with status 2, before any work, unless ``path`` is None or a writable
+    video file name."""
+    if path is None:
+        return
+    from pathlib import Path
+
+    video = Path(str(path))
+    err = Console(stderr=True, soft_wrap=True)
+    if video.suffix.lower() not in VIDEO_SUFFIXES:
+        err.print(f"--video {video}: give a file ending in {' or '.join(VIDEO_SUFFIXES)}",
+                  style="red", markup=False)
+        raise typer.Exit(2)
+    folder = video.parent if str(video.parent) else Path(".")
+    if not folder.is_dir():
+        err.print(f"--video {video}: folder {folder} does not exist", style="red", markup=False)
+        raise typer.Exit(2)
 
 
 def check_robot(robot: str) -> None:

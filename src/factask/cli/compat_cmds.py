@@ -13,7 +13,7 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from factask.cli.app import app
+from factask.cli.app import MAX_SEED, app
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -30,7 +30,8 @@ def import_cliport_cmd(
     file: Path = typer.Argument(..., help="The task's .py file (it is executed)."),
     class_name: str | None = typer.Option(None, "--class", help="Task class to import "
                                           "(default: the one the file defines)."),
-    seed: int = typer.Option(0, "--seed", help="Seed of the reset's random draws."),
+    seed: int = typer.Option(0, "--seed", min=0, max=MAX_SEED,
+                             help="Seed of the reset's random draws."),
     out: Path = typer.Option(..., "--out", "-o", help="Where to write the graph JSON."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Do not print the warnings."),
 ) -> None:
@@ -66,7 +67,8 @@ def import_cliport_batch_cmd(
     out: Path = typer.Option(..., "--out", "-o", help="Results file (JSON lines)."),
     timeout: float = typer.Option(120.0, "--timeout", min=0.1,
                                   help="Wall-clock seconds per file before it is killed."),
-    seed: int = typer.Option(0, "--seed", help="Seed of each reset's random draws."),
+    seed: int = typer.Option(0, "--seed", min=0, max=MAX_SEED,
+                             help="Seed of each reset's random draws."),
     episodes: int = typer.Option(0, "--episodes", min=0, help="Oracle episodes per file "
                                  "(0: do not run the oracle; needs factask.sim.episode)."),
     graphs: Path | None = typer.Option(None, "--graphs", help="Also write each imported "

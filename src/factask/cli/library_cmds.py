@@ -16,6 +16,7 @@ from rich.table import Table
 from factask.cli.app import app
 from factask.library import UnknownTaskError, get_task, list_tasks
 from factask.model import SubtaskFactor, TaskGraph
+from factask.model.errors import quote
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -70,7 +71,7 @@ def _print_graph(graph: TaskGraph) -> None:
     """Pretty print: description, variables table, factors in order with goals."""
     console.print(f"[bold]{graph.name}[/bold]", highlight=False)
     if graph.description:
-        console.print(graph.description, highlight=False)
+        console.print(graph.description, highlight=False, markup=False)
     vt = Table(title="state variables", title_justify="left", show_lines=False)
     vt.add_column("name", style="bold", no_wrap=True)
     vt.add_column("kind", no_wrap=True)
@@ -116,7 +117,8 @@ def show(
     try:
         graph = get_task(task)
     except UnknownTaskError as exc:
-        err_console.print(f"[red]unknown task {task!r}[/red]", highlight=False)
+        err_console.print(f"unknown task {quote(task)}", style="red", highlight=False,
+                          markup=False)
         if exc.suggestions:
             err_console.print("did you mean: " + ", ".join(exc.suggestions), highlight=False)
         err_console.print("see `factask list` for every task", highlight=False)

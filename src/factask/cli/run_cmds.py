@@ -12,7 +12,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from factask.cli.app import ROBOT_HELP, app, check_robot
+from factask.cli.app import MAX_EPISODES, MAX_SEED, ROBOT_HELP, app, check_robot, check_video
 from factask.model import FactaskError, GraphValidationError, TaskGraph, parse_graph
 
 console = Console()
@@ -48,10 +48,10 @@ def load_task_source(spec: str, seed: int = 0) -> tuple[TaskGraph, Any]:
         try:
             result = import_cliport(path_part, class_name or None, seed=seed)
         except FactaskError as exc:
-            err_console.print(f"[red]cannot import {spec}[/red]: {exc}")
+            err_console.print(f"cannot import {spec}: {exc}", style="red", markup=False)
             raise typer.Exit(2) from None
         for warning in result.warnings:
-            err_console.print(f"[yellow]warning:[/yellow] {warning}")
+            err_console.print(f"warning: {warning}", style="yellow", markup=False)
         return result.graph, result
     if spec.endswith(".json") or Path(spec).is_file():
         try:
@@ -61,7 +61,7 @@ def load_task_source(spec: str, seed: int = 0) -> tuple[TaskGraph, Any]:
             err_console.print(f"cannot read {spec}: {why or exc}", style="red", markup=False)
             raise typer.Exit(2) from None
         except GraphValidationError as exc:
-            err_console.print(f"[red]{spec}: invalid task graph[/red]\n{exc}")
+            err_console.print(f"{spec}: invalid task graph\n{exc}", style="red", markup=False)
             raise typer.Exit(2) from None
     from factask.library import get_task
     from factask.library.tasks import UnknownTaskError
@@ -69,7 +69,7 @@ def load_task_source(spec: str, seed: int = 0) -> tuple[TaskGraph, Any]:
     try:
         return get_task(spec), None
     except UnknownTaskError as exc:
-        err_console.print(f"[red]{exc}[/red]")
+        err_console.print(str(exc), style="red", markup=False)
         raise typer.Exit(2) from None
 
 
@@ -94,8 +94,10 @@ def _episode_table(result: Any, ravens: list[Any] | None = None) -> Table:
 def run(
     task: str = typer.Argument(..., help="Library task name, graph FILE.json, or "
                                "CLIPort FILE.py[:Class] (user code: it is executed)."),
-    episodes: int = typer.Option(1, "--episodes", "-n", min=1, help="Oracle episodes."),
-    seed: int = typer.Option(0, "--seed", "-s", help="First seed; episode k uses seed + k."),
+    episodes: int = typer.Option(1, "--episodes", "-n", min=1, max=MAX_EPISODES,
+                                 help="Oracle episodes."),
+    seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED,
+                             help="First seed; episode k uses seed + k."),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
     video: Path | None = typer.Option(None, "--video", help="Write a GIF of the first episode."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
@@ -116,11 +118,12 @@ def run(
     from factask.sim.episode import TaskResult, run_episode
 
     check_robot(robot)
+    check_video(video)
     graph, source = load_task_source(task, seed)
     try:
         env = FactaskEnv(graph, robot=robot)
     except FactaskError as exc:
-        err_console.print(f"[red]cannot compile {graph.name}[/red]: {exc}")
+        err_console.print(f"cannot compile {graph.name}: {exc}", style="red", markup=False)
         raise typer.Exit(2) from None
     results = []
     scores: list[Any] = []
@@ -171,7 +174,7 @@ def run(
 @app.command("eval-library")
 def eval_library(
     episodes: int = typer.Option(10, "--episodes", "-n", min=1, help="Episodes per task."),
-    seed: int = typer.Option(0, "--seed", "-s", help="First seed."),
+    seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED, help="First seed."),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
     tasks: list[str] | None = typer.Option(None, "--task", "-t", help="Only these tasks."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
@@ -218,7 +221,7 @@ def demo(
     out: Path = typer.Option(Path("out/demo"), "--out", help="Folder for the demo's files."),
     task: str = typer.Option("stack-block-pyramid", "--task", help="Library task to show."),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
-    seed: int = typer.Option(0, "--seed", "-s"),
+    seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED),
 ) -> None:
     """The main demo: a library task's graph, then the oracle solving it, on video."""
     from factask.sim.episode import run_episode

@@ -37,7 +37,7 @@ from factask.compat.cliport.errors import (
 from factask.compat.cliport.recorder import FAKE_ASSETS_ROOT, RecordingEnv, Session, session_scope
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.task import RAVENS_POS_EPS, RAVENS_ROT_EPS, Task
-from factask.model.errors import FactaskError
+from factask.model.errors import FactaskError, clip
 from factask.model.graph import TaskGraph
 
 #: Module names the alias context provides.
@@ -148,7 +148,7 @@ def _where(exc: BaseException, path: Path) -> str:
 
 def _user_error(what: str, exc: BaseException, path: Path) -> CliportImportError:
     cls = Unsupported if isinstance(exc, Unsupported) else CliportImportError
-    return cls(f"{what}: {type(exc).__name__}: {exc} (at {_where(exc, path)})")
+    return cls(f"{what}: {type(exc).__name__}: {clip(exc, 300)} (at {_where(exc, path)})")
 
 
 def _exec_file(path: Path) -> types.ModuleType:
@@ -161,7 +161,10 @@ def _exec_file(path: Path) -> types.ModuleType:
     except SyntaxError as exc:
         raise CliportImportError(
             f"{path}:{exc.lineno}: syntax error: {exc.msg}"
-            + (f" `{exc.text.strip()}`" if exc.text else "")) from None
+            + (f" `{clip(exc.text.strip(), 120)}`" if exc.text else "")) from None
+    except (RecursionError, MemoryError, ValueError) as exc:  # deep nesting, NUL bytes
+        raise CliportImportError(f"{path}: cannot compile: {type(exc).__name__}: "
+                                 f"{clip(exc, 200)}") from None
     name = f"factask_cliport_user_{uuid.uuid4().hex[:12]}"
     module = types.ModuleType(name)
     module.__file__ = str(path)
@@ -170,6 +173,9 @@ def _exec_file(path: Path) -> types.ModuleType:
         exec(code, module.__dict__)
     except CliportImportError:
         raise
+    except SystemExit as exc:
+        raise CliportImportError(f"loading {path.name} called sys.exit({exc.code!r}): a task "
+                                 "file must define its Task class, not run a program") from None
     except Exception as exc:
         raise _user_error(f"loading {path.name} failed", exc, path) from exc
     finally:
@@ -261,6 +267,9 @@ def import_cliport(path: str | Path, class_name: str | None = None,
                     instance.reset(env)
                 except Unsupported:
                     raise
+                except SystemExit as exc:
+                    raise CliportImportError(f"{p}: {cls.__name__}.reset called "
+                                             f"sys.exit({exc.code!r})") from None
                 except Exception as exc:
                     if refused:  # the task caught factask's refusal and failed later
                         raise Unsupported(f"{p}: {cls.__name__}.reset failed after factask "
