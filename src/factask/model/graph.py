@@ -187,7 +187,7 @@ class TaskGraph(BaseModel):
         Raises:
             GraphValidationError: listing every problem found.
         """
-        data = self.model_dump(mode="python", exclude_none=True)
+        data = self.model_dump(mode="python", exclude_none=True, warnings=False)
         try:
             TaskGraph.model_validate(data)
         except ValidationError as exc:
