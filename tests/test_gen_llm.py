@@ -232,3 +232,21 @@ def test_fatal_errors_are_raised_at_once_with_the_fix(monkeypatch) -> None:
     assert len(calls) == 1 and calls[0]["num_retries"] == 0 and calls[0]["max_retries"] == 0
     line = info.value.line()
     assert "\n" not in line and "Incorrect API key" in line and "OPENAI_API_KEY" in line
+
+
+def test_a_timed_out_request_is_abandoned_on_the_server_side() -> None:
+    import time as _time
+
+    def slow(request):
+        _time.sleep(3)
+        return "late"
+
+    abandoned: list[int] = []
+    with LoopbackServer(slow) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=1, timeout=1),
+                           on_abandon=lambda: abandoned.append(1))
+        client.sleep = lambda s: None
+        with pytest.raises(LLMError, match="Timeout"):
+            client.complete(MSGS)
+    assert abandoned == [1, 1]  # each timed-out try restarts the server (local model)

@@ -23,6 +23,7 @@ form               ``response_format`` sent                          for
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Mapping
 from typing import Any, Literal
 
@@ -90,20 +91,31 @@ def response_format_param(form: StructuredForm, schema: Mapping[str, Any] | None
 
 
 def for_llama_grammar(schema: Any) -> Any:
-    """The schema as llama.cpp's grammar converter should see it: a string with both
-    a ``pattern`` and a ``maxLength`` keeps only the length (the converter ignores
-    ``maxLength`` next to a pattern, so a small model would write text until its
-    token budget runs out, and a bounded repetition inside the pattern makes the
-    grammar an order of magnitude slower). The answer is still checked against the
-    whole schema, pattern included."""
+    """The schema as llama.cpp's grammar converter should see it.
+
+    A bounded repetition in a pattern makes the grammar slow (measured: a whole
+    task graph decoded 2.5 times slower with the name pattern's ``{0,15}`` than
+    with ``*``), so ``{0,n}`` becomes ``*`` and ``{1,n}`` becomes ``+``; a string
+    with both a ``pattern`` and a ``maxLength`` keeps only the length (the
+    converter ignores ``maxLength`` beside a pattern, so a small model would write
+    text until its token budget ran out). The answer is still checked against the
+    whole schema, so nothing the grammar lets through goes unnoticed.
+    """
     if isinstance(schema, list):
         return [for_llama_grammar(v) for v in schema]
     if not isinstance(schema, Mapping):
         return schema
     out = {k: for_llama_grammar(v) for k, v in schema.items()}
-    if out.get("type") == "string" and "pattern" in out and "maxLength" in out:
-        del out["pattern"]
+    if out.get("type") == "string" and "pattern" in out:
+        if "maxLength" in out:
+            del out["pattern"]
+        else:
+            out["pattern"] = _UNBOUNDED_ONE.sub("+", _UNBOUNDED_ZERO.sub("*", out["pattern"]))
     return out
+
+
+_UNBOUNDED_ZERO = re.compile(r"\{0,\d+\}")
+_UNBOUNDED_ONE = re.compile(r"\{1,\d+\}")
 
 
 def constrained(form: str) -> bool:
