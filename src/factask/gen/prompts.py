@@ -1,4 +1,5 @@
-"""Prompt templates (files in ``prompts/``) and the vocabulary they are filled with.
+"""Prompt templates (``factask/prompts/*.md``, package data) and the vocabulary they
+are filled with.
 
 One template file per step; placeholders are ``{{name}}`` (so JSON braces in a
 template need no escaping). Every list the model sees — asset kinds, colours,
@@ -8,8 +9,8 @@ code's own definitions (:data:`factask.model.kinds.ASSET_KINDS`,
 :data:`factask.relations.RELATION_TYPES` with docstrings and JSON
 Schemas), so a prompt can never advertise something the library lacks.
 
-The template directory is ``$FACTASK_PROMPTS`` if set, else the repository's
-``prompts/`` (next to ``src/``), else ``./prompts``.
+The template directory is ``$FACTASK_PROMPTS`` if set (to try edited prompts),
+else the ``prompts`` folder inside the installed package (it ships in the wheel).
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import os
 import re
 from collections.abc import Mapping
 from functools import lru_cache
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -61,7 +63,7 @@ def prompts_dir() -> Path:
     """
     env = os.environ.get("FACTASK_PROMPTS")
     candidates = [Path(env)] if env else []
-    candidates += [Path(__file__).resolve().parents[3] / "prompts", Path.cwd() / "prompts"]
+    candidates.append(Path(str(resources.files("factask") / "prompts")))
     for c in candidates:
         if (c / "system.md").is_file():
             return c
@@ -75,7 +77,7 @@ def _read(path: str, mtime: float) -> str:
 
 
 def load_template(step: str) -> str:
-    """The text of ``prompts/<step>.md``.
+    """The text of the template ``<step>.md``.
 
     Raises:
         PromptError: no such template.
@@ -92,7 +94,7 @@ def placeholders(template: str) -> set[str]:
 
 
 def render(step: str, /, **values: Any) -> str:
-    """Fill ``prompts/<step>.md``.
+    """Fill the template ``<step>.md``.
 
     Args:
         step: Template name (positional: ``step`` is also a placeholder name).

@@ -1,0 +1,45 @@
+"""A built wheel carries everything factask needs at run time (issue 12).
+
+The wheel is built from this checkout and installed on its own into a folder
+(its dependencies come from the test environment); from a folder outside the
+repository, the installed package finds its prompts and its task list and fills
+a prompt: nothing is read from the source tree.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import sysconfig
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.mark.slow
+def test_the_wheel_ships_prompts_and_data_and_they_are_found_from_it(tmp_path: Path) -> None:
+    dist = tmp_path / "dist"
+    subprocess.run([sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps",
+                    "--no-build-isolation", "-q", "-w", str(dist)], check=True, timeout=600,
+                   capture_output=True)
+    (wheel,) = dist.glob("factask-*.whl")
+    names = set(zipfile.ZipFile(wheel).namelist())
+    assert "factask/prompts/system.md" in names and "factask/data/gensim_tasks.json" in names
+    target = tmp_path / "site"
+    subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
+                    str(target), str(wheel)], check=True, timeout=600, capture_output=True)
+    site = sysconfig.get_paths()["purelib"]
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(target), site])}
+    env.pop("FACTASK_PROMPTS", None)
+    probe = ("import factask, factask.gen.prompts as p, factask.evaluation.benchmark as b;"
+             "print(factask.__file__); print(p.prompts_dir());"
+             "print(len(p.load_template('one_shot')));"
+             "print(b.default_tasks_path())")
+    out = subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, env=env, check=True,
+                         capture_output=True, text=True, timeout=300).stdout.splitlines()
+    assert all(line.startswith(str(target)) for line in (out[0], out[1], out[3])), out
+    assert int(out[2]) > 100
