@@ -2,8 +2,9 @@
 
 The wheel is built from this checkout and installed on its own into a folder
 (its dependencies come from the test environment); from a folder outside the
-repository, the installed package finds its prompts and its task list and fills
-a prompt: nothing is read from the source tree.
+repository, the installed package finds its prompts and its task list, and its
+``factask generate`` writes a verified task talking to the loopback server:
+nothing is read from the source tree.
 """
 
 from __future__ import annotations
@@ -43,3 +44,16 @@ def test_the_wheel_ships_prompts_and_data_and_they_are_found_from_it(tmp_path: P
                          capture_output=True, text=True, timeout=300).stdout.splitlines()
     assert all(line.startswith(str(target)) for line in (out[0], out[1], out[3])), out
     assert int(out[2]) > 100
+
+    from factask.gen.demo import DEMO_PROPOSAL, demo_responder
+    from factask.gen.loopback import LoopbackServer
+
+    graph = tmp_path / "generated.json"
+    with LoopbackServer(demo_responder()) as server:
+        run = subprocess.run([sys.executable, "-m", "factask", "generate", DEMO_PROPOSAL,
+                              "-a", "one-shot", "--model", "openai/scripted", "--api-base",
+                              server.url, "--episodes", "1", "--out", str(graph),
+                              "--cache", str(tmp_path / "cache")],
+                             cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    assert "level reached: completion" in run.stdout and graph.is_file()
