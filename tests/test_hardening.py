@@ -181,3 +181,4 @@ def test_task_files_that_exit_or_recurse_fail_with_a_non_zero_code(
         assert result.exit_code != 0, (args, result.output)
         assert said in result.output and "Traceback" not in result.output
         assert len(result.output) < 2_000
+

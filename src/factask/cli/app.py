@@ -9,11 +9,34 @@ from factask.sim.robots import ROBOT_NAMES, describe_robots
 
 app = typer.Typer(
     name="factask",
-    help="Robot manipulation tasks as factor graphs: validate, show, run, generate, evaluate.",
+    help="Robot manipulation tasks as factor graphs: validate, show, run, generate, evaluate. "
+    "Exit codes: 0 success; 1 the task or a check failed; 2 bad usage or input.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
 )
+
+def _version(value: bool) -> None:
+    if value:
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            typer.echo(f"factask {version('factask')}")
+        except PackageNotFoundError:  # running from a source tree that is not installed
+            typer.echo("factask (not installed)")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _main(
+    show_version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                      help="Print the version and exit."),
+) -> None:
+    """Robot manipulation tasks as factor graphs: validate, show, run, generate, evaluate.
+
+    Exit codes: 0 success; 1 the task or a check failed; 2 bad usage or input.
+    """
+
 
 #: Help text of every ``--robot`` option: the registry's names and what each models.
 ROBOT_HELP = f"Robot, one of the registry's: {describe_robots()}."

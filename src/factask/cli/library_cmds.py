@@ -108,12 +108,24 @@ def _print_graph(graph: TaskGraph) -> None:
 
 @app.command()
 def show(
-    task: str = typer.Argument(..., help="Library task name (see `factask list`)."),
+    task: str = typer.Argument(..., help="Library task name (see `factask list`), graph "
+                               "FILE.json (from generate, import-cliport, ...), or CLIPort "
+                               "FILE.py[:Class] (user code: it is executed)."),
     as_json: bool = typer.Option(False, "--json",
                                  help="Print the graph JSON (what `factask validate` reads)."),
     png: Path | None = typer.Option(None, "--png", help="Also draw the graph to this PNG."),
 ) -> None:
-    """Show a library task: variables, factors, their order and language goals."""
+    """Show a task: variables, factors, their order and language goals."""
+    if task.endswith((".json", ".py")) or ".py:" in task or Path(task).is_file():
+        from factask.cli.run_cmds import load_task
+
+        graph = load_task(task)
+        if as_json:
+            typer.echo(graph.to_json())
+        else:
+            _print_graph(graph)
+        _draw(graph, png, as_json)
+        return
     try:
         graph = get_task(task)
     except UnknownTaskError as exc:
@@ -127,9 +139,14 @@ def show(
         typer.echo(graph.to_json())
     else:
         _print_graph(graph)
+    _draw(graph, png, as_json)
+
+
+def _draw(graph: TaskGraph, png: Path | None, as_json: bool) -> None:
     if png is not None:
         from factask.viz import draw_graph  # matplotlib only when asked for
 
         out = draw_graph(graph, png)
         # Keep stdout pure JSON with --json: report the picture on stderr then.
-        (err_console if as_json else console).print(f"wrote {out}", highlight=False)
+        (err_console if as_json else console).print(f"wrote {out}", highlight=False,
+                                                    markup=False)

@@ -1,0 +1,34 @@
+"""The command line's contract (issue 20): version, exit codes, any graph shown."""
+
+from __future__ import annotations
+
+from typer.testing import CliRunner
+
+from factask.cli import app
+
+
+def _cli(*args: str):
+    return CliRunner().invoke(app, list(args))
+
+
+def test_version_and_exit_codes_are_in_the_help() -> None:
+    from importlib.metadata import version
+
+    assert _cli("--version").output.strip() == f"factask {version('factask')}"
+    assert "Exit codes: 0 success; 1" in " ".join(_cli("--help").output.split())
+
+
+def test_show_draws_a_graph_file_and_a_task_file(tmp_path) -> None:
+    from pathlib import Path
+
+    from factask.library import get_task
+
+    graph_file = tmp_path / "g.json"
+    graph_file.write_text(get_task("towers-of-hanoi").to_json())
+    shown = _cli("show", str(graph_file), "--png", str(tmp_path / "g.png"))
+    assert shown.exit_code == 0, shown.output
+    assert "milestones count once reached" in shown.output
+    assert (tmp_path / "g.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    task_file = Path(__file__).parent / "cliport_tasks" / "place_red_in_green.py"
+    shown = _cli("show", str(task_file), "--json")
+    assert shown.exit_code == 0 and '"name"' in shown.output
