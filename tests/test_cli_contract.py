@@ -32,3 +32,18 @@ def test_show_draws_a_graph_file_and_a_task_file(tmp_path) -> None:
     task_file = Path(__file__).parent / "cliport_tasks" / "place_red_in_green.py"
     shown = _cli("show", str(task_file), "--json")
     assert shown.exit_code == 0 and '"name"' in shown.output
+
+
+def test_piped_output_is_plain_lines_nothing_cut() -> None:
+    from factask.library import task_names
+
+    listed = _cli("list")
+    assert listed.exit_code == 0
+    rows = [line.split("\t") for line in listed.stdout.splitlines()]
+    assert rows[0][0] == "task" and [r[0] for r in rows[1:]] == task_names()
+    evaluated = _cli("eval-library", "--limit", "2", "-n", "1", "-t",
+                     "put-block-in-bowl,align-box-corner")
+    assert evaluated.exit_code == 0, evaluated.output
+    assert "[1/2] put-block-in-bowl: 1/1 episodes succeeded" in evaluated.output
+    lines = evaluated.stdout.splitlines()
+    assert lines[0].startswith("task\tsuccess") and lines[1].startswith("put-block-in-bowl\t")

@@ -31,6 +31,12 @@ def list_cmd(
     if as_json:
         typer.echo(json.dumps([i.to_dict() for i in infos], indent=2))
         return
+    if not console.is_terminal:  # piped: plain tab-separated lines, nothing cut
+        typer.echo("task\tvars\tfactors\tmovable\ttemplates")
+        for i in infos:
+            typer.echo(f"{i.name}\t{i.n_variables}\t{i.n_factors}\t{i.n_movable}\t"
+                       + ",".join(i.templates))
+        return
     table = Table(title=f"factask library: {len(infos)} tasks")
     table.add_column("task", style="bold")
     table.add_column("vars", justify="right")

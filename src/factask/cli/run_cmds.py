@@ -176,30 +176,50 @@ def eval_library(
     episodes: int = typer.Option(10, "--episodes", "-n", min=1, help="Episodes per task."),
     seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED, help="First seed."),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
-    tasks: list[str] | None = typer.Option(None, "--task", "-t", help="Only these tasks."),
+    tasks: list[str] | None = typer.Option(None, "--task", "-t", help="Only these tasks "
+                                           "(repeat -t, or give a comma-separated list)."),
+    limit: int | None = typer.Option(None, "--limit", min=1, help="Only the first N tasks."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
 ) -> None:
     """Run the oracle on every library task; print a table and the summary.
 
-    The summary has tasks_total, tasks_completed and episode_success_rate.
+    The summary has tasks_total, tasks_completed and episode_success_rate. When
+    stderr is not a terminal, progress is one line per task as it finishes.
     """
     from factask.library import task_names
     from factask.sim.episode import evaluate_task, summarize
 
     check_robot(robot)
-    names = tasks or task_names()
+    names = [n.strip() for t in tasks for n in t.split(",") if n.strip()] if tasks else (
+        task_names())
+    names = names[:limit] if limit else names
     results = []
-    with _progress(as_json) as progress:
+    lines = not as_json and not err_console.is_terminal
+    with _progress(as_json or lines) as progress:
         bar = progress.add_task("library", total=len(names) * episodes)
-        for name in names:
+        for k, name in enumerate(names, 1):
             graph = load_task(name)
             progress.update(bar, description=name)
             results.append(evaluate_task(graph, episodes, seed, robot,
                                          on_episode=lambda _r: progress.advance(bar)))
+            if lines:
+                done = results[-1]
+                err_console.print(f"[{k}/{len(names)}] {name}: "
+                                  f"{sum(e.success for e in done.episodes)}/{episodes} "
+                                  "episodes succeeded", markup=False, highlight=False)
     summary = summarize(results)
     if as_json:
         typer.echo(json.dumps({"robot": robot, "episodes_per_task": episodes, **summary,
                                "tasks": [r.to_dict() for r in results]}))
+    elif not console.is_terminal:  # piped: plain tab-separated lines, nothing cut
+        typer.echo("task\tsuccess\tcompleted\tmean actions\tfailures")
+        for r in results:
+            fails = sorted({e.failure for e in r.episodes if e.failure})
+            typer.echo(f"{r.task}\t{r.success_rate:.0%}\t{'yes' if r.completed else 'NO'}\t"
+                       f"{sum(e.steps for e in r.episodes) / len(r.episodes):.1f}\t"
+                       + " | ".join(" ".join(f.split()) for f in fails))
+        typer.echo(f"tasks completed: {summary['tasks_completed']}/{summary['tasks_total']}, "
+                   f"episode success rate: {summary['episode_success_rate']:.1%}")
     else:
         table = Table(title=f"oracle on the task library ({robot}, {episodes} episode(s) each)")
         for col in ("task", "success", "completed", "mean actions", "failures"):
