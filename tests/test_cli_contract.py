@@ -47,3 +47,15 @@ def test_piped_output_is_plain_lines_nothing_cut() -> None:
     assert "[1/2] put-block-in-bowl: 1/1 episodes succeeded" in evaluated.output
     lines = evaluated.stdout.splitlines()
     assert lines[0].startswith("task\tsuccess") and lines[1].startswith("put-block-in-bowl\t")
+
+
+def test_run_writes_an_mp4_when_asked_for_one(tmp_path) -> None:
+    import av
+
+    video = tmp_path / "episode.mp4"
+    result = _cli("run", "place-red-in-green", "--video", str(video))
+    assert result.exit_code == 0, result.output
+    assert f"video: {video}" in " ".join(result.output.split())
+    with av.open(str(video)) as container:
+        assert container.streams.video[0].codec_context.name == "h264"
+        assert sum(1 for _ in container.decode(video=0)) > 3

@@ -99,7 +99,8 @@ def run(
     seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED,
                              help="First seed; episode k uses seed + k."),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
-    video: Path | None = typer.Option(None, "--video", help="Write a GIF of the first episode."),
+    video: Path | None = typer.Option(None, "--video", help="Write a video of the first "
+                                      "episode: .mp4 (H.264) or .gif, by suffix."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
     ravens: bool = typer.Option(
         False, "--ravens", help="Also score every episode as Ravens does: goals in queue "
@@ -165,8 +166,7 @@ def run(
     else:
         console.print(_episode_table(result, scores))
         if video is not None:
-            written = video if video.suffix == ".gif" else video.with_suffix(".gif")
-            console.print(f"video: {written}")
+            console.print(f"video: {video}", markup=False, highlight=False)
     if not result.completed:
         raise typer.Exit(1)
 

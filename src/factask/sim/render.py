@@ -14,12 +14,9 @@ manager (or call ``close``) so contexts are freed deterministically.
 from __future__ import annotations
 
 import importlib
-import importlib.util
 import os
-import warnings
 from pathlib import Path
 from types import TracebackType
-from typing import Any
 
 import mujoco
 import numpy as np
@@ -229,16 +226,13 @@ def render_segmentation(model: mujoco.MjModel, data: mujoco.MjData,
 
 
 # -------------------------------------------------------------------- video
-def _has_ffmpeg() -> bool:
-    return importlib.util.find_spec("imageio_ffmpeg") is not None
-
-
 class VideoRecorder:
-    """Collects RGB frames and writes them as an animated GIF or an MP4.
+    """Collects RGB frames and writes them as an animated GIF or an H.264 MP4.
 
-    MP4 needs the ``imageio-ffmpeg`` package; without it an ``.mp4`` path is
-    written as a GIF next to it (same name, ``.gif``) with a warning. The file is
-    written on :meth:`close` (or leaving the ``with`` block).
+    The suffix decides: ``.gif`` (Pillow, through imageio) or ``.mp4`` (H.264 in
+    yuv420p through PyAV, which any player reads; an odd width or height is
+    padded by one black row or column). The file is written on :meth:`close`
+    (or leaving the ``with`` block).
 
     Args:
         path: Output file (``.gif`` or ``.mp4``).
@@ -254,10 +248,6 @@ class VideoRecorder:
             raise RenderError(f"video path {str(path)!r} must end in .gif or .mp4")
         if not fps > 0:
             raise RenderError(f"fps must be positive, got {fps}")
-        if path.suffix.lower() == ".mp4" and not _has_ffmpeg():
-            warnings.warn(f"imageio-ffmpeg is not installed: writing {path.with_suffix('.gif')} "
-                          "instead of an MP4", stacklevel=2)
-            path = path.with_suffix(".gif")
         self.path = path
         self.fps = float(fps)
         self.frames: list[np.ndarray] = []
@@ -287,13 +277,11 @@ class VideoRecorder:
         import imageio.v3 as iio
 
         self.path.parent.mkdir(parents=True, exist_ok=True)
-        kwargs: dict[str, Any]
         if self.path.suffix.lower() == ".gif":
             # Pillow's GIF writer: duration per frame in ms; loop forever.
-            kwargs = {"duration": 1000.0 / self.fps, "loop": 0}
+            iio.imwrite(self.path, np.stack(self.frames), duration=1000.0 / self.fps, loop=0)
         else:
-            kwargs = {"fps": self.fps}
-        iio.imwrite(self.path, np.stack(self.frames), **kwargs)
+            _write_mp4(self.path, self.frames, self.fps)
         self.frames = []
         return self.path
 
@@ -303,3 +291,23 @@ class VideoRecorder:
     def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
                  tb: TracebackType | None) -> None:
         self.close()
+
+
+def _write_mp4(path: Path, frames: list[np.ndarray], fps: float) -> None:
+    """H.264 (yuv420p) MP4 of ``frames`` through PyAV; odd sizes padded to even."""
+    from fractions import Fraction
+
+    import av
+
+    height, width = frames[0].shape[:2]
+    even_h, even_w = height + height % 2, width + width % 2
+    with av.open(str(path), mode="w") as container:
+        stream = container.add_stream("libx264", rate=Fraction(fps).limit_denominator(1000))
+        stream.width, stream.height, stream.pix_fmt = even_w, even_h, "yuv420p"
+        for frame in frames:
+            if (even_h, even_w) != (height, width):
+                frame = np.pad(frame, ((0, even_h - height), (0, even_w - width), (0, 0)))
+            for packet in stream.encode(av.VideoFrame.from_ndarray(frame, format="rgb24")):
+                container.mux(packet)
+        for packet in stream.encode():
+            container.mux(packet)
