@@ -59,3 +59,19 @@ def test_run_writes_an_mp4_when_asked_for_one(tmp_path) -> None:
     with av.open(str(video)) as container:
         assert container.streams.video[0].codec_context.name == "h264"
         assert sum(1 for _ in container.decode(video=0)) > 3
+
+
+def test_render_writes_a_png_of_the_asked_size_reset_or_solved(tmp_path) -> None:
+    import imageio.v3 as iio
+
+    for extra in ([], ["--solved", "--camera", "top"]):
+        out = tmp_path / f"scene{len(extra)}.png"
+        result = _cli("render", "put-block-in-bowl", "-o", str(out), "--size", "320x240",
+                      *extra)
+        assert result.exit_code == 0, result.output
+        image = iio.imread(out)
+        assert image.shape == (240, 320, 3) and image.std() > 1.0
+    for bad in (["--size", "big"], ["--camera", "side"], ["-o", str(tmp_path / "x.jpg")]):
+        args = ["render", "put-block-in-bowl", "-o", str(tmp_path / "y.png"), *bad]
+        result = _cli(*args)
+        assert result.exit_code == 2 and "Traceback" not in result.output

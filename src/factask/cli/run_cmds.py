@@ -282,3 +282,63 @@ def demo(
     console.print(f"episode: reward {result.reward:.3f} in {result.steps} actions — {status}")
     if not result.success:
         sys.exit(1)
+
+
+def _size(text: str) -> tuple[int, int]:
+    """``WxH`` -> (width, height); exit 2 on anything else."""
+    w, sep, h = text.lower().partition("x")
+    if not (sep and w.isdigit() and h.isdigit() and 16 <= int(w) <= 4096
+            and 16 <= int(h) <= 4096):
+        err_console.print(f"--size {text}: give WIDTHxHEIGHT, each 16 to 4096 (e.g. 640x480)",
+                          style="red", markup=False)
+        raise typer.Exit(2)
+    return int(w), int(h)
+
+
+@app.command()
+def render(
+    task: str = typer.Argument(..., help="Library task name, graph FILE.json, or CLIPort "
+                               "FILE.py[:Class] (user code: it is executed)."),
+    out: Path = typer.Option(..., "--out", "-o", help="PNG file to write."),
+    solved: bool = typer.Option(False, "--solved", help="Draw the oracle's end state "
+                                "instead of the reset scene."),
+    camera: str = typer.Option("front", "--camera", help="Camera: front or top."),
+    size: str = typer.Option("640x480", "--size", help="Image size WIDTHxHEIGHT."),
+    seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED),
+    robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
+    markers: bool = typer.Option(True, "--markers/--no-markers",
+                                 help="Draw the translucent goal markers."),
+) -> None:
+    """Draw a still of a task's scene: at reset, or solved by the oracle."""
+    from factask.sim.env import FactaskEnv
+    from factask.sim.episode import run_episode
+
+    check_robot(robot)
+    if out.suffix.lower() != ".png":
+        err_console.print(f"--out {out}: give a .png file", style="red", markup=False)
+        raise typer.Exit(2)
+    if camera not in ("front", "top"):
+        err_console.print(f"--camera {camera}: use front or top", style="red", markup=False)
+        raise typer.Exit(2)
+    width, height = _size(size)
+    graph = load_task(task, seed)
+    env = FactaskEnv(graph, robot=robot, render_size=(width, height), camera=camera)
+    try:
+        episode = None
+        if solved:
+            episode = run_episode(graph, seed, robot=robot, env=env)
+        else:
+            env.reset(seed=seed)
+        image = env.render_rgb(markers=markers)
+    finally:
+        env.close()
+    import imageio.v3 as iio
+
+    out.parent.mkdir(parents=True, exist_ok=True)
+    iio.imwrite(out, image)
+    state = "reset" if episode is None else (
+        f"solved: reward {episode.reward:.2f}, success {episode.success}")
+    console.print(f"wrote {out} ({width}x{height}, {camera} camera, seed {seed}, {state})",
+                  markup=False, highlight=False)
+    if episode is not None and not episode.success:
+        raise typer.Exit(1)

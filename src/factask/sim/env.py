@@ -288,8 +288,13 @@ class FactaskEnv(gym.Env):
             return None
         return self.render_rgb()
 
-    def render_rgb(self, camera: str | None = None) -> np.ndarray:
-        """RGB image (height, width, 3) uint8, whatever the render mode."""
+    def render_rgb(self, camera: str | None = None, markers: bool = True) -> np.ndarray:
+        """RGB image (height, width, 3) uint8, whatever the render mode.
+
+        Args:
+            camera: Camera name (default: the env's).
+            markers: Draw the translucent goal markers.
+        """
         if self._renderer is None:
             from factask.sim.render import SceneRenderer
 
@@ -297,7 +302,7 @@ class FactaskEnv(gym.Env):
                                            geom_object=self.scene.geom_object)
             # Free the GL context before interpreter shutdown tears EGL down.
             weakref.finalize(self, self._renderer.close)
-        return self._renderer.rgb(self.data, camera or self.camera)
+        return self._renderer.rgb(self.data, camera or self.camera, show_markers=markers)
 
     def close(self) -> None:
         """Release the renderer's GL context."""
