@@ -166,7 +166,7 @@ def run(
     else:
         console.print(_episode_table(result, scores))
         if video is not None:
-            console.print(f"video: {video}", markup=False, highlight=False)
+            typer.echo(f"video: {video}")  # one line, never wrapped
     if not result.completed:
         raise typer.Exit(1)
 
