@@ -44,43 +44,68 @@ def run_mode(out: Path, mode: str, args: argparse.Namespace, extra: list[str]) -
     return subprocess.call(cmd + extra)
 
 
-def table(summaries: dict[str, dict[str, Any]]) -> str:
+def first_step_rates(run: Path) -> dict[str, float]:
+    """Per strategy: the fraction of generations whose first step (``one_shot``,
+    ``variables``, ``subtask_outline``) passed at once -- the step a schema
+    constraint helps most, before any later step can fail."""
+    seen: dict[str, list[bool]] = {}
+    latest: dict[tuple[str, str], dict[str, Any]] = {}
+    path = run / "results.jsonl"
+    for line in path.read_text().splitlines() if path.exists() else []:
+        try:
+            record = json.loads(line)
+        except ValueError:
+            continue
+        latest[(record.get("approach", ""), record.get("task", ""))] = record
+    for (approach, _), record in latest.items():
+        steps = record.get("steps") or []
+        if record.get("status") != "done" or not steps:
+            continue
+        seen.setdefault(approach, []).append(bool(steps[0].get("ok")))
+    return {a: sum(v) / len(v) for a, v in seen.items() if v}
+
+
+def table(summaries: dict[str, dict[str, Any]], firsts: dict[str, dict[str, float]]) -> str:
     """Markdown: one row per (strategy, mode)."""
-    lines = ["| strategy | structured output | tasks | syntax % | runtime % | completion % | "
-             "repairs | tokens | tokens / task | wall s / task | GPT-4 (research) % |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| strategy | structured output | tasks | first step valid % | syntax % | "
+             "runtime % | completion % | repairs | tokens | tokens / task | wall s / task | "
+             "GPT-4 (research) % |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for approach, ref in RESEARCH.items():
         for mode, summary in summaries.items():
             row = summary["approaches"].get(approach)
             if not row or not row["tasks"]:
                 continue
             n = row["tasks"]
+            first = firsts.get(mode, {}).get(approach, 0.0)
             lines.append(
-                f"| {approach} | {mode} | {n} | {100 * row['syntax']:.1f} | "
+                f"| {approach} | {mode} | {n} | {100 * first:.1f} | {100 * row['syntax']:.1f} | "
                 f"{100 * row['runtime']:.1f} | {100 * row['completion']:.1f} | "
                 f"{row['repairs']} | {row['tokens']} | {row['tokens'] / n:.0f} | "
                 f"{row.get('wall_s', 0.0) / n:.0f} | {' / '.join(f'{x:.1f}' for x in ref)} |")
     return "\n".join(lines)
 
 
-def chart(summaries: dict[str, dict[str, Any]], path: Path, title: str) -> None:
-    """Grouped bars: per strategy, syntax / runtime / completion for each mode."""
+def chart(summaries: dict[str, dict[str, Any]], firsts: dict[str, dict[str, float]],
+          path: Path, title: str) -> None:
+    """Grouped bars: per strategy, first step / syntax / runtime / completion per mode."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    levels = ("syntax", "runtime", "completion")
-    fig, axes = plt.subplots(1, 3, figsize=(11, 3.6), sharey=True)
+    levels = ("first step", "syntax", "runtime", "completion")
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.6), sharey=True)
     for ax, approach in zip(axes, RESEARCH, strict=True):
         width = 0.8 / (len(summaries) + 1)
         for i, (mode, summary) in enumerate(summaries.items()):
             row = summary["approaches"].get(approach, {})
-            values = [100 * row.get(lv, 0.0) for lv in levels]
-            ax.bar([j + i * width for j in range(3)], values, width, label=mode)
-        ax.bar([j + len(summaries) * width for j in range(3)], RESEARCH[approach], width,
+            values = [100 * firsts.get(mode, {}).get(approach, 0.0)]
+            values += [100 * row.get(lv, 0.0) for lv in levels[1:]]
+            ax.bar([j + i * width for j in range(4)], values, width, label=mode)
+        ax.bar([j + len(summaries) * width for j in range(1, 4)], RESEARCH[approach], width,
                label="GPT-4 (research)", color="lightgray")
-        ax.set_xticks([j + width for j in range(3)], levels)
+        ax.set_xticks([j + width for j in range(4)], levels, fontsize=8)
         ax.set_title(approach)
         ax.set_ylim(0, 100)
     axes[0].set_ylabel("% of tasks")
@@ -115,10 +140,11 @@ def main(argv: list[str] | None = None) -> int:
             summaries[mode] = json.loads(path.read_text())
     if not summaries:
         return status or 1
-    text = table(summaries)
+    firsts = {mode: first_step_rates(args.out / mode) for mode in summaries}
+    text = table(summaries, firsts)
     (args.out / "table.md").write_text(text + "\n")
     model = next(iter(summaries.values())).get("model", "?")
-    chart(summaries, args.out / "table.png",
+    chart(summaries, firsts, args.out / "table.png",
           f"{model}; research55 sample{f' (first {args.limit})' if args.limit else ''}; "
           f"max_repairs {args.max_repairs}; episodes {args.episodes}")
     print(text)

@@ -50,8 +50,8 @@ def test_generate_rejects_bad_options(monkeypatch) -> None:
 
 
 def test_a_missing_key_is_one_line_and_exit_2_with_no_call(monkeypatch) -> None:
-    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
-    monkeypatch.delenv("FACTASK_API_KEY", raising=False)
+    for var in ("OPENAI_API_KEY", "ANTHROPIC_API_KEY", "FACTASK_API_KEY", "FACTASK_MODEL"):
+        monkeypatch.delenv(var, raising=False)
     monkeypatch.delenv("FACTASK_API_BASE", raising=False)
     res = runner.invoke(app, ["generate", "x: y", "--model", "openai/gpt-4o-mini"])
     assert res.exit_code == 2, res.output
