@@ -16,7 +16,13 @@ export LITELLM_LOCAL_MODEL_COST_MAP := True
 setup: $(STAMP)
 
 system-deps:
-	@missing=""; for p in $(SYSTEM_PACKAGES); do \
+	@if ! command -v dpkg >/dev/null 2>&1 || ! command -v apt-get >/dev/null 2>&1; then \
+	  echo "not a Debian system: install the headless GL libraries yourself (EGL with"; \
+	  echo "Mesa, or OSMesa; on Debian: $(SYSTEM_PACKAGES)) and pick MUJOCO_GL=egl or"; \
+	  echo "MUJOCO_GL=osmesa. Going on: everything but rendering works without them."; \
+	  exit 0; \
+	fi; \
+	missing=""; for p in $(SYSTEM_PACKAGES); do \
 	  dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
 	  echo "installing system packages:$$missing"; \
