@@ -75,3 +75,21 @@ def test_render_writes_a_png_of_the_asked_size_reset_or_solved(tmp_path) -> None
         args = ["render", "put-block-in-bowl", "-o", str(tmp_path / "y.png"), *bad]
         result = _cli(*args)
         assert result.exit_code == 2 and "Traceback" not in result.output
+
+
+def test_validate_json_and_paths_that_look_like_markup(tmp_path) -> None:
+    import json
+
+    bad = tmp_path / "[red]bad.json"
+    bad.write_text('{"name": "t", "variables": [{"name": "B", "kind": "x"}]}')
+    text = _cli("validate", str(bad))
+    assert text.exit_code == 1 and "[red]bad.json: invalid (2 problem(s))" in text.output
+    data = json.loads(_cli("validate", str(bad), "--json").stdout)
+    assert data["valid"] is False and {p["node"] for p in data["problems"]} == {"B"}
+    assert {p["field"] for p in data["problems"]} == {"name", "kind"}
+    good = tmp_path / "good.json"
+    from factask.library import get_task
+
+    good.write_text(get_task("towers-of-hanoi").to_json())
+    data = json.loads(_cli("validate", str(good), "--json").stdout)
+    assert data["valid"] and len(data["order"]) == 7

@@ -10,6 +10,7 @@ from rich.console import Console
 
 from factask.cli.app import app
 from factask.model import GraphValidationError, TaskGraph, parse_graph
+from factask.model.errors import MAX_PROBLEMS_LISTED, Problem, clip
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -19,8 +20,11 @@ err_console = Console(stderr=True, soft_wrap=True)
 def validate(
     file: Path = typer.Argument(..., help="Task graph JSON file ('-' reads standard input)."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Print nothing when valid."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object: file, valid, "
+                                 "task, problems (node, field, message, fix)."),
 ) -> None:
-    """Check a task-graph JSON file; exit 1 and list every problem if it is invalid."""
+    """Check a task-graph JSON file; exit 1 and list every problem if it is invalid
+    (2 if it cannot be read)."""
     try:
         text = typer.get_text_stream("stdin").read() if str(file) == "-" else file.read_text()
     except OSError as exc:
@@ -28,23 +32,35 @@ def validate(
                           markup=False)
         raise typer.Exit(2) from None
     except UnicodeDecodeError:
-        err_console.print(f"{file}: invalid (not UTF-8 text; a task graph is JSON)",
-                          style="red", markup=False)
+        _report(file, as_json, [Problem("", "", "not UTF-8 text", "a task graph is JSON")])
         raise typer.Exit(1) from None
     try:
         graph = parse_graph(text)
     except GraphValidationError as exc:
-        err_console.print(f"{file}: invalid ({len(exc.problems)} problem(s))", style="red",
-                          markup=False)
-        for p in exc.problems:
-            err_console.print(f"  - {p}", markup=False, highlight=False)
+        _report(file, as_json, exc.problems)
         raise typer.Exit(1) from None
-    if not quiet:
-        console.print(
-            f"[green]{file}: valid[/green] task {graph.name!r}: "
-            f"{len(graph.variables)} variable(s), {len(graph.factors)} factor(s), "
-            f"order {' -> '.join(graph.factor_order())}"
-        )
+    if as_json:
+        typer.echo(json.dumps({"file": str(file), "valid": True, "task": graph.name,
+                               "problems": [], "order": graph.factor_order()}))
+    elif not quiet:
+        console.print(f"{file}: valid task {graph.name!r}: {len(graph.variables)} "
+                      f"variable(s), {len(graph.factors)} factor(s), order "
+                      f"{' -> '.join(graph.factor_order())}", markup=False, highlight=False)
+
+
+def _report(file: Path, as_json: bool, problems: list[Problem]) -> None:
+    """Print the problems of an invalid file (at most MAX_PROBLEMS_LISTED as text)."""
+    if as_json:
+        typer.echo(json.dumps({"file": str(file), "valid": False, "task": None,
+                               "problems": [vars(p) for p in problems]}))
+        return
+    err_console.print(f"{file}: invalid ({len(problems)} problem(s))", style="red",
+                      markup=False)
+    for p in problems[:MAX_PROBLEMS_LISTED]:
+        err_console.print(f"  - {clip(p, 600)}", markup=False, highlight=False)
+    if len(problems) > MAX_PROBLEMS_LISTED:
+        err_console.print(f"  ... and {len(problems) - MAX_PROBLEMS_LISTED} more",
+                          markup=False)
 
 
 @app.command()
