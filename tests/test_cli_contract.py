@@ -93,3 +93,21 @@ def test_validate_json_and_paths_that_look_like_markup(tmp_path) -> None:
     good.write_text(get_task("towers-of-hanoi").to_json())
     data = json.loads(_cli("validate", str(good), "--json").stdout)
     assert data["valid"] and len(data["order"]) == 7
+
+
+def test_import_cliport_json_reports_milestones_and_failures(tmp_path) -> None:
+    import json
+    from pathlib import Path
+
+    tasks = Path(__file__).parent / "cliport_tasks"
+    ok = _cli("import-cliport", str(tasks / "towers_of_hanoi_seq.py"), "-o",
+              str(tmp_path / "h.json"), "--json")
+    assert ok.exit_code == 0, ok.output
+    data = json.loads(ok.stdout.strip().splitlines()[-1])
+    assert data["ok"] and data["factors"] == 7 and len(data["milestones"]) == 4
+    bad = tmp_path / "exits.py"
+    bad.write_text("import sys\nsys.exit(0)\n")
+    failed = _cli("import-cliport", str(bad), "-o", str(tmp_path / "x.json"), "--json")
+    assert failed.exit_code == 1
+    data = json.loads(failed.stdout.strip().splitlines()[-1])
+    assert not data["ok"] and "sys.exit(0)" in data["error"]

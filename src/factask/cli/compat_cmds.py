@@ -7,6 +7,7 @@ time limit. Import only code you trust.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import typer
@@ -34,6 +35,9 @@ def import_cliport_cmd(
                              help="Seed of the reset's random draws."),
     out: Path = typer.Option(..., "--out", "-o", help="Where to write the graph JSON."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Do not print the warnings."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object: file, ok, "
+                                 "class, task, variables, factors, milestones, warnings, "
+                                 "error, out."),
 ) -> None:
     """Write the graph JSON; print the import warnings; exit 1 with the reason on failure."""
     from factask.compat.cliport import CliportImportError, import_cliport
@@ -41,6 +45,9 @@ def import_cliport_cmd(
     try:
         result = import_cliport(file, class_name=class_name, seed=seed)
     except CliportImportError as exc:
+        if as_json:
+            typer.echo(json.dumps({"file": str(file), "ok": False, "error": str(exc)}))
+            raise typer.Exit(1) from None
         err_console.print(f"[red]{escape(str(file))}: import failed[/red]")
         err_console.print(str(exc), markup=False, highlight=False)
         raise typer.Exit(1) from None
@@ -50,6 +57,12 @@ def import_cliport_cmd(
         err_console.print(f"[red]{escape(f'cannot write {out}: {exc.strerror or exc}')}[/red]")
         raise typer.Exit(2) from None
     g = result.graph
+    if as_json:
+        typer.echo(json.dumps({"file": str(file), "ok": True, "class": result.class_name,
+                               "task": g.name, "variables": len(g.variables),
+                               "factors": len(g.factors), "milestones": g.milestones(),
+                               "warnings": result.warnings, "error": None, "out": str(out)}))
+        return
     console.print(f"[green]{escape(str(file))}: imported[/green] "
                   + escape(f"{result.class_name} as {g.name!r}: {len(g.variables)} "
                            f"variable(s), {len(g.factors)} factor(s) -> {out}"))
