@@ -1,7 +1,7 @@
 """Run every task class of a folder of CLIPort/GenSim task files through factask and
 print the research's table: syntax, runtime, completion.
 
-    python benchmarks/cliport_corpus.py ../shared/data/cliport_tasks --episodes 4
+    python benchmarks/cliport_corpus.py src/factask/data/cliport_tasks --episodes 4
     python benchmarks/cliport_corpus.py my_tasks/ --robot arm --out results.jsonl
 
 Levels, per task class (as in the research; a class reaching a level has reached

@@ -14,8 +14,9 @@ from factask.sim.env import FactaskEnv
 #: The benchmark task list shipped inside the package.
 GENSIM_TASKS = (Path(__file__).resolve().parents[1] / "src" / "factask" / "data"
                 / "gensim_tasks.json")
-#: The CLIPort original task files, in ``shared/`` beside the checkout (as in CI).
-CLIPORT_ORIGINALS = Path(__file__).resolve().parents[2] / "shared" / "data" / "cliport_tasks"
+#: The CLIPort original task files, shipped inside the package.
+CLIPORT_ORIGINALS = (Path(__file__).resolve().parents[1] / "src" / "factask" / "data"
+                     / "cliport_tasks")
 
 
 def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],

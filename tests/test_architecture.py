@@ -14,9 +14,15 @@ PACKAGE = ROOT / "src" / "factask"
 MAP = ROOT / "docs" / "architecture.md"
 
 
+#: Package data that happens to be Python: other people's task files, never imported.
+DATA = PACKAGE / "data"
+
+
 def _modules() -> dict[str, Path]:
     out = {}
     for path in sorted(PACKAGE.rglob("*.py")):
+        if DATA in path.parents:
+            continue
         parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
         if parts[-1] == "__init__":
             parts = parts[:-1]

@@ -30,6 +30,8 @@ def test_the_wheel_ships_prompts_and_data_and_they_are_found_from_it(tmp_path: P
     (wheel,) = dist.glob("factask-*.whl")
     names = set(zipfile.ZipFile(wheel).namelist())
     assert "factask/prompts/system.md" in names and "factask/data/gensim_tasks.json" in names
+    assert {"factask/data/cliport_tasks/towers_of_hanoi.py",
+            "factask/data/cliport_tasks/LICENSE"} <= names
     target = tmp_path / "site"
     subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
                     str(target), str(wheel)], check=True, timeout=600, capture_output=True)

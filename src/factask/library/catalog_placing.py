@@ -1,7 +1,7 @@
 """Library tasks that put objects somewhere: zones, bowls, containers, fixtures, corners.
 
 Each builder declares variables, instantiates templates and assembles them;
-names follow GenSim's task list (``shared/data/gensim_tasks.json``).
+names follow GenSim's task list (``factask/data/gensim_tasks.json``).
 """
 
 from __future__ import annotations
