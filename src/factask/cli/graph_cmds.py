@@ -10,7 +10,7 @@ from rich.console import Console
 
 from factask.cli.app import app
 from factask.model import GraphValidationError, TaskGraph, parse_graph
-from factask.model.errors import MAX_PROBLEMS_LISTED, Problem, clip
+from factask.model.errors import Problem, problem_lines
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -49,18 +49,15 @@ def validate(
 
 
 def _report(file: Path, as_json: bool, problems: list[Problem]) -> None:
-    """Print the problems of an invalid file (at most MAX_PROBLEMS_LISTED as text)."""
+    """Print the problems of an invalid file (as a validation report lists them)."""
     if as_json:
         typer.echo(json.dumps({"file": str(file), "valid": False, "task": None,
                                "problems": [vars(p) for p in problems]}))
         return
     err_console.print(f"{file}: invalid ({len(problems)} problem(s))", style="red",
                       markup=False)
-    for p in problems[:MAX_PROBLEMS_LISTED]:
-        err_console.print(f"  - {clip(p, 600)}", markup=False, highlight=False)
-    if len(problems) > MAX_PROBLEMS_LISTED:
-        err_console.print(f"  ... and {len(problems) - MAX_PROBLEMS_LISTED} more",
-                          markup=False)
+    for line in problem_lines(problems):
+        err_console.print(line, markup=False, highlight=False)
 
 
 @app.command()

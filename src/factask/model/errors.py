@@ -72,6 +72,15 @@ class Problem:
         return text
 
 
+def problem_lines(problems: list[Problem]) -> list[str]:
+    """A report's lines: at most :data:`MAX_PROBLEMS_LISTED` problems, each cut short,
+    then how many more there are."""
+    lines = [f"  - {clip(p, 600)}" for p in problems[:MAX_PROBLEMS_LISTED]]
+    if len(problems) > MAX_PROBLEMS_LISTED:
+        lines.append(f"  ... and {len(problems) - MAX_PROBLEMS_LISTED} more")
+    return lines
+
+
 def _plain(text: str) -> bool:
     """Short, printable, one line: safe to show as it is."""
     return len(text) <= QUOTE_LIMIT and text.isprintable()
@@ -94,10 +103,7 @@ class GraphValidationError(FactaskError):
 
     def __init__(self, problems: list[Problem], what: str = "task graph") -> None:
         self.problems = list(problems)
-        shown = self.problems[:MAX_PROBLEMS_LISTED]
-        lines = "\n".join(f"  - {clip(p, 600)}" for p in shown)
-        if len(self.problems) > len(shown):
-            lines += f"\n  ... and {len(self.problems) - len(shown)} more"
+        lines = "\n".join(problem_lines(self.problems))
         super().__init__(f"invalid {what}: {len(self.problems)} problem(s)\n{lines}")
 
     @property

@@ -15,16 +15,16 @@ from typing import Annotated
 
 from pydantic import StringConstraints
 
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
+from factask.model.world import WORKSPACE_DEPTH, WORKSPACE_HEIGHT, WORKSPACE_WIDTH
 
 #: Smallest size along any axis, metres (a zone's or line's thickness is 1 mm).
 MIN_LENGTH = 0.0005
 #: Largest horizontal size, metres: the workspace's width.
-MAX_HORIZONTAL = WORKSPACE_Y[1] - WORKSPACE_Y[0]
+MAX_HORIZONTAL = WORKSPACE_WIDTH
 #: The shorter horizontal side must fit the workspace's depth (turned to fit).
-MAX_SHORT_SIDE = WORKSPACE_X[1] - WORKSPACE_X[0]
+MAX_SHORT_SIDE = WORKSPACE_DEPTH
 #: Largest height, metres: the workspace's height.
-MAX_HEIGHT = WORKSPACE_Z[1] - WORKSPACE_Z[0]
+MAX_HEIGHT = WORKSPACE_HEIGHT
 #: Variables per graph.
 MAX_VARIABLES = 100
 #: Factors per graph.

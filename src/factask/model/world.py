@@ -13,5 +13,10 @@ WORKSPACE_X = (0.25, 0.75)
 WORKSPACE_Y = (-0.5, 0.5)
 #: Workspace z range (metres).
 WORKSPACE_Z = (0.0, 0.3)
+#: The workspace's depth (x), width (y) and height (z), and its longest straight line.
+WORKSPACE_DEPTH = WORKSPACE_X[1] - WORKSPACE_X[0]
+WORKSPACE_WIDTH = WORKSPACE_Y[1] - WORKSPACE_Y[0]
+WORKSPACE_HEIGHT = WORKSPACE_Z[1] - WORKSPACE_Z[0]
+WORKSPACE_DIAGONAL = (WORKSPACE_DEPTH**2 + WORKSPACE_WIDTH**2) ** 0.5
 #: Robot base position (the origin, as in Ravens).
 ROBOT_BASE = (0.0, 0.0, 0.0)

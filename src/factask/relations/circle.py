@@ -10,7 +10,7 @@ import numpy as np
 from pydantic import Field
 
 from factask.model.names import Name
-from factask.model.world import TABLE_Z, WORKSPACE_X
+from factask.model.world import TABLE_Z, WORKSPACE_DEPTH
 from factask.relations.base import RelationBase
 from factask.relations.packing import clear_radius
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
@@ -20,10 +20,6 @@ from factask.scene.objects import SceneObject, footprint_corners, rest_surface_z
 
 #: Extra chord (m) between neighbours on a ring, over the clearance.
 RING_SLACK = 0.001
-
-
-#: The workspace's shorter side (x), metres.
-WORKSPACE_DEPTH = WORKSPACE_X[1] - WORKSPACE_X[0]
 
 
 class Circle(RelationBase):

@@ -11,7 +11,7 @@ from pydantic import Field
 
 from factask.geometry import wrap_angle
 from factask.model.names import Name
-from factask.model.world import TABLE_Z, WORKSPACE_X, WORKSPACE_Y
+from factask.model.world import TABLE_Z, WORKSPACE_DIAGONAL
 from factask.relations.base import RelationBase
 from factask.relations.solving import (
     Infeasible,
@@ -35,8 +35,6 @@ from factask.scene.objects import (
 
 #: Extra gap in a row with no explicit spacing: widest object + this (metres).
 ROW_GAP = 0.01
-#: The longest straight line in the workspace, metres.
-WORKSPACE_DIAGONAL = math.hypot(WORKSPACE_X[1] - WORKSPACE_X[0], WORKSPACE_Y[1] - WORKSPACE_Y[0])
 
 
 class Row(RelationBase):

@@ -39,7 +39,7 @@ from factask.compat.cliport.grippers import Spatula
 from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
-from factask.geometry import tilt_deg
+from factask.geometry import Pose, tilt_deg
 from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
@@ -49,6 +49,7 @@ from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.relations import AtPose, InZone
+from factask.scene.collision import centre_in_workspace
 
 #: An object whose bottom is this far above the table starts on something.
 START_ABOVE_TABLE = 0.01
@@ -109,8 +110,7 @@ def _inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
 def _in_workspace(o: RecordedObject) -> bool:
     """The object's centre is inside the workspace (tasks park objects far away, e.g.
     palletizing's boxes waiting to be spawned at y - 10)."""
-    x, y = float(o.pos[0]), float(o.pos[1])
-    return WORKSPACE_X[0] <= x <= WORKSPACE_X[1] and WORKSPACE_Y[0] <= y <= WORKSPACE_Y[1]
+    return centre_in_workspace(Pose(np.asarray(o.pos, dtype=float), xyzw_to_wxyz(o.quat)))
 
 
 def _hosts(o: RecordedObject, others: list[RecordedObject]
