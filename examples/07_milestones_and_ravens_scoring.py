@@ -20,7 +20,7 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 from pathlib import Path
 
 import factask as ft
-from factask.compat.cliport import import_cliport
+from factask.compat.cliport import example_tasks_dir, import_cliport
 from factask.compat.cliport.scoring import scored_episode
 
 out = Path("out/examples")
@@ -93,6 +93,18 @@ for seed in (0, 1):
                         "ravens": ravens.success, "actions": episode.steps})
     print(f"{result.task_name} seed {seed}: factask {episode.success}, "
           f"Ravens {ravens.success} ({ravens.goals_done}/{len(result.goals)} goals)")
+
+# %% [markdown]
+# ## The CLIPort original, shipped with factask (Apache-2.0, unchanged)
+
+# %%
+original = import_cliport(example_tasks_dir() / "towers_of_hanoi.py", seed=0)
+print(f"{original.task_name}: {len(original.graph.factors)} goals in queue order, "
+      f"milestones {len(original.graph.milestones())}")
+episode, ravens = scored_episode(original, 0)
+oracle_runs.append({"task": original.task_name, "seed": 0, "factask": episode.success,
+                    "ravens": ravens.success, "actions": episode.steps})
+print(f"factask {episode.success}, Ravens {ravens.success} in {episode.steps} actions")
 
 (out / "07_scores.json").write_text(json.dumps(oracle_runs, indent=2))
 
