@@ -73,6 +73,12 @@ def _render() -> ModuleType:
     return module
 
 
+def _registration() -> ModuleType:
+    import factask.registration as module
+
+    return module
+
+
 def _gen() -> ModuleType:
     import factask.gen as module
 
@@ -114,6 +120,9 @@ _LAZY: dict[str, Callable[[], ModuleType]] = {
     "TaskResult": _episode,
     "SceneRenderer": _render,
     "VideoRecorder": _render,
+    # gymnasium ids and observation modes
+    "make": _registration,
+    "env_id": _registration,
     # LLM generation by factorization
     "generate": _gen,
     "Generator": _gen,
@@ -142,3 +151,7 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY))
+
+
+# gymnasium ids factask/<task>-v0: string entry points, so MuJoCo loads only on make.
+_registration().register_envs()
