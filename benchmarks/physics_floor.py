@@ -5,8 +5,9 @@ again, unchanged (same seed, same actions: the physics is deterministic), with
 ``mujoco.mj_step`` wrapped to count the steps and keep a copy of every
 ``every``-th state (``mj_getState``, plus the suction weld's target, which lives
 in the model, and the sleep state of the kinematic trees, which ``mj_getState``
-does not hold: a resting object asleep in the run must be asleep in the bare step). A bare ``mj_step`` is then timed from each kept state: the mean is
-the cost of one step of exactly the states the run went through (contacts while
+does not hold: a resting object asleep in the run must be asleep in the bare
+step). A bare ``mj_step`` is then timed from each kept state: the mean is the
+cost of one step of exactly the states the run went through (contacts while
 carrying included), and steps x that mean is the fastest the run could be with
 no Python around the physics. ``wall / lower bound`` is the overhead ratio.
 """
