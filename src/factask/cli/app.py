@@ -46,6 +46,49 @@ MAX_SEED = 2**31 - 1
 MAX_EPISODES = 100_000
 #: File types ``--video`` can write.
 VIDEO_SUFFIXES = (".gif", ".mp4")
+#: Help text of every ``--camera`` option (the names are
+#: :data:`factask.sim.render.VIEWS`; kept here so ``--help`` needs no MuJoCo).
+CAMERA_HELP = ("Camera: a view framed so the robot and every object are whole (front, top, "
+               "left, right, back), or the name of a camera of the scene.")
+#: Help text of every ``--json`` option of a command that reports results.
+JSON_HELP = "Print one JSON object on stdout, nothing else (messages go to stderr)."
+
+
+def fail(message: str, code: int = 2) -> typer.Exit:
+    """Print ``message`` (plain text: square brackets stay) in red on stderr and
+    return the exit to raise: ``raise fail("--size x: ...")``."""
+    Console(stderr=True, soft_wrap=True).print(message, style="red", markup=False,
+                                               highlight=False)
+    return typer.Exit(code)
+
+
+def parse_size(text: str, largest: tuple[int, int]) -> tuple[int, int]:
+    """``WxH`` -> (width, height).
+
+    Args:
+        text: What the user gave to ``--size``.
+        largest: The largest (width, height) allowed (the scenes' offscreen buffer,
+            ``factask.sim.assets.OFFSCREEN_SIZE``).
+
+    Raises:
+        typer.Exit: code 2, with the expected form, on anything else.
+    """
+    w, sep, h = text.lower().partition("x")
+    if not (sep and w.isdigit() and h.isdigit() and 16 <= int(w) <= largest[0]
+            and 16 <= int(h) <= largest[1]):
+        raise fail(f"--size {text}: give WIDTHxHEIGHT, from 16x16 to "
+                   f"{largest[0]}x{largest[1]} (e.g. 640x480)")
+    return int(w), int(h)
+
+
+def check_camera(camera: str, model: object) -> None:
+    """Exit with status 2 unless ``camera`` is a framed view or a camera of ``model``."""
+    from factask.sim.render import VIEWS
+
+    names = [model.camera(i).name for i in range(model.ncam)]  # type: ignore[attr-defined]
+    if camera not in VIEWS and camera not in names:
+        raise fail(f"--camera {camera}: use a view ({', '.join(VIEWS)}) or a camera of the "
+                   f"scene ({', '.join(names) or 'none'})")
 
 
 def check_video(path: object) -> None:
@@ -56,15 +99,12 @@ def check_video(path: object) -> None:
     from pathlib import Path
 
     video = Path(str(path))
-    err = Console(stderr=True, soft_wrap=True)
     if video.suffix.lower() not in VIDEO_SUFFIXES:
-        err.print(f"--video {video}: give a file ending in {' or '.join(VIDEO_SUFFIXES)}",
-                  style="red", markup=False)
-        raise typer.Exit(2)
+        raise fail(f"--video {video}: give a file ending in {' or '.join(VIDEO_SUFFIXES)} "
+                   "(MP4 is H.264, GIF plays anywhere)")
     folder = video.parent if str(video.parent) else Path(".")
     if not folder.is_dir():
-        err.print(f"--video {video}: folder {folder} does not exist", style="red", markup=False)
-        raise typer.Exit(2)
+        raise fail(f"--video {video}: folder {folder} does not exist (fix: create it)")
 
 
 def check_robot(robot: str) -> None:

@@ -14,7 +14,7 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from factask.cli.app import MAX_SEED, app
+from factask.cli.app import JSON_HELP, MAX_SEED, app
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -91,6 +91,8 @@ def import_cliport_batch_cmd(
                                 "yaw within rot_eps modulo symmetry, a finished goal never "
                                 "re-checked, success at reward >= 0.99): ravens_success_rate "
                                 "and per-episode scores beside factask's own checks."),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP + " It holds folder, out, "
+                                 "files, imported and every file's record."),
 ) -> None:
     """Run the batch; exit 0 even if files fail (their lines say why)."""
     from factask.compat.cliport.batch import run_batch, task_files
@@ -123,4 +125,8 @@ def import_cliport_batch_cmd(
         err_console.print(f"[red]{escape(f'cannot write {out}: {exc.strerror or exc}')}[/red]")
         raise typer.Exit(2) from None
     good = sum(1 for r in records if r.get("imported") and not r.get("error"))
+    if as_json:
+        typer.echo(json.dumps({"folder": str(folder), "out": str(out), "files": len(records),
+                               "imported": good, "records": records}))
+        return
     console.print(escape(f"{good}/{len(records)} file(s) imported -> {out}"), highlight=False)

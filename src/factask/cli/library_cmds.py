@@ -11,6 +11,7 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from factask.cli.app import app
@@ -44,7 +45,7 @@ def list_cmd(
     table.add_column("movable", justify="right")
     table.add_column("templates")
     for i in infos:
-        table.add_row(i.name, str(i.n_variables), str(i.n_factors), str(i.n_movable),
+        table.add_row(escape(i.name), str(i.n_variables), str(i.n_factors), str(i.n_movable),
                       ", ".join(i.templates))
     console.print(table)
 
@@ -75,7 +76,7 @@ def _start_text(graph: TaskGraph, name: str) -> str:
 
 def _print_graph(graph: TaskGraph) -> None:
     """Pretty print: description, variables table, factors in order with goals."""
-    console.print(f"[bold]{graph.name}[/bold]", highlight=False)
+    console.print(f"[bold]{escape(graph.name)}[/bold]", highlight=False)
     if graph.description:
         console.print(graph.description, highlight=False, markup=False)
     vt = Table(title="state variables", title_justify="left", show_lines=False)
@@ -87,8 +88,8 @@ def _print_graph(graph: TaskGraph) -> None:
     for v in graph.variables:
         kind = v.kind + (f" x{v.count}" if v.count > 1 else "") + (" (fixed)" if v.is_fixed
                                                                     else "")
-        vt.add_row(v.name, kind, "x".join(f"{s:g}" for s in v.extents), v.color,
-                   _start_text(graph, v.name))
+        vt.add_row(escape(v.name), kind, "x".join(f"{s:g}" for s in v.extents), v.color,
+                   escape(_start_text(graph, v.name)))
     console.print(vt)
     order = graph.factor_order()
     dep = graph.dependency_graph()
@@ -100,13 +101,14 @@ def _print_graph(graph: TaskGraph) -> None:
         after = f", after {', '.join(before)}" if before else ""
         tpl = f", template {f.template}" if f.template else ""
         kind = ", milestone" if f.milestone else ""
-        console.print(f"  {i}. [bold]{name}[/bold] (weight {f.weight:.3f}{kind}{after}{tpl})",
+        console.print(f"  {i}. [bold]{escape(name)}[/bold] "
+                      + escape(f"(weight {f.weight:.3f}{kind}{after}{tpl})"),
                       highlight=False)
         console.print(f"     goal: {_goal_text(f)}", highlight=False, markup=False)
         console.print(f"     \"{f.description}\"", highlight=False, markup=False)
         if f.initial_setup:
             console.print(f"     needs: {f.initial_setup}", highlight=False, markup=False)
-    console.print(f"order: {' -> '.join(order)}", highlight=False)
+    console.print(f"order: {' -> '.join(order)}", highlight=False, markup=False)
     if graph.milestones():
         console.print("milestones count once reached, in this order; the other factors "
                       "must hold at the end", highlight=False)

@@ -3,16 +3,28 @@
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from factask.cli.app import MAX_EPISODES, MAX_SEED, ROBOT_HELP, app, check_robot, check_video
+from factask.cli.app import (
+    CAMERA_HELP,
+    JSON_HELP,
+    MAX_EPISODES,
+    MAX_SEED,
+    ROBOT_HELP,
+    app,
+    check_camera,
+    check_robot,
+    check_video,
+    fail,
+    parse_size,
+)
 from factask.model import FactaskError, GraphValidationError, TaskGraph, parse_graph
 
 console = Console()
@@ -83,11 +95,40 @@ def _episode_table(result: Any, ravens: list[Any] | None = None) -> Table:
         table.add_column(col)
     for k, e in enumerate(result.episodes):
         row = [str(e.seed), f"{e.reward:.3f}", "yes" if e.success else "no", str(e.steps),
-               e.failure or ""]
+               escape(e.failure or "")]
         if ravens:
             row[3:3] = [f"{ravens[k].reward:.3f}", "yes" if ravens[k].success else "no"]
         table.add_row(*row)
     return table
+
+
+def _frame_size(text: str) -> tuple[int, int]:
+    """``--size`` of a picture or video, within the scenes' offscreen buffer."""
+    from factask.sim.assets import OFFSCREEN_SIZE
+
+    return parse_size(text, OFFSCREEN_SIZE)
+
+
+def _compile(graph: TaskGraph, robot: str, **kwargs: Any) -> Any:
+    """The task's environment; exit 2 with the reason if it cannot be compiled."""
+    from factask.sim.env import FactaskEnv
+
+    try:
+        return FactaskEnv(graph, robot=robot, **kwargs)
+    except FactaskError as exc:
+        raise fail(f"cannot compile {graph.name}: {exc}") from None
+
+
+def _recording(video: Path, fps: float, size: tuple[int, int], camera: str,
+               caption: bool) -> Any:
+    """An :class:`~factask.viz.EpisodeVideo`; exit 2 if its options cannot be met."""
+    from factask.sim.render import RenderError
+    from factask.viz import EpisodeVideo
+
+    try:
+        return EpisodeVideo(video, fps=fps, size=size, camera=camera, caption=caption)
+    except RenderError as exc:
+        raise fail(f"--video {video}: {exc}") from None
 
 
 @app.command()
@@ -101,7 +142,13 @@ def run(
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
     video: Path | None = typer.Option(None, "--video", help="Write a video of the first "
                                       "episode: .mp4 (H.264) or .gif, by suffix."),
-    as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
+    fps: float = typer.Option(20.0, "--fps", min=1, max=50, help="Video frames per second "
+                              "(smoother, not faster: one second shows 2.4 s of simulation)."),
+    size: str = typer.Option("320x240", "--size", help="Video size WIDTHxHEIGHT."),
+    camera: str = typer.Option("front", "--camera", help=CAMERA_HELP),
+    caption: bool = typer.Option(False, "--caption", help="Caption the video with the "
+                                 "current subtask, its language goal and its progress."),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
     ravens: bool = typer.Option(
         False, "--ravens", help="Also score every episode as Ravens does: goals in queue "
         "order (a task file's own goals; a graph's factors in order, each worth its "
@@ -115,19 +162,20 @@ def run(
     least half of its episodes succeed (factask's checks decide, also with --ravens).
     """
     from factask.compat.cliport.scoring import scored_episode
-    from factask.sim.env import FactaskEnv
     from factask.sim.episode import TaskResult, run_episode
 
     check_robot(robot)
     check_video(video)
+    frame_size = _frame_size(size)
     graph, source = load_task_source(task, seed)
-    try:
-        env = FactaskEnv(graph, robot=robot)
-    except FactaskError as exc:
-        err_console.print(f"cannot compile {graph.name}: {exc}", style="red", markup=False)
-        raise typer.Exit(2) from None
+    env = _compile(graph, robot)
+    recording = None
+    if video is not None:
+        check_camera(camera, env.model)
+        recording = _recording(video, fps, frame_size, camera, caption)
     results = []
     scores: list[Any] = []
+    video_info = None
     try:
         with _progress(as_json) as progress:
             bar = progress.add_task(f"{graph.name} ({robot})", total=episodes)
@@ -141,16 +189,20 @@ def run(
                                            f" -> reward {info['total_reward']:.2f} [{done}]",
                                            markup=False, highlight=False)
 
-                if ravens:
-                    episode, score = scored_episode(source or graph, seed + k, robot=robot,
-                                                    env=env, on_action=show,
-                                                    video=video if k == 0 else None)
-                    results.append(episode)
-                    scores.append(score)
-                else:
-                    results.append(run_episode(graph, seed + k, robot=robot, env=env,
-                                               video=video if k == 0 else None,
-                                               on_action=show))
+                if recording is not None and k == 0:
+                    recording.attach(env)  # the first episode only
+                try:
+                    if ravens:
+                        episode, score = scored_episode(source or graph, seed + k, robot=robot,
+                                                        env=env, on_action=show)
+                        results.append(episode)
+                        scores.append(score)
+                    else:
+                        results.append(run_episode(graph, seed + k, robot=robot, env=env,
+                                                   on_action=show))
+                finally:
+                    if recording is not None and k == 0:
+                        video_info = recording.finish()
                 progress.advance(bar)
     finally:
         env.close()
@@ -162,6 +214,8 @@ def run(
                               "goals_done": sc.goals_done,
                               "goals": len(source.goals) if source else len(graph.factors)}
                              for e, sc in zip(results, scores, strict=True)]
+        if video_info is not None:
+            out["video"] = video_info
         typer.echo(json.dumps(out))
     else:
         console.print(_episode_table(result, scores))
@@ -179,7 +233,7 @@ def eval_library(
     tasks: list[str] | None = typer.Option(None, "--task", "-t", help="Only these tasks "
                                            "(repeat -t, or give a comma-separated list)."),
     limit: int | None = typer.Option(None, "--limit", min=1, help="Only the first N tasks."),
-    as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
 ) -> None:
     """Run the oracle on every library task; print a table and the summary.
 
@@ -228,7 +282,7 @@ def eval_library(
             fails = sorted({e.failure for e in r.episodes if e.failure})
             table.add_row(r.task, f"{r.success_rate:.0%}", "yes" if r.completed else "NO",
                           f"{sum(e.steps for e in r.episodes) / len(r.episodes):.1f}",
-                          "; ".join(fails)[:80])
+                          escape("; ".join(fails)[:80]))
         console.print(table)
         console.print(f"tasks completed: {summary['tasks_completed']}/{summary['tasks_total']}, "
                       f"episode success rate: {summary['episode_success_rate']:.1%}")
@@ -239,60 +293,70 @@ def eval_library(
 @app.command()
 def demo(
     out: Path = typer.Option(Path("out/demo"), "--out", help="Folder for the demo's files."),
-    task: str = typer.Option("stack-block-pyramid", "--task", help="Library task to show."),
+    task: str = typer.Option("stack-block-pyramid", "--task", help="Library task name, graph "
+                             "FILE.json, or CLIPort FILE.py[:Class] (user code: it is executed)."),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
     seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
 ) -> None:
-    """The main demo: a library task's graph, then the oracle solving it, on video."""
+    """The main demo: a task's graph, then the oracle solving it, on a captioned video."""
     from factask.sim.episode import run_episode
     from factask.viz import draw_graph
 
     check_robot(robot)
-    graph = load_task(task)
-    out.mkdir(parents=True, exist_ok=True)
-    console.rule(f"[bold]{graph.name}[/bold]: {graph.description}")
+    graph = load_task(task, seed)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise fail(f"--out {out}: cannot create the folder ({exc.strerror or exc})") from None
+    quiet = Console(quiet=True)
+    say = quiet if as_json else console  # --json: stdout holds the one object only
+    say.rule(f"[bold]{escape(graph.name)}[/bold]: {escape(graph.description)}")
     table = Table(title="subtask factors, in order")
     for col in ("factor", "goal", "scope", "weight", "language goal"):
         table.add_column(col)
     for name in graph.factor_order():
         f = graph.factor(name)
-        table.add_row(name, f.goal.type, ", ".join(f.scope_names), f"{f.weight:.2f}",
-                      f.description)
-    console.print(table)
-    (out / f"{graph.name}.json").write_text(graph.to_json())
+        table.add_row(escape(name), f.goal.type, escape(", ".join(f.scope_names)),
+                      f"{f.weight:.2f}", escape(f.description))
+    say.print(table)
+    graph_file = out / f"{graph.name}.json"
+    graph_file.write_text(graph.to_json())
     picture = draw_graph(graph, out / f"{graph.name}-graph.png", title=graph.name)
-    console.print(f"graph picture: {picture}")
+    say.print(f"graph picture: {picture}", markup=False, highlight=False)
 
     width = max(len(n) for n in graph.factor_names())
 
     def show(i: int, planned: Any, info: dict[str, Any]) -> None:
-        console.print(f"action {i:2d}: {planned.purpose} -> total reward "
-                      f"{info['total_reward']:.2f}", markup=False, highlight=False)
+        say.print(f"action {i:2d}: {planned.purpose} -> total reward "
+                  f"{info['total_reward']:.2f}", markup=False, highlight=False)
         for n, p in info["factors"].items():
             bar = "#" * round(p * 20)
-            console.print(f"    {n:<{width}} |{bar:<20}| {p:4.0%}", markup=False,
-                          highlight=False)
+            say.print(f"    {n:<{width}} |{bar:<20}| {p:4.0%}", markup=False, highlight=False)
 
-    with console.status(f"running the oracle ({robot})..."):
-        result = run_episode(graph, seed, robot=robot, video=out / f"{graph.name}.gif",
-                             on_action=show)
-    (out / "episode.json").write_text(json.dumps(result.to_dict(), indent=2))
-    console.print(f"video: {out / (graph.name + '.gif')}")
-    status = "[green]success[/green]" if result.success else f"[red]failed[/red]: {result.failure}"
-    console.print(f"episode: reward {result.reward:.3f} in {result.steps} actions — {status}")
+    env = _compile(graph, robot)
+    recording = _recording(out / f"{graph.name}.gif", 20.0, (320, 240), "front", True)
+    recording.attach(env)
+    try:
+        with say.status(f"running the oracle ({robot})..."):
+            result = run_episode(graph, seed, robot=robot, env=env, on_action=show)
+    finally:
+        video_info = recording.finish()
+        env.close()
+    episode_file = out / "episode.json"
+    episode_file.write_text(json.dumps(result.to_dict(), indent=2))
+    if as_json:
+        typer.echo(json.dumps({"task": graph.name, "robot": robot, "seed": seed,
+                               "graph": str(graph_file), "picture": str(picture),
+                               "video": video_info, "episode_file": str(episode_file),
+                               "episode": result.to_dict()}))
+    else:
+        typer.echo(f"video: {video_info['path']}")  # one line, never wrapped
+        status = ("[green]success[/green]" if result.success
+                  else f"[red]failed[/red]: {escape(result.failure or '')}")
+        console.print(f"episode: reward {result.reward:.3f} in {result.steps} actions — {status}")
     if not result.success:
-        sys.exit(1)
-
-
-def _size(text: str) -> tuple[int, int]:
-    """``WxH`` -> (width, height); exit 2 on anything else."""
-    w, sep, h = text.lower().partition("x")
-    if not (sep and w.isdigit() and h.isdigit() and 16 <= int(w) <= 4096
-            and 16 <= int(h) <= 4096):
-        err_console.print(f"--size {text}: give WIDTHxHEIGHT, each 16 to 4096 (e.g. 640x480)",
-                          style="red", markup=False)
-        raise typer.Exit(2)
-    return int(w), int(h)
+        raise typer.Exit(1)
 
 
 @app.command()
@@ -302,43 +366,68 @@ def render(
     out: Path = typer.Option(..., "--out", "-o", help="PNG file to write."),
     solved: bool = typer.Option(False, "--solved", help="Draw the oracle's end state "
                                 "instead of the reset scene."),
-    camera: str = typer.Option("front", "--camera", help="Camera: front or top."),
+    camera: str = typer.Option("front", "--camera", help=CAMERA_HELP),
     size: str = typer.Option("640x480", "--size", help="Image size WIDTHxHEIGHT."),
     seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
     markers: bool = typer.Option(True, "--markers/--no-markers",
                                  help="Draw the translucent goal markers."),
+    segmentation: bool = typer.Option(False, "--segmentation", help="Draw the objects' "
+                                      "segmentation instead: each variable in a colour of its "
+                                      "own, the same in every run."),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
 ) -> None:
     """Draw a still of a task's scene: at reset, or solved by the oracle."""
-    from factask.sim.env import FactaskEnv
     from factask.sim.episode import run_episode
+    from factask.sim.render import (
+        VIEWS,
+        RenderError,
+        SceneRenderer,
+        colorize_segmentation,
+        framed_camera,
+    )
 
     check_robot(robot)
     if out.suffix.lower() != ".png":
-        err_console.print(f"--out {out}: give a .png file", style="red", markup=False)
-        raise typer.Exit(2)
-    if camera not in ("front", "top"):
-        err_console.print(f"--camera {camera}: use front or top", style="red", markup=False)
-        raise typer.Exit(2)
-    width, height = _size(size)
+        raise fail(f"--out {out}: give a .png file")
+    width, height = _frame_size(size)
     graph = load_task(task, seed)
-    env = FactaskEnv(graph, robot=robot, render_size=(width, height), camera=camera)
+    env = _compile(graph, robot)
+    check_camera(camera, env.model)
     try:
         episode = None
         if solved:
             episode = run_episode(graph, seed, robot=robot, env=env)
         else:
             env.reset(seed=seed)
-        image = env.render_rgb(markers=markers)
+        view = (framed_camera(env.model, env.data, camera, width / height)
+                if camera in VIEWS else camera)
+        with SceneRenderer(env.model, width, height, env.scene.geom_object) as renderer:
+            if segmentation:
+                objects = [(env.objects[n].variable, env.objects[n].index)
+                           for n in env.object_names]
+                image = colorize_segmentation(renderer.segmentation(env.data, view), objects)
+            else:
+                image = renderer.rgb(env.data, view, show_markers=markers)
+    except RenderError as exc:
+        raise fail(f"cannot render: {exc}") from None
     finally:
         env.close()
     import imageio.v3 as iio
 
     out.parent.mkdir(parents=True, exist_ok=True)
     iio.imwrite(out, image)
-    state = "reset" if episode is None else (
-        f"solved: reward {episode.reward:.2f}, success {episode.success}")
-    console.print(f"wrote {out} ({width}x{height}, {camera} camera, seed {seed}, {state})",
-                  markup=False, highlight=False)
+    state = "reset" if episode is None else "solved"
+    if as_json:
+        typer.echo(json.dumps({
+            "task": graph.name, "out": str(out), "size": [width, height], "camera": camera,
+            "seed": seed, "robot": robot, "state": state,
+            "image": "segmentation" if segmentation else "rgb",
+            "episode": episode.to_dict() if episode is not None else None}))
+    else:
+        if episode is not None:
+            state = f"solved: reward {episode.reward:.2f}, success {episode.success}"
+        console.print(f"wrote {out} ({width}x{height}, {camera} camera, seed {seed}, {state})",
+                      markup=False, highlight=False)
     if episode is not None and not episode.success:
         raise typer.Exit(1)

@@ -13,8 +13,12 @@ manager (or call ``close``) so contexts are freed deterministically.
 
 from __future__ import annotations
 
+import colorsys
+import hashlib
 import importlib
+import math
 import os
+from collections.abc import Sequence
 from pathlib import Path
 from types import TracebackType
 
@@ -22,6 +26,7 @@ import mujoco
 import numpy as np
 
 from factask.model.errors import FactaskError
+from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 from factask.sim.assets import MARKER_GROUP, OFFSCREEN_SIZE, TOP_CAMERA
 
 #: Default image size (width, height) in pixels.
@@ -32,6 +37,18 @@ BACKGROUND_ID = -1
 DEFAULT_FPS = 20
 #: Headless backends in order of preference.
 HEADLESS_BACKENDS = ("egl", "osmesa")
+#: Views :func:`framed_camera` frames, name -> (azimuth, elevation) in degrees, in
+#: MuJoCo's free-camera convention (the azimuth is the direction the camera looks
+#: along; a negative elevation looks down). The robot stands at x = 0 facing +x.
+VIEWS: dict[str, tuple[float, float]] = {
+    "front": (180.0, -35.0),  # from beyond the workspace, facing the robot
+    "top": (0.0, -89.0),  # straight down, the robot at the bottom (-90 leaves "up" undefined)
+    "left": (-90.0, -35.0),  # from the robot's left (+y)
+    "right": (90.0, -35.0),  # from the robot's right (-y)
+    "back": (0.0, -30.0),  # from behind the robot, over its base
+}
+#: Colour of segmentation pixels that show no object.
+SEGMENTATION_BACKGROUND = (30, 30, 30)
 
 #: A camera: its name, its id (-1: the free camera) or a ``mujoco.MjvCamera``.
 Camera = str | int | mujoco.MjvCamera
@@ -223,6 +240,112 @@ def render_segmentation(model: mujoco.MjModel, data: mujoco.MjData,
     (see :meth:`SceneRenderer.segmentation`)."""
     with SceneRenderer(model, width, height, geom_object) as r:
         return r.segmentation(data, camera)
+
+
+# ------------------------------------------------------------------ framing
+def _scene_points(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
+    """Points (n, 3) whose convex hull holds what a framed view must show whole:
+    the corners of the oriented bounding box of every geom of a moving or placed
+    body (objects, fixtures, goal markers, the robot with its base) and the
+    workspace's corners. The world body's own geoms (table, floor) are left out:
+    the table may run off the picture."""
+    keep = np.flatnonzero((model.geom_bodyid != 0)
+                          & (model.geom_type != mujoco.mjtGeom.mjGEOM_PLANE))
+    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    aabb = np.asarray(model.geom_aabb)[keep]  # (k, 6): centre and half sizes, geom frame
+    local = aabb[:, None, :3] + signs[None] * aabb[:, None, 3:]
+    rot = np.asarray(data.geom_xmat)[keep].reshape(-1, 3, 3)
+    world = np.einsum("kij,kcj->kci", rot, local) + np.asarray(data.geom_xpos)[keep][:, None]
+    corners = np.array([[x, y, WORKSPACE_Z[0]] for x in WORKSPACE_X for y in WORKSPACE_Y])
+    return np.concatenate([world.reshape(-1, 3), corners])
+
+
+def framed_camera(model: mujoco.MjModel, data: mujoco.MjData, view: str = "front",
+                  aspect: float = 4 / 3, margin: float = 0.04) -> mujoco.MjvCamera:
+    """A free camera looking from ``view`` that shows the whole scene as it is now.
+
+    The scene is every object, fixture, goal marker and the robot (its base
+    included) plus the workspace; the camera is aimed at their centre and pulled
+    back until every geom's bounding box fits the image, so nothing is cut at an
+    edge whatever the robot or the layout. Compute it once per episode (after
+    the reset) for a steady video.
+
+    Args:
+        model: The compiled model.
+        data: Its data (positions current, e.g. after ``reset``).
+        view: A name of :data:`VIEWS`.
+        aspect: Image width / height.
+        margin: Extra distance, as a fraction, around the tightest fit.
+
+    Returns:
+        A ``mujoco.MjvCamera`` to pass as ``camera`` to :class:`SceneRenderer`.
+
+    Raises:
+        RenderError: ``view`` is not a name of :data:`VIEWS`.
+    """
+    if view not in VIEWS:
+        raise RenderError(f"no view {view!r} (use one of {', '.join(VIEWS)})")
+    az, el = (math.radians(a) for a in VIEWS[view])
+    forward = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az),
+                        math.sin(el)])
+    right = np.array([math.sin(az), -math.cos(az), 0.0])
+    up = np.cross(right, forward)
+    tan_v = math.tan(math.radians(float(model.vis.global_.fovy)) / 2)
+    tan_h = tan_v * aspect
+    points = _scene_points(model, data)
+    lookat = (points.min(0) + points.max(0)) / 2
+    distance = 1.0
+    # Fit, then shift the aim so the picture's extremes sit symmetrically (a
+    # perspective view of a centred box is not centred); a few rounds settle it.
+    for _ in range(4):
+        rel = points - lookat
+        x, y, z = rel @ right, rel @ up, rel @ forward
+        # Point i is in the picture when |x| <= tan_h * (distance + z) (and so for y).
+        distance = float(max((np.abs(x) / tan_h - z).max(), (np.abs(y) / tan_v - z).max()))
+        depth = np.maximum(distance + z, 1e-6)
+        u_mid = ((x / depth).max() + (x / depth).min()) / 2
+        v_mid = ((y / depth).max() + (y / depth).min()) / 2
+        lookat = lookat + (u_mid * right + v_mid * up) * distance
+    cam = mujoco.MjvCamera()
+    cam.type = mujoco.mjtCamera.mjCAMERA_FREE
+    cam.lookat[:] = lookat
+    cam.distance = distance * (1.0 + margin)
+    cam.azimuth, cam.elevation = VIEWS[view]
+    return cam
+
+
+# ------------------------------------------------------------- segmentation
+def segmentation_color(variable: str, index: int = 0) -> tuple[int, int, int]:
+    """The fixed RGB colour of instance ``index`` of a variable in segmentation pictures.
+
+    The hue comes from a hash of the variable's name (not Python's ``hash``,
+    which changes from run to run), so a variable has the same colour in every
+    run, seed and task; its instances are shades of it.
+    """
+    digest = hashlib.sha256(variable.encode("utf-8")).digest()
+    hue = int.from_bytes(digest[:2], "big") / 65536.0
+    saturation = 0.55 + 0.4 * digest[2] / 255.0
+    value = 0.95 - 0.12 * (index % 4)
+    r, g, b = colorsys.hsv_to_rgb(hue, saturation, value)
+    return round(r * 255), round(g * 255), round(b * 255)
+
+
+def colorize_segmentation(seg: np.ndarray, objects: Sequence[tuple[str, int]]) -> np.ndarray:
+    """An RGB picture (height, width, 3) uint8 of a segmentation image.
+
+    Args:
+        seg: Object indices per pixel (:meth:`SceneRenderer.segmentation`).
+        objects: (variable name, instance index) of each object index, in the
+            scene's object order (``[(o.variable, o.index) for o in ...]``).
+
+    Returns:
+        Each object in :func:`segmentation_color` of its variable, the rest in
+        :data:`SEGMENTATION_BACKGROUND`.
+    """
+    table = np.array([SEGMENTATION_BACKGROUND]
+                     + [segmentation_color(v, i) for v, i in objects], dtype=np.uint8)
+    seg = np.asarray(seg, dtype=np.int64)
+    return table[np.where((seg >= 0) & (seg < len(objects)), seg + 1, 0)]
 
 
 # -------------------------------------------------------------------- video
