@@ -1,0 +1,93 @@
+"""The floating suction cup: a mocap body moved along minimum-time tool paths.
+
+Fast mode: no arm dynamics, the command is applied exactly every step. Its tool
+limits are a UR arm's (:data:`~factask.sim.primitive.TOOL_SPEED` ...).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import mujoco
+import numpy as np
+
+from factask.geometry import wrap_angle
+from factask.sim.motion import Profile, blend, constant_speed, profile
+from factask.sim.primitive import (
+    CLEARANCE,
+    TOOL_ACCEL,
+    TOOL_SPEED,
+    YAW_ACCEL,
+    YAW_RATE,
+    SuctionRobot,
+)
+from factask.sim.robots import RobotError
+from factask.sim.suction import find_id
+
+#: Name of the floating cup's mocap body.
+FLOATING_BODY = "suction_cup_body"
+#: Floating cup home: above the robot base, out of the workspace (m).
+FLOATING_HOME = (0.1, 0.0, 0.45)
+
+
+def _tool_profile(a: np.ndarray, b: np.ndarray) -> Profile:
+    """Minimum-time profile of a tool move between (x, y, z, yaw) points."""
+    delta = np.array([float(np.linalg.norm(b[:3] - a[:3])), abs(float(b[3] - a[3]))])
+    return profile(delta, np.array([TOOL_SPEED, YAW_RATE]), np.array([TOOL_ACCEL, YAW_ACCEL]))
+
+
+class FloatingSuctionRobot(SuctionRobot):
+    """Mocap-driven suction cup: the command is applied exactly every step.
+
+    Control samples are rows (x, y, z, qw, qx, qy, qz) of the cup's mocap pose.
+    """
+
+    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        super().__init__(model, data)
+        body = find_id(model, mujoco.mjtObj.mjOBJ_BODY, FLOATING_BODY)
+        mocap = int(model.body_mocapid[body])
+        if mocap < 0:
+            raise RobotError(f"body {FLOATING_BODY!r} is not a mocap body")
+        self.mocap = mocap
+        # Views into data: writing them costs one copy per step, no indexing.
+        self._mocap_pos = data.mocap_pos[mocap]
+        self._mocap_quat = data.mocap_quat[mocap]
+
+    def _reset_robot(self) -> None:
+        self.data.mocap_pos[self.mocap] = FLOATING_HOME
+        self.data.mocap_quat[self.mocap] = (1.0, 0.0, 0.0, 0.0)
+
+    def _rows(self, xyzyaw: np.ndarray) -> np.ndarray:
+        """Mocap rows of (x, y, z, yaw) samples; the command follows the last one."""
+        half = 0.5 * xyzyaw[:, 3]
+        rows = np.zeros((len(xyzyaw), 7))
+        rows[:, :3] = xyzyaw[:, :3]
+        rows[:, 3] = np.cos(half)
+        rows[:, 6] = np.sin(half)
+        self._cmd_pos = xyzyaw[-1, :3].copy()
+        self._cmd_yaw = float(xyzyaw[-1, 3])
+        return rows
+
+    def _path(self, points: list[tuple[np.ndarray, float]]) -> np.ndarray:
+        pts = [np.array([*self._cmd_pos, self._cmd_yaw])]
+        pts += [np.array([*p, y]) for p, y in points]
+        profiles = [_tool_profile(a, b) for a, b in itertools.pairwise(pts)]
+        overlap = math.sqrt(2 * CLEARANCE / TOOL_ACCEL)
+        return self._rows(blend(pts, profiles, overlap, self.dt))
+
+    def _line(self, goal: np.ndarray, yaw: float, speed: float) -> np.ndarray:
+        start = np.array([*self._cmd_pos, self._cmd_yaw])
+        end = np.array([*goal, yaw])
+        duration = max(float(np.linalg.norm(end[:3] - start[:3])) / speed, self.dt)
+        return self._rows(constant_speed(start, end, duration, self.dt))
+
+    def _apply(self, row: np.ndarray) -> None:
+        self._mocap_pos[:] = row[:3]
+        self._mocap_quat[:] = row[3:]
+
+    def _hold_here(self) -> None:
+        ee = self.ee_pose()
+        self._cmd_pos = ee.pos.copy()
+        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
+        self._apply(self._rows(np.array([[*self._cmd_pos, self._cmd_yaw]]))[0])

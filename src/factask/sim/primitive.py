@@ -1,0 +1,342 @@
+"""The top-down suction pick-and-place primitive, shared by every robot.
+
+:class:`SuctionRobot` holds what both robots share: the phases of the primitive,
+its budgets and failure handling, the waits. The controllers live beside it:
+:mod:`factask.sim.floating_cup` (a mocap cup) and :mod:`factask.sim.arm_controller`
+(a UR-type arm); :mod:`factask.sim.robot` binds them to a scene.
+
+Motions are minimum-time (:mod:`factask.sim.motion`): trapezoidal profiles under
+the tool's speed and acceleration limits (floating cup) or the arm's joint limits
+(joint space, IK only at the waypoints). A transfer goes up to the height that
+clears every object (and the held one), over, and down to just above the target,
+the three moves blended; only the last centimetres before a contact are a slow
+guarded move. After the release the robot lifts a little and waits until the
+objects rest (settle detection, not a fixed wait). Every sample of a motion is
+computed before it starts and played in a tight loop (one array copy into the
+controls plus ``mj_step``); health and budget are checked between chunks of
+steps, contacts only during guarded moves.
+
+Everything runs in simulated time (``mujoco.mj_step``); nothing reads the clock.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from factask.geometry import Pose, wrap_angle
+from factask.sim.health import FATAL_WARNINGS, physics_problem, warning_counts
+from factask.sim.suction import TIP_SITE, SuctionGripper, find_id
+
+#: Tool limits of the floating cup: speed (m/s), acceleration (m/s^2), yaw rate
+#: (rad/s) and yaw acceleration (rad/s^2) -- a UR arm's tool moves at up to 1 m/s.
+TOOL_SPEED = 1.0
+TOOL_ACCEL = 12.0
+YAW_RATE = 2 * math.pi
+YAW_ACCEL = 40.0
+#: Speed of guarded moves (descents until contact), m/s: 0.2 mm per 2 ms step,
+#: so first contact is detected at sub-millimetre penetration.
+GUARDED_SPEED = 0.1
+#: The guarded part of a descent starts this far above the target (m) ...
+APPROACH_HEIGHT = 0.01
+#: ... and the pick descent may go this far below the pick pose looking for contact (m).
+PICK_OVERSHOOT = 0.03
+#: Clearance (m) kept above every object while moving over the table; blended
+#: corners never cut deeper than this.
+CLEARANCE = 0.02
+#: Half width (m) of the corridor whose objects a transfer clears, beyond the held
+#: object's footprint (the cup's radius and a margin).
+CUP_CLEARANCE = 0.05
+#: Lowest tool height over the table while moving (m).
+MIN_TRAVEL_HEIGHT = 0.05
+#: Lift after the release before the primitive ends (m).
+RETREAT = 0.03
+#: The objects rest when no free object moves faster than this (m/s, rad/s) ...
+REST_SPEED = 0.02
+#: ... or after this long (s).
+REST_MAX_TIME = 0.3
+#: Before release, objects must move slower than this (m/s or rad/s) ...
+RELEASE_SPEED = 0.003
+#: ... or this many seconds pass.
+RELEASE_MAX_TIME = 0.5
+#: Default cap on physics steps of one primitive (40 s at dt = 2 ms).
+DEFAULT_MAX_STEPS = 20_000
+#: Default number of physics steps between ``on_step`` calls.
+DEFAULT_CALLBACK_EVERY = 10
+#: Physics steps between health checks (NaN state, fatal MuJoCo warnings).
+HEALTH_EVERY = 25
+#: Physics steps between the rest tests while waiting for objects to settle.
+REST_EVERY = 5
+
+
+@dataclass(frozen=True)
+class PrimitiveResult:
+    """Outcome of one primitive.
+
+    Attributes:
+        ok: True when the object was picked, carried and released at the place pose.
+        reason: Why it failed (None when ok).
+        sim_steps: Physics steps taken (simulated seconds = steps x timestep).
+        grasped_body: Root body id that was picked (None when nothing was).
+    """
+
+    ok: bool
+    reason: str | None
+    sim_steps: int
+    grasped_body: int | None
+
+
+class PrimitiveAbort(Exception):
+    """Ends a primitive early with a reason (caught in
+    :meth:`SuctionRobot.pick_and_place`; never leaves the robot modules)."""
+
+    def __init__(self, reason: str) -> None:
+        super().__init__(reason)
+        self.reason = reason
+
+
+
+class SuctionRobot(ABC):
+    """A top-down suction robot bound to a compiled model.
+
+    Args:
+        model: Compiled model containing the robot.
+        data: Its data (stepped by this controller during primitives).
+
+    Raises:
+        RobotError: The tip site, the cup or the weld is missing.
+    """
+
+    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        self.model = model
+        self.data = data
+        self.dt = float(model.opt.timestep)
+        self.gripper = SuctionGripper(model, data)
+        self.tip_site = find_id(model, mujoco.mjtObj.mjOBJ_SITE, TIP_SITE)
+        self._cmd_pos = np.zeros(3)
+        self._cmd_yaw = 0.0
+        self._steps = 0
+        self._max_steps = DEFAULT_MAX_STEPS
+        self._on_step: Callable[[], None] | None = None
+        self._callback_every = DEFAULT_CALLBACK_EVERY
+        self._warn0 = np.zeros(len(FATAL_WARNINGS), dtype=np.int64)
+        self._aborted = False
+
+    # ----- robot-specific hooks -----
+
+    @abstractmethod
+    def _reset_robot(self) -> None:
+        """Put the robot's own state at home (no physics step)."""
+
+    @abstractmethod
+    def _path(self, points: list[tuple[np.ndarray, float]]) -> np.ndarray:
+        """Control samples (one row per physics step) of a blended minimum-time path
+        from the command through ``points`` (tip position, unwrapped yaw)."""
+
+    @abstractmethod
+    def _line(self, goal: np.ndarray, yaw: float, speed: float) -> np.ndarray:
+        """Control samples of a constant-speed straight move to (goal, yaw)."""
+
+    @abstractmethod
+    def _apply(self, row: np.ndarray) -> None:
+        """Write one control sample into ``data`` (mocap pose or servo targets)."""
+
+    @abstractmethod
+    def _hold_here(self) -> None:
+        """Command the measured tip pose (after a guarded stop, to stop pushing)."""
+
+    def _recover(self) -> None:  # noqa: B027 - optional hook, a mocap cannot get stuck
+        """Bring the robot back to a known state after an aborted primitive."""
+
+    def _settle(self) -> None:  # noqa: B027 - optional hook, a mocap needs no settling
+        """Step until the tip tracks its command (arm); nothing to do for a mocap."""
+
+    # ----- public API -----
+
+    def reset(self) -> None:
+        """Home pose, zero robot velocity, suction off; runs ``mj_forward``."""
+        self.gripper.release()
+        self._reset_robot()
+        mujoco.mj_forward(self.model, self.data)
+        ee = self.ee_pose()
+        self._cmd_pos = ee.pos.copy()
+        self._cmd_yaw = ee.yaw
+        self._aborted = False
+
+    def ee_pose(self) -> Pose:
+        """Pose of the ``suction_tip`` site (z up the tool: top-down means yaw only)."""
+        quat = np.zeros(4)
+        mujoco.mju_mat2Quat(quat, self.data.site_xmat[self.tip_site])
+        return Pose(self.data.site_xpos[self.tip_site].copy(), quat)
+
+    def suction_on(self) -> bool:
+        """Switch suction on; grasps the free object the cup touches, if any.
+
+        Returns:
+            True when an object is held.
+        """
+        return self.gripper.grasp()
+
+    def suction_off(self) -> None:
+        """Switch suction off (release the held object)."""
+        self.gripper.release()
+
+    def grasped(self) -> int | None:
+        """Root body id of the object held, or None."""
+        return self.gripper.held
+
+    def pick_and_place(
+        self,
+        pick: Pose,
+        place: Pose,
+        on_step: Callable[[], None] | None = None,
+        max_steps: int = DEFAULT_MAX_STEPS,
+        callback_every: int = DEFAULT_CALLBACK_EVERY,
+    ) -> PrimitiveResult:
+        """Top-down suction pick at ``pick`` and release at ``place`` (Ravens semantics).
+
+        ``pick`` is the suction contact point on the object's top (position, and
+        the tool yaw); ``place`` is where the tip is when releasing. The object
+        turns with the tool by ``place.yaw - pick.yaw``. Only position and yaw of
+        the poses are used: the tool always points straight down.
+
+        Args:
+            pick: Tip pose at the grasp.
+            place: Tip pose at the release.
+            on_step: Called every ``callback_every`` physics steps (video frames ...).
+            max_steps: Physics-step budget; exceeding it fails the primitive.
+            callback_every: Physics steps between ``on_step`` calls.
+
+        Returns:
+            The result; failures (nothing to grasp, unreachable pose, physics
+            blow-up, step limit) come back as ``ok=False`` with a reason, never raised.
+        """
+        self._steps = 0
+        self._max_steps = max_steps
+        self._on_step = on_step
+        self._callback_every = max(1, callback_every)
+        self._warn0 = warning_counts(self.data)
+        grasped: int | None = None
+        try:
+            self._check_health()
+            if self._aborted:
+                self._recover()
+            self._aborted = False
+            grasped = self._run(pick, place)
+            self._check_health()
+        except PrimitiveAbort as abort:
+            self._aborted = True
+            if self.gripper.held is not None:
+                grasped = self.gripper.held
+            self.gripper.release()
+            return PrimitiveResult(False, abort.reason, self._steps, grasped)
+        finally:
+            self._on_step = None
+        return PrimitiveResult(True, None, self._steps, grasped)
+
+    # ----- the primitive -----
+
+    def _run(self, pick: Pose, place: Pose) -> int:
+        """Execute the primitive; returns the grasped body or raises PrimitiveAbort."""
+        pick_yaw, place_yaw = self._yaw_plan(pick, place)
+        if self.gripper.held is not None:
+            self.gripper.release()
+        up = np.array([0.0, 0.0, 1.0])
+        # Transfer to just above the pick, then a guarded descent to the first contact.
+        self._transfer(pick.pos + APPROACH_HEIGHT * up, pick_yaw)
+        if self._follow(self._line(pick.pos - PICK_OVERSHOOT * up, pick_yaw, GUARDED_SPEED),
+                        stop=self.gripper.cup_in_contact):
+            self._hold_here()
+        if not self.suction_on():
+            self._transfer(self._cmd_pos + APPROACH_HEIGHT * up, self._cmd_yaw)
+            raise PrimitiveAbort("nothing to grasp at pick pose")
+        grasped = self.gripper.held
+        assert grasped is not None
+        # Carry to just above the place pose, then a guarded descent until it rests.
+        self._transfer(place.pos + APPROACH_HEIGHT * up, place_yaw)
+        if not self.gripper.held_in_contact() and self._follow(
+                self._line(place.pos, place_yaw, GUARDED_SPEED),
+                stop=self.gripper.held_in_contact):
+            self._hold_here()
+        self._settle()
+        if self.gripper.held is None:
+            raise PrimitiveAbort("object lost during transport")
+        # Release only once everything is still: a ball let go while it still swings
+        # on the cup rolls away (nothing slows a rolling ball on the table).
+        self._wait_for_rest(RELEASE_SPEED, RELEASE_MAX_TIME)
+        self.suction_off()
+        self._follow(self._path([(self._cmd_pos + RETREAT * up, self._cmd_yaw)]))
+        self._wait_for_rest()
+        return grasped
+
+    def _transfer(self, goal: np.ndarray, yaw: float) -> None:
+        """Up to the clearance height, over, and down to ``goal`` in one blended motion
+        (the arm settles at the end and checks the goal was reached)."""
+        start = self._cmd_pos
+        # Only what lies along the way counts: the corridor is as wide as the held
+        # object's footprint plus the clearance.
+        top = self.gripper.obstacle_top(start, goal, self.gripper.held_footprint()
+                                        + CUP_CLEARANCE)
+        bottom = self.gripper.held_bottom()
+        hang = 0.0 if bottom is None else max(0.0, float(self.ee_pose().pos[2]) - bottom)
+        travel = max(top + hang + CLEARANCE, MIN_TRAVEL_HEIGHT, float(goal[2]))
+        points: list[tuple[np.ndarray, float]] = []
+        if start[2] < travel - 1e-4:
+            points.append((np.array([start[0], start[1], travel]), self._cmd_yaw))
+        level = max(travel, float(start[2]))
+        if np.linalg.norm(goal[:2] - start[:2]) > 1e-4 or abs(yaw - self._cmd_yaw) > 1e-4:
+            points.append((np.array([goal[0], goal[1], level]), yaw))
+        points.append((np.asarray(goal, dtype=float), yaw))
+        self._follow(self._path(points))
+        self._settle()
+
+    def _yaw_plan(self, pick: Pose, place: Pose) -> tuple[float, float]:
+        """Unwrapped tool yaws at the pick and at the place.
+
+        The cup is round, so only the difference matters: the object turns by the
+        shortest rotation ``place.yaw - pick.yaw``. Tool moves follow these values
+        without wrapping; this default keeps the current yaw at the pick (turning
+        the empty cup would only cost time).
+        """
+        return self._cmd_yaw, self._cmd_yaw + wrap_angle(place.yaw - pick.yaw)
+
+    def _wait_for_rest(self, speed: float = REST_SPEED, max_time: float = REST_MAX_TIME) -> None:
+        """Step, the controls held, until no free object moves faster than ``speed``
+        (at most ``max_time`` seconds)."""
+        for k in range(max(1, math.ceil(max_time / self.dt))):
+            if k % REST_EVERY == 0 and k and self.gripper.objects_resting(speed):
+                return
+            self._step()
+
+    def _follow(self, samples: np.ndarray, stop: Callable[[], bool] | None = None) -> bool:
+        """Apply ``samples`` one per physics step; True when ``stop`` fired."""
+        for row in samples:
+            self._apply(row)
+            self._step()
+            if stop is not None and stop():
+                return True
+        return False
+
+    def _step(self) -> None:
+        """One physics step with budget, health and callback bookkeeping."""
+        if self._steps >= self._max_steps:
+            raise PrimitiveAbort(f"step limit exceeded ({self._max_steps} physics steps)")
+        mujoco.mj_step(self.model, self.data)
+        self._steps += 1
+        # A blow-up is still caught within HEALTH_EVERY steps (MuJoCo's NaN warnings latch).
+        if self._steps % HEALTH_EVERY == 0:
+            self._check_health()
+        if self._on_step is not None and self._steps % self._callback_every == 0:
+            self._on_step()
+
+    def _check_health(self) -> None:
+        """Raise PrimitiveAbort on a fatal MuJoCo warning since the primitive began, or
+        a non-finite state (:func:`~factask.sim.health.physics_problem`)."""
+        problem = physics_problem(self.data, self._warn0)
+        if problem is not None:
+            raise PrimitiveAbort(f"physics failure: {problem}")
