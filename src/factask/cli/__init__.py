@@ -8,6 +8,7 @@ stay fast.
 
 from factask.cli import (  # noqa: F401 - importing a module registers its commands
     compat_cmds,
+    data_cmds,
     gen_cmds,
     graph_cmds,
     library_cmds,

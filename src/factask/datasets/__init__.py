@@ -1,0 +1,11 @@
+"""Demonstration datasets: recording episodes, LeRobot v3.0 files, shards, replay.
+
+* :mod:`factask.datasets.splits` — the train / val / test seed ranges;
+* :mod:`factask.datasets.recording` — one episode's frames, images and simulator states;
+* :mod:`factask.datasets.states` — the states file beside each episode;
+* :mod:`factask.datasets.lerobot` — the LeRobot v3.0 writer (pyarrow + PyAV);
+* :mod:`factask.datasets.shards` — (task, seed range) shards, a process pool, resume;
+* :mod:`factask.datasets.replay` — re-simulate and re-render an episode from its states.
+
+Submodules are imported explicitly; this package imports nothing heavy.
+"""

@@ -1,0 +1,155 @@
+"""Record one episode: per-frame state, action, rewards, language, camera images, states.
+
+A frame is one decision: the observation *before* an action, the action, and what it
+led to (LeRobot's ``next.*`` convention). An episode of T actions has T frames; the
+states file holds T + 1 states (the last one after the final action).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from factask.datasets.states import EpisodeStates, snapshot
+from factask.model.errors import FactaskError
+from factask.model.tolerances import SUCCESS_REWARD
+from factask.sim.cameras import CameraRig
+from factask.sim.env import FactaskEnv
+
+#: Names of ``observation.state``: the suction tip's pose and whether it holds.
+STATE_NAMES = ["ee_x", "ee_y", "ee_z", "ee_qw", "ee_qx", "ee_qy", "ee_qz", "suction"]
+#: Names of ``action``: the primitive's pick and place (x, y, z, yaw).
+ACTION_NAMES = ["pick_x", "pick_y", "pick_z", "pick_yaw",
+                "place_x", "place_y", "place_z", "place_yaw"]
+
+#: A policy for recording: (env, seed) -> a callable giving the next action or None.
+PolicyFactory = Callable[[FactaskEnv, int], Callable[[], dict[str, np.ndarray] | None]]
+
+
+@dataclass
+class EpisodeRecord:
+    """One recorded episode (arrays have one row per frame)."""
+
+    task: str
+    instruction: str
+    seed: int
+    success: bool
+    final_reward: float
+    state: np.ndarray
+    environment_state: np.ndarray
+    action: np.ndarray
+    reward: np.ndarray
+    total_reward: np.ndarray
+    factor_rewards: np.ndarray
+    done: np.ndarray
+    goal: list[str]
+    images: dict[str, np.ndarray]
+    states: EpisodeStates
+    failure: str | None = None
+    factor_names: list[str] = field(default_factory=list)
+
+    @property
+    def length(self) -> int:
+        """Frames."""
+        return len(self.action)
+
+
+def oracle_policy(env: FactaskEnv, seed: int) -> Callable[[], dict[str, np.ndarray] | None]:
+    """The scripted oracle, seeded like :func:`~factask.sim.episode.run_episode`."""
+    from factask.sim.oracle import Oracle
+
+    return Oracle(env, seed=seed).act
+
+
+def _current_goal(env: FactaskEnv, info: dict[str, Any]) -> str:
+    satisfied = info.get("satisfied", {})
+    goals = {f.name: f.description or "" for f in env.graph.factors}
+    for name in env.graph.factor_order():
+        if not satisfied.get(name, False):
+            return goals[name]
+    return ""
+
+
+def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
+                   policy: PolicyFactory = oracle_policy) -> EpisodeRecord:
+    """Run one episode and record it.
+
+    Args:
+        env: The environment (compiled once, reused across episodes).
+        seed: Reset seed.
+        rig: Cameras to record (None: no images).
+        policy: Makes the episode's policy (default: the oracle).
+
+    Returns:
+        The record; a layout or physics failure ends it early (``failure`` says why).
+    """
+    failure: str | None = None
+    obs: dict[str, np.ndarray] = {}
+    try:
+        obs, info = env.reset(seed=seed)
+    except FactaskError as exc:
+        info, failure = {}, f"reset: {exc}"
+    names = env.graph.factor_names()
+    act = policy(env, seed) if failure is None else (lambda: None)
+    rows: dict[str, list[Any]] = {k: [] for k in (
+        "state", "env", "action", "reward", "total", "factors", "done", "goal")}
+    images: dict[str, list[np.ndarray]] = {c.name: [] for c in rig.cameras} if rig else {}
+    snaps = [snapshot(env.data)]
+    actions: list[np.ndarray] = []
+    failure = failure or info.get("failure")
+    while failure is None:
+        action = act()
+        if action is None:
+            break
+        goal = _current_goal(env, info)
+        for cam in images:
+            images[cam].append(rig.rgb(env.data, cam))  # type: ignore[union-attr]
+        vec = np.concatenate([np.asarray(action["pick"], float),
+                              np.asarray(action["place"], float)])
+        rows["state"].append(np.concatenate([obs["ee_pose"], obs["suction"]]))
+        rows["env"].append(obs["object_poses"].reshape(-1))
+        obs, reward, terminated, truncated, info = env.step(action)
+        rows["action"].append(vec)
+        rows["reward"].append(reward)
+        rows["total"].append(info["total_reward"])
+        rows["factors"].append([info["factors"].get(n, 0.0) for n in names])
+        rows["done"].append(terminated or truncated)
+        rows["goal"].append(goal)
+        actions.append(vec)
+        snaps.append(snapshot(env.data))
+        failure = info.get("failure")
+        if terminated or truncated:
+            break
+    final = float(info.get("total_reward", 0.0))
+    t = len(actions)
+    n_env = 7 * len(env.object_names)
+
+    def arr(key: str, width: int | None, dtype: Any = np.float32) -> np.ndarray:
+        shape = (t,) if width is None else (t, width)
+        return np.asarray(rows[key], dtype=dtype).reshape(shape)
+
+    states = EpisodeStates(
+        mjcf=env.scene.xml, graph=env.graph.to_json(indent=None), robot=env.robot_kind,
+        seed=seed, qpos=np.stack([s[0] for s in snaps]), qvel=np.stack([s[1] for s in snaps]),
+        mocap_pos=np.stack([s[2] for s in snaps]), mocap_quat=np.stack([s[3] for s in snaps]),
+        actions=np.asarray(actions, dtype=np.float64).reshape(t, 8))
+    shapes = {c.name: (c.height, c.width, 3) for c in rig.cameras} if rig else {}
+    return EpisodeRecord(
+        task=env.graph.name, instruction=env.graph.description or env.graph.name, seed=seed,
+        success=final >= SUCCESS_REWARD, final_reward=final,
+        state=arr("state", len(STATE_NAMES)), environment_state=arr("env", n_env),
+        action=arr("action", 8), reward=arr("reward", None), total_reward=arr("total", None),
+        factor_rewards=arr("factors", len(names)), done=arr("done", None, bool),
+        goal=list(rows["goal"]),
+        images={k: (np.stack(v) if v else np.zeros((0, *shapes[k]), np.uint8))
+                for k, v in images.items()},
+        states=states, failure=failure, factor_names=names)
+
+
+def record_episodes(env: FactaskEnv, seeds: Sequence[int], rig: CameraRig | None = None,
+                    policy: PolicyFactory = oracle_policy) -> list[EpisodeRecord]:
+    """:func:`record_episode` for each seed, on one env."""
+    return [record_episode(env, s, rig, policy) for s in seeds]

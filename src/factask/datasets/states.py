@@ -1,0 +1,99 @@
+"""The states file of one episode: everything needed to re-simulate and re-render it.
+
+One ``.npz`` per episode (``states/episode_XXXXXX.npz`` beside the dataset) with:
+
+* ``mjcf``: the compiled scene's MJCF text (re-render without factask's compiler);
+* ``graph``: the task graph's JSON, ``robot``, ``seed`` (re-simulate with factask);
+* ``qpos``, ``qvel`` (T + 1, nq / nv) float64, ``mocap_pos`` (T + 1, nmocap, 3),
+  ``mocap_quat`` (T + 1, nmocap, 4): the state before each action and at the end;
+* ``actions`` (T, 8) float64: each action's pick (x, y, z, yaw) then place.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from factask.model.errors import FactaskError
+
+#: Version of the states file layout.
+STATES_VERSION = 1
+
+
+class StatesFileError(FactaskError, ValueError):
+    """A states file that is missing, unreadable or of another layout."""
+
+
+@dataclass
+class EpisodeStates:
+    """The simulator states of one episode (see the module docstring)."""
+
+    mjcf: str
+    graph: str
+    robot: str
+    seed: int
+    qpos: np.ndarray
+    qvel: np.ndarray
+    mocap_pos: np.ndarray
+    mocap_quat: np.ndarray
+    actions: np.ndarray
+
+    @property
+    def steps(self) -> int:
+        """Actions taken (the states hold one more row)."""
+        return len(self.actions)
+
+    def apply(self, model: mujoco.MjModel, data: mujoco.MjData, t: int) -> None:
+        """Put state ``t`` into ``data`` and compute positions (``mj_forward``)."""
+        data.qpos[:] = self.qpos[t]
+        data.qvel[:] = self.qvel[t]
+        if model.nmocap:
+            data.mocap_pos[:] = self.mocap_pos[t]
+            data.mocap_quat[:] = self.mocap_quat[t]
+        mujoco.mj_forward(model, data)
+
+
+def snapshot(data: mujoco.MjData) -> tuple[np.ndarray, ...]:
+    """(qpos, qvel, mocap_pos, mocap_quat) copies of ``data`` now."""
+    return (data.qpos.copy(), data.qvel.copy(), data.mocap_pos.copy(), data.mocap_quat.copy())
+
+
+def write_states(path: Path, states: EpisodeStates) -> None:
+    """Write ``states`` to ``path`` atomically (a temporary file, then a rename)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.name + ".tmp")
+    with open(tmp, "wb") as fh:
+        np.savez_compressed(
+            fh, version=np.int64(STATES_VERSION), mjcf=np.str_(states.mjcf),
+            graph=np.str_(states.graph), robot=np.str_(states.robot),
+            seed=np.int64(states.seed), qpos=states.qpos, qvel=states.qvel,
+            mocap_pos=states.mocap_pos, mocap_quat=states.mocap_quat, actions=states.actions)
+    os.replace(tmp, path)
+
+
+def read_states(path: Path) -> EpisodeStates:
+    """Read a states file.
+
+    Raises:
+        StatesFileError: missing, unreadable, or another layout version.
+    """
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            version = int(z["version"])
+            if version != STATES_VERSION:
+                raise StatesFileError(f"{path}: states layout {version}, this factask reads "
+                                      f"{STATES_VERSION} (fix: collect the dataset again)")
+            return EpisodeStates(
+                mjcf=str(z["mjcf"]), graph=str(z["graph"]), robot=str(z["robot"]),
+                seed=int(z["seed"]), qpos=z["qpos"], qvel=z["qvel"],
+                mocap_pos=z["mocap_pos"], mocap_quat=z["mocap_quat"], actions=z["actions"])
+    except (OSError, KeyError, ValueError) as exc:
+        if isinstance(exc, StatesFileError):
+            raise
+        raise StatesFileError(f"cannot read states file {path}: {exc} (fix: give a "
+                              "states/episode_XXXXXX.npz of a collected dataset)") from exc
+

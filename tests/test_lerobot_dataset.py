@@ -1,0 +1,100 @@
+"""factask collect writes a LeRobot v3.0 dataset that a format-only reader accepts, and
+factask replay reproduces its states bit for bit."""
+
+from __future__ import annotations
+
+import ast
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from lerobot_v3_reader import episode_video, load_dataset
+from typer.testing import CliRunner
+
+import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
+from factask.cli import app
+from factask.datasets.replay import compare_states, render_states, resimulate
+from factask.datasets.shards import CollectConfig, CollectError, collect
+from factask.datasets.splits import MAX_VAL_EPISODES, TEST_START, split_of_seed, split_seeds
+from factask.datasets.states import read_states
+from factask.model.errors import InvalidValueError
+from factask.sim.cameras import ravens_cameras
+
+SIZE = (64, 48)
+TASKS = ("place-red-in-green", "align-box-corner")
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    root = tmp_path_factory.mktemp("ds") / "demo"
+    config = CollectConfig(tasks=TASKS, episodes=2, image_size=SIZE, shard_size=1)
+    summary = collect(config, root, workers=1)
+    assert summary.episodes_kept >= 3
+    return root
+
+
+def test_the_reader_imports_nothing_of_factask() -> None:
+    tree = ast.parse((Path(__file__).parent / "lerobot_v3_reader.py").read_text())
+    names = [a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names]
+    names += [n.module or "" for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)]
+    assert not [m for m in names if m.startswith("factask")]
+
+
+def test_a_format_only_reader_loads_the_dataset(dataset: Path) -> None:
+    ds = load_dataset(dataset)
+    info = ds["info"]
+    assert info["codebase_version"] == "v3.0" and info["fps"] == 1
+    feats = info["features"]
+    for key in ("observation.state", "observation.environment_state", "action",
+                "next.reward", "next.total_reward", "next.factor_rewards", "next.done",
+                "language_goal", "observation.images.front", "observation.images.left",
+                "observation.images.right"):
+        assert key in feats, key
+    assert feats["action"]["shape"] == [8]
+    assert set(ds["tasks"]) == {0, 1}
+    frames = ds["frames"]
+    # Only successful demonstrations: each episode ends done with total reward >= 0.99.
+    for e in ds["episodes"]:
+        last = e["dataset_to_index"] - 1
+        assert frames["next.done"][last] and frames["next.total_reward"][last] >= 0.99
+        assert e["factask/success"]
+    assert len(frames["language_goal"]) == info["total_frames"]
+
+
+def test_decoded_frames_match_re_rendered_states(dataset: Path) -> None:
+    ds = load_dataset(dataset)
+    cams = ravens_cameras(*SIZE)
+    for k, e in enumerate(ds["episodes"]):
+        states = read_states(dataset / e["factask/states_path"])
+        rendered = render_states(states, cams)
+        for cam in cams:
+            decoded = episode_video(ds, f"observation.images.{cam.name}", k)
+            assert decoded.shape == rendered[cam.name].shape
+            diff = np.abs(decoded.astype(float) - rendered[cam.name].astype(float))
+            mse = float(np.mean(diff ** 2))
+            psnr = 10 * np.log10(255.0 ** 2 / max(mse, 1e-9))
+            assert psnr > 30.0, (k, cam.name, psnr)
+
+
+def test_replay_is_bit_identical(dataset: Path) -> None:
+    states = read_states(dataset / "states" / "episode_000000.npz")
+    assert compare_states(states, resimulate(states)) == []
+    result = CliRunner().invoke(app, ["replay", str(dataset), "--episode", "1", "--json"])
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.output)["identical"] is True
+
+
+def test_seed_splits_are_disjoint_and_documented() -> None:
+    train, val, test = (set(split_seeds(s, 200)) for s in ("train", "val", "test"))
+    assert not (train & val) and not (train & test) and not (val & test)
+    assert min(test) == TEST_START and all(split_of_seed(s) == "test" for s in test)
+    assert max(split_seeds("val", MAX_VAL_EPISODES)) < TEST_START
+    with pytest.raises(InvalidValueError, match="val"):
+        split_seeds("val", MAX_VAL_EPISODES + 1)
+
+
+def test_collect_refuses_a_finished_dataset(dataset: Path) -> None:
+    config = CollectConfig(tasks=TASKS, episodes=2, image_size=SIZE, shard_size=1)
+    with pytest.raises(CollectError, match="already holds a dataset"):
+        collect(config, dataset, workers=1)
