@@ -174,3 +174,70 @@ def test_video_rejects_bad_input(tmp_path: Path) -> None:
     with pytest.raises(RenderError, match="differs"):
         video.append(np.zeros((4, 8, 3), np.uint8))
     assert VideoRecorder(tmp_path / "empty.gif").close() is None
+
+
+@pytest.mark.parametrize("robot", ["ur10e", "floating"])
+def test_framed_views_show_the_robot_and_every_object_whole(robot: str) -> None:
+    from factask.library import get_task
+    from factask.sim.env import FactaskEnv
+    from factask.sim.render import VIEWS, framed_camera
+
+    env = FactaskEnv(get_task("stack-block-pyramid"), robot=robot)
+    try:
+        env.reset(seed=0)
+        model = env.model
+        moving = {g for g in range(model.ngeom) if model.geom_bodyid[g] != 0}
+        robot_geoms = {g for g in moving if model.body(model.geom_bodyid[g]).name
+                       not in env.scene.objects and not model.body(model.geom_bodyid[g])
+                       .name.startswith("goal:")}
+        with SceneRenderer(model, 96, 72) as r:  # raw geom ids per pixel
+            for view in VIEWS:
+                seg = r.segmentation(env.data, framed_camera(model, env.data, view, 96 / 72))
+                border = np.concatenate([seg[0], seg[-1], seg[:, 0], seg[:, -1]])
+                cut = {int(g) for g in border if g in moving}
+                assert not cut, f"{view}: geoms {cut} run off the picture"
+                seen = set(np.unique(seg).tolist())
+                assert robot_geoms & seen, f"{view}: no robot in the picture"
+                objects = {g for g in moving if env.scene.geom_object[g] >= 0}
+                assert len(objects & seen) >= len(env.object_names) // 2, view
+    finally:
+        env.close()
+
+
+def test_framed_camera_rejects_an_unknown_view(scene: CompiledScene) -> None:
+    from factask.sim.render import framed_camera
+
+    with pytest.raises(RenderError, match="no view 'side'"):
+        framed_camera(scene.model, scene.make_data(), "side")
+
+
+_SEG_COLOUR = "from factask.sim.render import segmentation_color as c; print(c('bowl'), c('b', 1))"
+
+
+def test_segmentation_colours_are_fixed_per_variable_across_runs_and_seeds(
+        tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    from factask.cli import app
+    from factask.library import get_task
+    from factask.sim.render import colorize_segmentation, segmentation_color
+
+    runs = {subprocess.run([sys.executable, "-c", _SEG_COLOUR], capture_output=True, text=True,
+                           check=True, env={**os.environ, "PYTHONHASHSEED": str(k)}).stdout
+            for k in (1, 2)}
+    assert len(runs) == 1  # not Python's salted hash
+    assert segmentation_color("bowl") != segmentation_color("blocks")
+    assert segmentation_color("blocks", 1) != segmentation_color("blocks", 0)
+    image = colorize_segmentation(np.array([[-1, 0, 1]]), [("bowl", 0), ("blocks", 0)])
+    assert [tuple(p) for p in image[0][1:]] == [segmentation_color("bowl"),
+                                              segmentation_color("blocks")]
+    colours = []
+    for seed in (0, 1):
+        out = tmp_path / f"seg{seed}.png"
+        result = CliRunner().invoke(app, ["render", "put-block-in-bowl", "-o", str(out),
+                                          "--segmentation", "--size", "96x72", "--camera",
+                                          "top", "--seed", str(seed)])
+        assert result.exit_code == 0, result.output
+        colours.append({tuple(p) for p in iio.imread(out).reshape(-1, 3).tolist()})
+    expected = {segmentation_color(v.name) for v in get_task("put-block-in-bowl").variables}
+    assert colours[0] == colours[1] and expected <= colours[0]

@@ -81,3 +81,34 @@ def test_title_override_and_cyclic_graph_still_drawn(tmp_path: Path) -> None:
     assert "my title" in heads and house.description[:40] not in " ".join(heads)
     heads = [t.get_text() for t in graph_figure(house).texts]
     assert "build-house" in heads and any(house.description[:40] in h for h in heads)
+
+
+def test_the_caption_names_the_first_unfinished_factor_and_its_progress() -> None:
+    from types import SimpleNamespace as NS
+
+    from factask.library import get_task
+    from factask.viz import caption_text
+
+    graph = get_task("towers-of-hanoi")
+    order = graph.factor_order()
+    status = NS(reward=0.3, reached=frozenset(order[:2]),
+                factors={n: NS(satisfied=False, progress=0.25 if k == 2 else 0.0)
+                         for k, n in enumerate(order)})
+    title, goal, progress = caption_text(graph, status)
+    assert title == f"3/{len(order)} {order[2]}" and progress == 0.25
+    assert goal == graph.factor(order[2]).description
+    done = NS(reward=1.0, reached=frozenset(order),
+              factors={n: NS(satisfied=True, progress=1.0) for n in order})
+    assert caption_text(graph, done)[0] == "done"
+
+
+def test_episode_video_options_are_checked_before_any_work(tmp_path) -> None:
+    import pytest
+
+    from factask.sim.render import RenderError
+    from factask.viz import EpisodeVideo
+
+    for kwargs, says in (({"fps": 0}, "fps"), ({"size": (64, 30), "caption": True}, "caption"),
+                         ({"path": tmp_path / "v.webm"}, ".gif or .mp4")):
+        with pytest.raises(RenderError, match=says):
+            EpisodeVideo(**{"path": tmp_path / "v.mp4", **kwargs})

@@ -10,7 +10,8 @@ from factask.sim.robots import ROBOT_NAMES, describe_robots
 app = typer.Typer(
     name="factask",
     help="Robot manipulation tasks as factor graphs: validate, show, run, generate, evaluate. "
-    "Exit codes: 0 success; 1 the task or a check failed; 2 bad usage or input.",
+    "Exit codes: 0 success; 1 the task or a check failed; 2 bad usage or input; 3 "
+    "(generate, benchmark) no LLM call succeeded. The contract: docs/cli.md.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
@@ -34,7 +35,8 @@ def _main(
 ) -> None:
     """Robot manipulation tasks as factor graphs: validate, show, run, generate, evaluate.
 
-    Exit codes: 0 success; 1 the task or a check failed; 2 bad usage or input.
+    Exit codes: 0 success; 1 the task or a check failed; 2 bad usage or input; 3
+    (generate, benchmark) no LLM call succeeded. The contract: docs/cli.md.
     """
 
 
