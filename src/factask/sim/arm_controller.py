@@ -28,6 +28,8 @@ from factask.sim.robot_arm import HOME_QPOS, JOINT_NAMES, JOINT_RANGES, KP, KV
 from factask.sim.robots import DEFAULT_ARM, DHArm
 from factask.sim.suction import find_id
 
+#: State part one control row of :meth:`ArmSuctionRobot._play` writes.
+_CTRL_STATE = int(mujoco.mjtState.mjSTATE_CTRL)
 #: Arm: a move has settled when the tip is this close to its target (m) ...
 SETTLE_TOL = 0.002
 #: ... and no joint turns faster than this (rad/s), or after SETTLE_MAX_TIME (s).
@@ -169,6 +171,18 @@ class ArmSuctionRobot(SuctionRobot):
     def _apply(self, row: np.ndarray) -> None:
         self.data.ctrl[self.act] = row
 
+    def _play(self, rows: np.ndarray) -> None:
+        # One mj_setState per step writes the whole control vector: one C call,
+        # cheaper than a fancy-indexed copy from Python.
+        m, d = self.model, self.data
+        full = np.empty((len(rows), m.nu))
+        full[:] = d.ctrl
+        full[:, self.act] = rows
+        step, set_state = mujoco.mj_step, mujoco.mj_setState
+        for row in full:
+            set_state(m, d, row, _CTRL_STATE)
+            step(m, d)
+
     def _hold_here(self) -> None:
         # Command the measured joints so the servos stop pushing down.
         q = self.data.qpos[self.qpos_adr].copy()
@@ -179,13 +193,15 @@ class ArmSuctionRobot(SuctionRobot):
         self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
 
     def _settle(self) -> None:
-        for k in range(math.ceil(SETTLE_MAX_TIME / self.dt)):
-            if k % 2 == 0:
-                err = float(np.linalg.norm(self.data.site_xpos[self.tip_site] - self._cmd_pos))
-                speed = float(np.abs(self.data.qvel[self.dof_adr]).max())
-                if err < SETTLE_TOL and speed < SETTLE_SPEED:
-                    return
-            self._step()
+        total, done = math.ceil(SETTLE_MAX_TIME / self.dt), 0
+        while done < total:
+            err = float(np.linalg.norm(self.data.site_xpos[self.tip_site] - self._cmd_pos))
+            speed = float(np.abs(self.data.qvel[self.dof_adr]).max())
+            if err < SETTLE_TOL and speed < SETTLE_SPEED:
+                return
+            k = min(2, total - done)
+            self._hold(k)
+            done += k
 
     def _recover(self) -> None:
         # An aborted primitive can leave the arm anywhere: lift straight up, then

@@ -44,9 +44,14 @@ from factask.sim.health import physics_problem
 from factask.sim.reset import reset_layout
 from factask.sim.robot import SuctionRobot, make_robot
 
-#: Simulated seconds the scene settles after a reset (objects placed exactly
-#: resting may still shift by a fraction of a millimetre).
+#: Simulated seconds the scene settles after a reset at most (objects placed
+#: exactly resting may still shift by a fraction of a millimetre) ...
 SETTLE_SECONDS = 0.3
+#: ... and at least; it has settled when no object moves faster than
+#: SETTLE_SPEED (m/s, rad/s), tested every SETTLE_EVERY physics steps.
+SETTLE_MIN_SECONDS = 0.04
+SETTLE_SPEED = 0.001
+SETTLE_EVERY = 10
 #: Default rendering size (width, height) and camera.
 RENDER_SIZE = (320, 240)
 RENDER_CAMERA = "front"
@@ -145,6 +150,9 @@ class FactaskEnv(gym.Env):
         self.actions_taken = 0
         self.failure: str | None = None
         self._status: TaskStatus | None = None
+        # The state ``_status`` was checked in (qpos, time): an unchanged state needs
+        # no second check before the next action.
+        self._status_state: tuple[np.ndarray, float] | None = None
         # Factors reached so far (milestones latch on it); updated after each action.
         self._reached: frozenset[str] = frozenset()
         #: Called every few physics steps during actions (e.g. to record video).
@@ -231,15 +239,25 @@ class FactaskEnv(gym.Env):
             if inst in targets:
                 set_marker(self.data, mocap, targets[inst])
         self.robot.reset()
-        for _ in range(round(SETTLE_SECONDS / self.model.opt.timestep)):
-            mujoco.mj_step(self.model, self.data)
+        self._settle()
         self.history = []
         self.actions_taken = 0
         self.failure = self.physics_failure()
         self._reached = frozenset()
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
-        self._status, self._reached = status, status.reached
+        self._keep_status(status)
         return self._obs(), self._info(status)
+
+    def _settle(self) -> None:
+        """Step until the objects rest (settle detection, not a fixed wait)."""
+        dt = self.model.opt.timestep
+        least, most = round(SETTLE_MIN_SECONDS / dt), round(SETTLE_SECONDS / dt)
+        mujoco.mj_step(self.model, self.data, least)
+        done = least
+        while done < most and not self.robot.gripper.objects_resting(SETTLE_SPEED):
+            k = min(SETTLE_EVERY, most - done)
+            mujoco.mj_step(self.model, self.data, k)
+            done += k
 
     def step(self, action: dict[str, Any]) -> tuple[dict[str, np.ndarray], float, bool, bool,
                                                     dict[str, Any]]:
@@ -264,14 +282,14 @@ class FactaskEnv(gym.Env):
             return self._obs(), 0.0, True, False, self._info(self._status)
         # The reward is what *this action* changed: measure the baseline now, so
         # changes made from outside between steps are not credited to the action.
-        prev = self.status().reward
+        prev = self._reward_now()
         max_steps = int(self.graph.limits.max_sim_seconds_per_action / self.model.opt.timestep)
         result = self.robot.pick_and_place(pick, place, on_step=self.frame_callback,
                                            max_steps=max_steps)
         self.actions_taken += 1
         self.failure = self.physics_failure()
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
-        self._status, self._reached = status, status.reached
+        self._keep_status(status)
         self.history.append(ActionRecord(self.actions_taken, result.ok, result.reason,
                                        result.sim_steps, status.reward))
         info = self._info(status)
@@ -280,6 +298,20 @@ class FactaskEnv(gym.Env):
         terminated = status.success or self.failure is not None
         truncated = not terminated and self.actions_taken >= self.graph.max_actions()
         return self._obs(), status.reward - prev, terminated, truncated, info
+
+    def _keep_status(self, status: TaskStatus) -> None:
+        """Remember ``status`` as the current one, with the state it was checked in."""
+        self._status, self._reached = status, status.reached
+        self._status_state = (self.data.qpos.copy(), float(self.data.time))
+
+    def _reward_now(self) -> float:
+        """Total reward of the current state: the kept status's when nothing moved
+        since it was checked (the usual case between two actions), else re-checked."""
+        kept = self._status_state
+        if (self._status is not None and kept is not None and kept[1] == self.data.time
+                and np.array_equal(kept[0], self.data.qpos)):
+            return self._status.reward
+        return self.status().reward
 
     # ------------------------------------------------------------- rendering
     def render(self) -> np.ndarray | None:

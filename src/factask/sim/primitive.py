@@ -39,9 +39,9 @@ TOOL_SPEED = 1.0
 TOOL_ACCEL = 12.0
 YAW_RATE = 2 * math.pi
 YAW_ACCEL = 40.0
-#: Speed of guarded moves (descents until contact), m/s: 0.2 mm per 2 ms step,
+#: Speed of guarded moves (descents until contact), m/s: 0.4 mm per 2 ms step,
 #: so first contact is detected at sub-millimetre penetration.
-GUARDED_SPEED = 0.1
+GUARDED_SPEED = 0.2
 #: The guarded part of a descent starts this far above the target (m) ...
 APPROACH_HEIGHT = 0.01
 #: ... and the pick descent may go this far below the pick pose looking for contact (m).
@@ -68,8 +68,10 @@ RELEASE_MAX_TIME = 0.5
 DEFAULT_MAX_STEPS = 20_000
 #: Default number of physics steps between ``on_step`` calls.
 DEFAULT_CALLBACK_EVERY = 10
-#: Physics steps between health checks (NaN state, fatal MuJoCo warnings).
-HEALTH_EVERY = 25
+#: Physics steps between health checks (NaN state, fatal MuJoCo warnings): a
+#: blow-up is caught within 0.1 s of simulated time (MuJoCo's warnings latch), and
+#: motions are played in chunks of at most this many steps.
+HEALTH_EVERY = 50
 #: Physics steps between the rest tests while waiting for objects to settle.
 REST_EVERY = 5
 
@@ -145,6 +147,11 @@ class SuctionRobot(ABC):
     @abstractmethod
     def _apply(self, row: np.ndarray) -> None:
         """Write one control sample into ``data`` (mocap pose or servo targets)."""
+
+    @abstractmethod
+    def _play(self, rows: np.ndarray) -> None:
+        """Apply ``rows`` and step once after each, nothing else: the hot loop (the
+        caller keeps the books, :meth:`_follow`)."""
 
     @abstractmethod
     def _hold_here(self) -> None:
@@ -307,30 +314,70 @@ class SuctionRobot(ABC):
 
     def _wait_for_rest(self, speed: float = REST_SPEED, max_time: float = REST_MAX_TIME) -> None:
         """Step, the controls held, until no free object moves faster than ``speed``
-        (at most ``max_time`` seconds)."""
-        for k in range(max(1, math.ceil(max_time / self.dt))):
-            if k % REST_EVERY == 0 and k and self.gripper.objects_resting(speed):
+        (at most ``max_time`` seconds; tested every REST_EVERY steps)."""
+        total = max(1, math.ceil(max_time / self.dt))
+        done = 0
+        while done < total:
+            k = min(REST_EVERY, total - done)
+            self._hold(k)
+            done += k
+            if done < total and self.gripper.objects_resting(speed):
                 return
-            self._step()
 
     def _follow(self, samples: np.ndarray, stop: Callable[[], bool] | None = None) -> bool:
-        """Apply ``samples`` one per physics step; True when ``stop`` fired."""
-        for row in samples:
-            self._apply(row)
-            self._step()
-            if stop is not None and stop():
-                return True
+        """Apply ``samples`` one per physics step; True when ``stop`` fired.
+
+        Without ``stop`` and ``on_step`` the samples are played in chunks that end
+        at the health checks (:meth:`_play`: nothing but the controls and
+        ``mj_step`` per step); a guarded move tests ``stop`` after every step.
+        """
+        if stop is not None or self._on_step is not None:
+            for row in samples:
+                self._apply(row)
+                self._step()
+                if stop is not None and stop():
+                    return True
+            return False
+        done, n = 0, len(samples)
+        while done < n:
+            k = self._chunk(n - done)
+            self._play(samples[done:done + k])
+            done += k
+            self._advanced(k)
         return False
 
-    def _step(self) -> None:
-        """One physics step with budget, health and callback bookkeeping."""
+    def _hold(self, steps: int) -> None:
+        """``steps`` physics steps with the controls held (one ``mj_step`` call per chunk)."""
+        if self._on_step is not None:
+            for _ in range(steps):
+                self._step()
+            return
+        while steps > 0:
+            k = self._chunk(steps)
+            mujoco.mj_step(self.model, self.data, k)
+            steps -= k
+            self._advanced(k)
+
+    def _chunk(self, wanted: int) -> int:
+        """How many steps to run before the next bookkeeping: at most ``wanted``, up
+        to the next health check, within the budget (raises once it is spent)."""
         if self._steps >= self._max_steps:
             raise PrimitiveAbort(f"step limit exceeded ({self._max_steps} physics steps)")
-        mujoco.mj_step(self.model, self.data)
-        self._steps += 1
+        return min(wanted, HEALTH_EVERY - self._steps % HEALTH_EVERY,
+                   self._max_steps - self._steps)
+
+    def _advanced(self, steps: int) -> None:
+        """Count ``steps`` done; the health check when one is due."""
+        self._steps += steps
         # A blow-up is still caught within HEALTH_EVERY steps (MuJoCo's NaN warnings latch).
         if self._steps % HEALTH_EVERY == 0:
             self._check_health()
+
+    def _step(self) -> None:
+        """One physics step with budget, health and callback bookkeeping."""
+        self._chunk(1)
+        mujoco.mj_step(self.model, self.data)
+        self._advanced(1)
         if self._on_step is not None and self._steps % self._callback_every == 0:
             self._on_step()
 

@@ -96,8 +96,30 @@ def _fill_check(graph: TaskGraph) -> None:
         )
 
 
-def _table_candidates(obj: SceneObject, placement: object, rng: np.random.Generator,
-                      k: int) -> list[Pose]:
+#: Candidate poses are built in batches of growing size (most objects fit among
+#: the first few): building all of them up front cost more than the search.
+_CANDIDATE_BATCHES = (8, 32)
+
+
+def _first_free_on_table(occ: Occupancy, obj: SceneObject, placement: object,
+                         rng: np.random.Generator, k: int) -> Pose | None:
+    """The first of ``k`` random table poses of ``obj`` that is free (as
+    :func:`first_free` on all of them, whose random draws it makes all at once)."""
+    xy, yaw = _table_draws(obj, placement, rng, k)
+    start = 0
+    for stop in (*(b for b in _CANDIDATE_BATCHES if b < k), k):
+        batch = [resting_pose(obj, x, y, TABLE_Z, a)
+                 for (x, y), a in zip(xy[start:stop], yaw[start:stop], strict=True)]
+        pose = first_free(occ, obj, batch)
+        if pose is not None:
+            return pose
+        start = stop
+    return None
+
+
+def _table_draws(obj: SceneObject, placement: object, rng: np.random.Generator,
+                 k: int) -> tuple[np.ndarray, np.ndarray]:
+    """``k`` random (x, y) centres and yaws of ``obj`` on the table (its region)."""
     if isinstance(placement, InRegion):
         lo = np.array([placement.x[0], placement.y[0]])
         hi = np.array([placement.x[1], placement.y[1]])
@@ -105,9 +127,7 @@ def _table_candidates(obj: SceneObject, placement: object, rng: np.random.Genera
         inset = float(obj.half_xy.min())
         lo = WORKSPACE_CENTER - WORKSPACE_HALF + inset
         hi = WORKSPACE_CENTER + WORKSPACE_HALF - inset
-    xy = rng.uniform(lo, hi, size=(k, 2))
-    yaw = random_yaws(rng, k)
-    return [resting_pose(obj, x, y, TABLE_Z, a) for (x, y), a in zip(xy, yaw, strict=True)]
+    return rng.uniform(lo, hi, size=(k, 2)), random_yaws(rng, k)
 
 
 def sample_layout(graph: TaskGraph, rng: np.random.Generator,
@@ -169,7 +189,7 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
                 if blocked:
                     raise _Placement(inst, f"its fixed pose overlaps {blocked}", retry=False)
             else:
-                pose = first_free(occ, obj, _table_candidates(obj, var.initial, rng, tries))
+                pose = _first_free_on_table(occ, obj, var.initial, rng, tries)
                 if pose is None:
                     where = "its region" if isinstance(var.initial, InRegion) else "the table"
                     raise _Placement(inst, f"no free spot on {where} in {tries} tries")
