@@ -12,6 +12,7 @@ from factask.cli import (  # noqa: F401 - importing a module registers its comma
     gen_cmds,
     graph_cmds,
     library_cmds,
+    policy_cmds,
     run_cmds,
 )
 from factask.cli.app import app
