@@ -60,6 +60,8 @@ CASES: dict[str, tuple[list[str], int, bool]] = {
     # The dataset commands (cli/data_cmds.py): bad input, refused before any work.
     "collect": (["collect", "-o", "{tmp}/ds"], 2, False),
     "replay": (["replay", "{tmp}/no-dataset", "--json"], 2, False),
+    # Policy evaluation (cli/policy_cmds.py): bad input, refused before any work.
+    "eval-policy": (["eval-policy", "oracle", "--split", "nowhere"], 2, False),
 }
 
 
@@ -169,6 +171,12 @@ def test_piped_output_is_plain_lines_nothing_cut() -> None:
     assert "[1/2] put-block-in-bowl: 1/1 episodes succeeded" in evaluated.output
     lines = evaluated.stdout.splitlines()
     assert lines[0].startswith("task\tsuccess") and lines[1].startswith("put-block-in-bowl\t")
+    ran = _cli("run", "put-block-in-bowl", "-n", "2", "--seed", "5")
+    assert ran.exit_code == 0, ran.output
+    rows = [line.split("\t") for line in ran.stdout.splitlines()]
+    assert rows[0][:4] == ["seed", "reward", "success", "actions"]
+    assert [r[0] for r in rows[1:3]] == ["5", "6"] and rows[1][2] == "yes"
+    assert rows[3] == ["put-block-in-bowl: success 100% (completed)"]
 
 
 def test_run_writes_an_mp4_when_asked_for_one(tmp_path) -> None:

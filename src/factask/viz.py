@@ -305,21 +305,32 @@ class EpisodeVideo:
         self.frames = 0
 
     def attach(self, env: Any) -> None:
-        """Record ``env``'s next actions (sets its ``frame_callback``)."""
+        """Record ``env``'s next actions (sets its ``frame_callback``).
+
+        The renderer is made here, so a machine that cannot render says so
+        before the episode runs.
+
+        Raises:
+            factask.sim.render.RenderError: no GL context, or a size the model's
+                offscreen buffer cannot hold.
+        """
+        from factask.sim.render import SceneRenderer
+
+        if self._renderer is None:
+            self._renderer = SceneRenderer(env.model, self.size[0], self._scene_h)
         self._env = env
         env.frame_callback = self._on_step
 
     def _on_step(self) -> None:
         env = self._env
-        if self._renderer is None or env.data.time + 1e-9 >= self._next_time:
+        if self._view is None or env.data.time + 1e-9 >= self._next_time:
             self._frame()
 
     def _frame(self) -> None:
-        from factask.sim.render import VIEWS, SceneRenderer, framed_camera
+        from factask.sim.render import VIEWS, framed_camera
 
         env = self._env
-        if self._renderer is None:
-            self._renderer = SceneRenderer(env.model, self.size[0], self._scene_h)
+        if self._view is None:  # aimed once, at the first frame: a steady picture
             self._view = (framed_camera(env.model, env.data, self.camera,
                                         self.size[0] / self._scene_h)
                           if self.camera in VIEWS else self.camera)
@@ -341,7 +352,7 @@ class EpisodeVideo:
             What was written: path, frames, fps, size [width, height], camera, caption.
         """
         try:
-            if self._env is not None:
+            if self._env is not None and self._renderer is not None:
                 self._env.frame_callback = None
                 self._actions = -1  # the final frame's caption: the final status
                 self._frame()

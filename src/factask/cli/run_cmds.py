@@ -102,6 +102,30 @@ def _episode_table(result: Any, ravens: list[Any] | None = None) -> Table:
     return table
 
 
+def _episode_lines(result: Any, ravens: list[Any]) -> None:
+    """The episodes as tab-separated lines with a header, then the summary line."""
+    typer.echo("seed\treward\tsuccess\tactions" + ("\tRavens reward\tRavens success"
+                                                   if ravens else "") + "\tfailure")
+    for k, e in enumerate(result.episodes):
+        extra = (f"\t{ravens[k].reward:.3f}\t{'yes' if ravens[k].success else 'no'}"
+                 if ravens else "")
+        typer.echo(f"{e.seed}\t{e.reward:.3f}\t{'yes' if e.success else 'no'}\t{e.steps}"
+                   f"{extra}\t{' '.join((e.failure or '').split())}")
+    typer.echo(f"{result.task}: success {result.success_rate:.0%} "
+               f"({'completed' if result.completed else 'not completed'})")
+
+
+def _attach(recording: Any, env: Any) -> None:
+    """Attach a recording to ``env``; exit 2 if this machine cannot render."""
+    from factask.sim.render import RenderError
+
+    try:
+        recording.attach(env)
+    except RenderError as exc:
+        env.close()
+        raise fail(f"--video: {exc}") from None
+
+
 def _frame_size(text: str) -> tuple[int, int]:
     """``--size`` of a picture or video, within the scenes' offscreen buffer."""
     from factask.sim.assets import OFFSCREEN_SIZE
@@ -190,7 +214,7 @@ def run(
                                            markup=False, highlight=False)
 
                 if recording is not None and k == 0:
-                    recording.attach(env)  # the first episode only
+                    _attach(recording, env)  # the first episode only
                 try:
                     if ravens:
                         episode, score = scored_episode(source or graph, seed + k, robot=robot,
@@ -217,6 +241,10 @@ def run(
         if video_info is not None:
             out["video"] = video_info
         typer.echo(json.dumps(out))
+    elif not console.is_terminal:  # piped: plain tab-separated lines, nothing cut
+        _episode_lines(result, scores)
+        if video is not None:
+            typer.echo(f"video: {video}")
     else:
         console.print(_episode_table(result, scores))
         if video is not None:
@@ -336,7 +364,7 @@ def demo(
 
     env = _compile(graph, robot)
     recording = _recording(out / f"{graph.name}.gif", 20.0, (320, 240), "front", True)
-    recording.attach(env)
+    _attach(recording, env)
     try:
         with say.status(f"running the oracle ({robot})..."):
             result = run_episode(graph, seed, robot=robot, env=env, on_action=show)
