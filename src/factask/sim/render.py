@@ -256,12 +256,16 @@ def _scene_points(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
     local = aabb[:, None, :3] + signs[None] * aabb[:, None, 3:]
     rot = np.asarray(data.geom_xmat)[keep].reshape(-1, 3, 3)
     world = np.einsum("kij,kcj->kci", rot, local) + np.asarray(data.geom_xpos)[keep][:, None]
-    corners = np.array([[x, y, WORKSPACE_Z[0]] for x in WORKSPACE_X for y in WORKSPACE_Y])
-    return np.concatenate([world.reshape(-1, 3), corners])
+    world = world.reshape(-1, 3)
+    # The workspace up to the top of the scene: the robot reaches over all of it.
+    top = max(WORKSPACE_Z[1], float(world[:, 2].max()) if len(world) else 0.0)
+    corners = np.array([[x, y, z] for x in WORKSPACE_X for y in WORKSPACE_Y
+                        for z in (WORKSPACE_Z[0], top)])
+    return np.concatenate([world, corners])
 
 
 def framed_camera(model: mujoco.MjModel, data: mujoco.MjData, view: str = "front",
-                  aspect: float = 4 / 3, margin: float = 0.04) -> mujoco.MjvCamera:
+                  aspect: float = 4 / 3, margin: float = 0.1) -> mujoco.MjvCamera:
     """A free camera looking from ``view`` that shows the whole scene as it is now.
 
     The scene is every object, fixture, goal marker and the robot (its base
@@ -275,7 +279,8 @@ def framed_camera(model: mujoco.MjModel, data: mujoco.MjData, view: str = "front
         data: Its data (positions current, e.g. after ``reset``).
         view: A name of :data:`VIEWS`.
         aspect: Image width / height.
-        margin: Extra distance, as a fraction, around the tightest fit.
+        margin: Extra distance, as a fraction, around the tightest fit (room
+            for an arm swinging its elbow out while it moves).
 
     Returns:
         A ``mujoco.MjvCamera`` to pass as ``camera`` to :class:`SceneRenderer`.
