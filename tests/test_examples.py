@@ -26,6 +26,8 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "05_import_cliport_task.py": ("05_stack_boxes_column.py", "05_imported.json"),
     "06_generate_with_loopback.py": ("06_generated.json", "06_results.json"),
     "07_milestones_and_ravens_scoring.py": ("07_block_tour.py", "07_scores.json"),
+    "08_collect_dataset.py": ("08_cameras.png", "08_summary.json",
+                              "08_dataset/meta/info.json"),
 }
 SIGNATURES = {".png": b"\x89PNG\r\n\x1a\n", ".gif": b"GIF8"}
 
