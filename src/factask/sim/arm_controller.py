@@ -8,7 +8,6 @@ limits, via points where the tip would leave the straight line) and tracks them.
 from __future__ import annotations
 
 import contextlib
-import itertools
 import math
 
 import mujoco
@@ -16,7 +15,15 @@ import numpy as np
 
 from factask.geometry import Pose, wrap_angle
 from factask.sim.ik import TopDownIK, top_down_pose
-from factask.sim.motion import blend, constant_speed, profile
+from factask.sim.motion import (
+    Profile,
+    Shape,
+    blend,
+    constant_speed,
+    curve_move,
+    move_starts,
+    profile,
+)
 from factask.sim.primitive import (
     CLEARANCE,
     MIN_TRAVEL_HEIGHT,
@@ -144,18 +151,35 @@ class ArmSuctionRobot(SuctionRobot):
 
     def _path(self, points: list[tuple[np.ndarray, float]]) -> np.ndarray:
         qs = [self._cmd_q.copy()]
+        shapes: list[Shape | None] = []
+        profiles: list[Profile] = []
         pa, ya = self._cmd_pos.copy(), self._cmd_yaw
         for pos, yaw in points:
             q = self._solve(qs[-1], pa, ya, pos, yaw)
-            qs += [*self._vias(qs[-1], q, pa, pos, ya, yaw), q]
+            vias = self._vias(qs[-1], q, pa, pos, ya, yaw)
+            if vias:
+                # One smooth move through the via points: no slowing down at them.
+                shape, prof = curve_move(np.array([qs[-1], *vias, q]), self._vmax, self._amax)
+                shapes.append(shape)
+            else:
+                shapes.append(None)
+                prof = profile(q - qs[-1], self._vmax, self._amax)
+            qs.append(q)
+            profiles.append(prof)
             pa, ya = np.asarray(pos, dtype=float), yaw
-        profiles = [profile(b - a, self._vmax, self._amax) for a, b in itertools.pairwise(qs)]
-        samples = blend(qs, profiles, math.sqrt(2 * CLEARANCE / TOOL_ACCEL), self.dt)
-        if len(samples) > 2:
-            acc = np.abs(np.diff(samples, 2, axis=0)).max(axis=0) / self.dt**2
-            if (acc > 1.05 * self._amax).any():
-                # Overlapping moves of one joint in opposite directions add up: no overlap.
-                samples = blend(qs, profiles, 0.0, self.dt)
+        laps = [math.sqrt(2 * CLEARANCE / TOOL_ACCEL)] * (len(profiles) - 1)
+        samples = blend(qs, profiles, laps, self.dt, shapes)
+        # Overlapping moves of one joint in opposite directions add their
+        # accelerations: the corners where the limits break get no overlap.
+        for _ in range(len(laps)):
+            acc = np.abs(np.diff(samples, 2, axis=0)) / self.dt**2
+            over = np.flatnonzero((acc > 1.05 * self._amax).any(axis=1))
+            if len(over) == 0:
+                break
+            corners = np.array(move_starts(profiles, laps)[1:])
+            for t in (over + 1) * self.dt:
+                laps[int(np.abs(corners - t).argmin())] = 0.0
+            samples = blend(qs, profiles, laps, self.dt, shapes)
         self._cmd_pos, self._cmd_yaw = pa, ya
         return self._targets(samples)
 

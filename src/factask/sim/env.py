@@ -48,7 +48,7 @@ from factask.sim.robot import SuctionRobot, make_robot
 #: exactly resting may still shift by a fraction of a millimetre) ...
 SETTLE_SECONDS = 0.3
 #: ... and at least; it has settled when no object moves faster than
-#: SETTLE_SPEED (m/s, rad/s), tested every SETTLE_EVERY physics steps.
+#: SETTLE_SPEED (m/s), tested every SETTLE_EVERY physics steps.
 SETTLE_MIN_SECONDS = 0.04
 SETTLE_SPEED = 0.001
 SETTLE_EVERY = 10

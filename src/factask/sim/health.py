@@ -7,6 +7,8 @@ state, ends the episode as a failure).
 
 from __future__ import annotations
 
+import math
+
 import mujoco
 import numpy as np
 
@@ -47,3 +49,33 @@ def physics_problem(data: mujoco.MjData, baseline: np.ndarray | None = None) -> 
     if not (np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all()):
         return f"non-finite qpos/qvel at time {data.time:.3f}s"
     return None
+
+
+class HealthWatch:
+    """:func:`physics_problem` since a baseline, cheap enough for every few steps.
+
+    The views into ``data`` are taken once; a healthy state costs one comparison
+    of the warning counters and two sums (a NaN or inf anywhere makes a sum
+    non-finite). Only an unhealthy one goes through :func:`physics_problem`.
+
+    Args:
+        data: The simulation data watched.
+    """
+
+    def __init__(self, data: mujoco.MjData) -> None:
+        self.data = data
+        self._counts = data.warning.number
+        self._qpos = data.qpos
+        self._qvel = data.qvel
+        self.baseline = warning_counts(data)
+
+    def rebase(self) -> None:
+        """Count only warnings raised from now on."""
+        self.baseline = self._counts[_FATAL_INDEX].copy()
+
+    def problem(self) -> str | None:
+        """Why the state can no longer be trusted (see :func:`physics_problem`), or None."""
+        if ((self._counts[_FATAL_INDEX] <= self.baseline).all()
+                and math.isfinite(float(self._qpos.sum()) + float(self._qvel.sum()))):
+            return None
+        return physics_problem(self.data, self.baseline)

@@ -13,15 +13,27 @@ A path through several waypoints (up, over, down) is a sum of such moves, each
 started a little before the previous one stops (:func:`blend`): the corner is
 rounded by at most the distance covered in the overlap, and the robot never
 stops at a via point.
+
+A move may also follow a smooth curve through via points (:func:`curve_move`: a
+cubic spline in the same space), timed by one profile from its start to its end,
+so the robot does not slow down at the via points either.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.interpolate import CubicSpline
+
+#: A move's shape: its displacement from its start at path parameters ``s``
+#: (k,) in [0, 1], shape (k, dims); None: the straight line.
+Shape = Callable[[np.ndarray], np.ndarray]
+#: Samples of a curve's path parameter where its speed and curvature are bounded.
+_CURVE_SAMPLES = 64
 
 
 @dataclass(frozen=True)
@@ -93,8 +105,8 @@ def profile(delta: np.ndarray, vmax: np.ndarray, amax: np.ndarray,
     return Profile(duration, ta, v, a)
 
 
-def blend(points: list[np.ndarray], profiles: list[Profile], overlap: float,
-          dt: float) -> np.ndarray:
+def blend(points: list[np.ndarray], profiles: list[Profile], overlap: float | Sequence[float],
+          dt: float, shapes: list[Shape | None] | None = None) -> np.ndarray:
     """Sample a path through ``points`` whose consecutive moves overlap in time.
 
     Move ``k`` (from ``points[k]`` to ``points[k+1]``) starts ``overlap`` seconds
@@ -103,23 +115,29 @@ def blend(points: list[np.ndarray], profiles: list[Profile], overlap: float,
     Args:
         points: Waypoints, each of shape (dims,); at least two.
         profiles: One profile per move (``len(points) - 1``).
-        overlap: Wanted overlap (s) between consecutive moves.
+        overlap: Wanted overlap (s) between consecutive moves, or one per corner
+            (``len(points) - 2`` values).
         dt: Sample period (the physics timestep).
+        shapes: Per move, its curve (:func:`curve_move`) or None for the straight
+            line; default all straight.
 
     Returns:
         Samples at ``dt, 2 dt, ...`` up to the end of the last move, shape
         (steps, dims); the last sample is ``points[-1]``.
     """
-    starts = [0.0]
-    for prev, nxt in itertools.pairwise(profiles):
-        lap = min(overlap, prev.accel_time, nxt.accel_time)
-        starts.append(starts[-1] + prev.duration - lap)
+    laps = ([float(overlap)] * max(0, len(profiles) - 1) if isinstance(overlap, (int, float))
+            else list(overlap))
+    starts = move_starts(profiles, laps)
     end = max(s + p.duration for s, p in zip(starts, profiles, strict=True))
     n = max(1, math.ceil(end / dt - 1e-9))
     t = dt * np.arange(1, n + 1)
     out = np.repeat(points[0][None, :], n, axis=0).astype(float)
     for k, (start, prof) in enumerate(zip(starts, profiles, strict=True)):
-        out += prof.at(t - start)[:, None] * (points[k + 1] - points[k])[None, :]
+        shape = shapes[k] if shapes is not None else None
+        if shape is None:
+            out += prof.at(t - start)[:, None] * (points[k + 1] - points[k])[None, :]
+        else:
+            out += shape(prof.at(t - start))
     out[-1] = points[-1]
     return out
 
@@ -140,3 +158,50 @@ def constant_speed(start: np.ndarray, goal: np.ndarray, duration: float,
     n = max(1, math.ceil(duration / dt - 1e-9))
     s = np.arange(1, n + 1, dtype=float) / n
     return start[None, :] + s[:, None] * (goal - start)[None, :]
+
+
+def curve_move(knots: np.ndarray, vmax: np.ndarray, amax: np.ndarray) -> tuple[Shape, Profile]:
+    """A smooth move through ``knots`` (start, via points, end) and its fastest profile.
+
+    The curve is a cubic spline through the knots, parameterised by chord length
+    (``s`` from 0 to 1). Axis ``i`` moves at ``q_i'(s) ds/dt`` and accelerates at
+    ``q_i''(s) (ds/dt)^2 + q_i'(s) d2s/dt2``: the profile is the trapezoid of
+    :func:`profile` under the largest ``|q_i'|``, slowed down evenly until the
+    curvature term fits the acceleration limits too.
+
+    Args:
+        knots: Points (m, dims), m >= 2, the first the start and the last the end.
+        vmax: Speed limit per axis.
+        amax: Acceleration limit per axis.
+
+    Returns:
+        (shape, profile) for :func:`blend`.
+    """
+    knots = np.asarray(knots, dtype=float)
+    chord = np.linalg.norm(np.diff(knots, axis=0), axis=1)
+    total = float(chord.sum())
+    if len(knots) < 3 or total <= 1e-12:
+        delta = knots[-1] - knots[0]
+        return (lambda s: s[:, None] * delta[None, :]), profile(delta, vmax, amax)
+    u = np.concatenate([[0.0], np.cumsum(chord)]) / total
+    spline = CubicSpline(u, knots, axis=0)
+    us = np.linspace(0.0, 1.0, _CURVE_SAMPLES)
+    d1 = np.abs(spline(us, 1)).max(axis=0)
+    d2 = np.abs(spline(us, 2)).max(axis=0)
+    prof = profile(d1, vmax, amax)
+    # Scaling time by k divides the speed by k and both acceleration terms by k^2.
+    need = float(((d2 * prof.speed ** 2 + d1 * prof.accel) / np.asarray(amax, float)).max())
+    if need > 1.0:
+        prof = profile(d1, vmax, amax, min_time=prof.duration * math.sqrt(need))
+    start = knots[0]
+    return (lambda s: spline(s) - start[None, :]), prof
+
+
+def move_starts(profiles: list[Profile], overlap: Sequence[float]) -> list[float]:
+    """Start time (s) of each move of a :func:`blend`: each starts ``overlap``
+    (per corner; at most the shorter of the two accelerations) before the
+    previous one ends."""
+    starts = [0.0]
+    for (prev, nxt), wanted in zip(itertools.pairwise(profiles), overlap, strict=True):
+        starts.append(starts[-1] + prev.duration - min(wanted, prev.accel_time, nxt.accel_time))
+    return starts

@@ -30,7 +30,7 @@ import mujoco
 import numpy as np
 
 from factask.geometry import Pose, wrap_angle
-from factask.sim.health import FATAL_WARNINGS, physics_problem, warning_counts
+from factask.sim.health import HealthWatch
 from factask.sim.suction import TIP_SITE, SuctionGripper, find_id
 
 #: Tool limits of the floating cup: speed (m/s), acceleration (m/s^2), yaw rate
@@ -54,13 +54,15 @@ CLEARANCE = 0.02
 CUP_CLEARANCE = 0.05
 #: Lowest tool height over the table while moving (m).
 MIN_TRAVEL_HEIGHT = 0.05
-#: Lift after the release before the primitive ends (m).
-RETREAT = 0.03
-#: The objects rest when no free object moves faster than this (m/s, rad/s) ...
+#: Lift after the release before the primitive ends (m): off the object, not more
+#: (the next transfer climbs from here anyway).
+RETREAT = 0.015
+#: The objects rest when no free object moves faster than this (m/s; see
+#: :meth:`~factask.sim.suction.SuctionGripper.objects_resting`) ...
 REST_SPEED = 0.02
 #: ... or after this long (s).
 REST_MAX_TIME = 0.3
-#: Before release, objects must move slower than this (m/s or rad/s) ...
+#: Before release, objects must move slower than this (m/s) ...
 RELEASE_SPEED = 0.003
 #: ... or this many seconds pass.
 RELEASE_MAX_TIME = 0.5
@@ -126,7 +128,7 @@ class SuctionRobot(ABC):
         self._max_steps = DEFAULT_MAX_STEPS
         self._on_step: Callable[[], None] | None = None
         self._callback_every = DEFAULT_CALLBACK_EVERY
-        self._warn0 = np.zeros(len(FATAL_WARNINGS), dtype=np.int64)
+        self._health = HealthWatch(data)
         self._aborted = False
 
     # ----- robot-specific hooks -----
@@ -227,7 +229,7 @@ class SuctionRobot(ABC):
         self._max_steps = max_steps
         self._on_step = on_step
         self._callback_every = max(1, callback_every)
-        self._warn0 = warning_counts(self.data)
+        self._health.rebase()
         grasped: int | None = None
         try:
             self._check_health()
@@ -384,6 +386,6 @@ class SuctionRobot(ABC):
     def _check_health(self) -> None:
         """Raise PrimitiveAbort on a fatal MuJoCo warning since the primitive began, or
         a non-finite state (:func:`~factask.sim.health.physics_problem`)."""
-        problem = physics_problem(self.data, self._warn0)
+        problem = self._health.problem()
         if problem is not None:
             raise PrimitiveAbort(f"physics failure: {problem}")

@@ -41,6 +41,10 @@ TOUCH_DISTANCE = 0.002
 #: minimum) so a held block sags under 1 mm; damping ratio 1 (no oscillation).
 WELD_SOLREF = (0.005, 1.0)
 WELD_SOLIMP = (0.95, 0.99, 0.001, 0.5, 2.0)
+#: Distance (m) from an object's centre at which its turning is measured: an
+#: object rests when its centre moves slower than the speed asked for, and its
+#: points this far out too (|angular velocity| x this).
+REST_RADIUS = 0.05
 #: Collision bits of robot geoms: they collide with ordinary geoms (bit 0) but
 #: not with each other (no self-collision among the simplified link shapes).
 ROBOT_CONTYPE = 2
@@ -178,6 +182,8 @@ class SuctionGripper:
         #: qvel indices of the free objects' linear and angular velocities.
         self.object_dofs = np.array([int(model.jnt_dofadr[j]) + k for j in free for k in range(6)],
                                     dtype=np.int64)
+        self._linear_dofs = self.object_dofs.reshape(-1, 6)[:, :3].ravel()
+        self._angular_dofs = self.object_dofs.reshape(-1, 6)[:, 3:].ravel()
 
     @property
     def held(self) -> int | None:
@@ -300,10 +306,13 @@ class SuctionGripper:
         return float(low[mine].min()) if mine.any() else None
 
     def objects_resting(self, speed: float) -> bool:
-        """True when no free object moves faster than ``speed`` (m/s or rad/s)."""
+        """True when no free object moves faster than ``speed`` (m/s): neither its
+        centre nor its points :data:`REST_RADIUS` out, as it turns."""
         if len(self.object_dofs) == 0:
             return True
-        return float(np.abs(self.data.qvel[self.object_dofs]).max()) < speed
+        qvel = self.data.qvel
+        return (float(np.abs(qvel[self._linear_dofs]).max()) < speed
+                and float(np.abs(qvel[self._angular_dofs]).max()) * REST_RADIUS < speed)
 
     def grasp(self) -> bool:
         """Switch suction on: weld the closest touching free object where it is.
