@@ -241,3 +241,34 @@ def test_segmentation_colours_are_fixed_per_variable_across_runs_and_seeds(
         colours.append({tuple(p) for p in iio.imread(out).reshape(-1, 3).tolist()})
     expected = {segmentation_color(v.name) for v in get_task("put-block-in-bowl").variables}
     assert colours[0] == colours[1] and expected <= colours[0]
+
+
+def test_the_arm_stays_whole_in_every_view_while_it_works() -> None:
+    from factask.library import get_task
+    from factask.sim.env import FactaskEnv
+    from factask.sim.episode import run_episode
+    from factask.sim.render import VIEWS, framed_camera
+
+    task = get_task("put-block-in-bowl")
+    env = FactaskEnv(task, robot="ur10e")
+    model, cams, cut, calls = env.model, {}, set(), [0]
+    moving = np.flatnonzero(model.geom_bodyid != 0)
+    with SceneRenderer(model, 48, 36) as r:
+
+        def look() -> None:
+            calls[0] += 1
+            if not cams:  # aimed once, after the reset, as a video is
+                cams.update({v: framed_camera(model, env.data, v, 48 / 36) for v in VIEWS})
+            if calls[0] % 8:
+                return
+            for view, cam in cams.items():
+                seg = r.segmentation(env.data, cam)
+                border = np.concatenate([seg[0], seg[-1], seg[:, 0], seg[:, -1]])
+                cut.update(f"{view}:{g}" for g in set(border.tolist()) & set(moving.tolist()))
+
+        env.frame_callback = look
+        try:
+            assert run_episode(task, 0, robot="ur10e", env=env).success
+        finally:
+            env.close()
+    assert calls[0] > 8 and not cut, f"geoms at the picture's edge: {sorted(cut)}"

@@ -244,24 +244,24 @@ def render_segmentation(model: mujoco.MjModel, data: mujoco.MjData,
 
 # ------------------------------------------------------------------ framing
 def _scene_points(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
-    """Points (n, 3) whose convex hull holds what a framed view must show whole:
-    the corners of the oriented bounding box of every geom of a moving or placed
-    body (objects, fixtures, goal markers, the robot with its base) and the
-    workspace's corners. The world body's own geoms (table, floor) are left out:
-    the table may run off the picture."""
+    """Points (n, 3) whose convex hull holds what a framed view must show whole.
+
+    Every geom of a moving or placed body (objects, fixtures, goal markers, the
+    robot with its base) counts by the cube around its bounding sphere: an arm's
+    links turn about their joints while it moves, and the sphere holds more of
+    where they go than the geom's own box. The workspace counts from the table up
+    to the top of the scene (the robot reaches over all of it). The world body's
+    own geoms (table, floor) are left out: the table may run off the picture.
+    """
     keep = np.flatnonzero((model.geom_bodyid != 0)
                           & (model.geom_type != mujoco.mjtGeom.mjGEOM_PLANE))
     signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
-    aabb = np.asarray(model.geom_aabb)[keep]  # (k, 6): centre and half sizes, geom frame
-    local = aabb[:, None, :3] + signs[None] * aabb[:, None, 3:]
-    rot = np.asarray(data.geom_xmat)[keep].reshape(-1, 3, 3)
-    world = np.einsum("kij,kcj->kci", rot, local) + np.asarray(data.geom_xpos)[keep][:, None]
-    world = world.reshape(-1, 3)
-    # The workspace up to the top of the scene: the robot reaches over all of it.
-    top = max(WORKSPACE_Z[1], float(world[:, 2].max()) if len(world) else 0.0)
+    cubes = (np.asarray(data.geom_xpos)[keep][:, None]
+             + np.asarray(model.geom_rbound)[keep][:, None, None] * signs[None]).reshape(-1, 3)
+    top = max(WORKSPACE_Z[1], float(cubes[:, 2].max()) if len(cubes) else 0.0)
     corners = np.array([[x, y, z] for x in WORKSPACE_X for y in WORKSPACE_Y
                         for z in (WORKSPACE_Z[0], top)])
-    return np.concatenate([world, corners])
+    return np.concatenate([cubes, corners])
 
 
 def framed_camera(model: mujoco.MjModel, data: mujoco.MjData, view: str = "front",
@@ -270,7 +270,7 @@ def framed_camera(model: mujoco.MjModel, data: mujoco.MjData, view: str = "front
 
     The scene is every object, fixture, goal marker and the robot (its base
     included) plus the workspace; the camera is aimed at their centre and pulled
-    back until every geom's bounding box fits the image, so nothing is cut at an
+    back until every geom's bounding sphere fits the image, so nothing is cut at an
     edge whatever the robot or the layout. Compute it once per episode (after
     the reset) for a steady video.
 
