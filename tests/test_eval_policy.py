@@ -30,9 +30,10 @@ def test_wilson_interval_matches_known_values() -> None:
 
 
 def test_the_oracle_succeeds_and_episodes_are_json_lines(tmp_path: Path) -> None:
-    out = tmp_path / "episodes.jsonl"
+    out, chart, videos = tmp_path / "episodes.jsonl", tmp_path / "chart.png", tmp_path / "v"
     result = CliRunner().invoke(app, ["eval-policy", "oracle", TASK, "-n", "2",
-                                      "--workers", "1", "--out", str(out), "--json"])
+                                      "--workers", "1", "--out", str(out), "--json",
+                                      "--chart", str(chart), "--video-dir", str(videos)])
     assert result.exit_code == 0, result.output
     summary = json.loads(result.output)
     score = summary["tasks"][0]
@@ -40,6 +41,8 @@ def test_the_oracle_succeeds_and_episodes_are_json_lines(tmp_path: Path) -> None
     lines = [json.loads(x) for x in out.read_text().splitlines()]
     assert [x["seed"] for x in lines] == [10_001, 10_003]  # test seeds
     assert all(x["success_at_end"] for x in lines)
+    assert chart.read_bytes().startswith(b"\x89PNG")
+    assert [p.name for p in videos.iterdir()] == [f"{TASK}-seed10001.mp4"]  # --videos 1
 
 
 def test_module_callable_and_object_policies() -> None:

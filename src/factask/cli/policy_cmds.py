@@ -32,6 +32,12 @@ def eval_policy(
                                 help="Worker processes (0: the machine's cores)."),
     out: Path | None = typer.Option(None, "--out", "-o", help="Write one JSON line per "
                                     "episode here."),
+    chart: Path | None = typer.Option(None, "--chart", help="Write a PNG bar chart of "
+                                      "success at the end per task, with 95 % intervals."),
+    video_dir: Path | None = typer.Option(None, "--video-dir", help="Write MP4s of the first "
+                                          "--videos episodes of each task here."),
+    videos: int = typer.Option(1, "--videos", min=0, max=MAX_EPISODES,
+                               help="Episodes per task filmed (with --video-dir)."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
 ) -> None:
     """Evaluate a policy: success once, success at the end and mean total reward per task,
@@ -47,8 +53,10 @@ def eval_policy(
                           style="red", markup=False)
         raise typer.Exit(2)
     try:
-        outcomes, scores = evaluate_policy(policy, names, episodes, split=split, robot=robot,
-                                           obs_mode=obs_mode, workers=workers or os.cpu_count())
+        outcomes, scores = evaluate_policy(
+            policy, names, episodes, split=split, robot=robot, obs_mode=obs_mode,
+            workers=workers or os.cpu_count(),
+            video_dir=None if video_dir is None else str(video_dir), videos=videos)
     except FactaskError as exc:
         err_console.print(str(exc), style="red", markup=False)
         raise typer.Exit(2) from None
@@ -57,9 +65,14 @@ def eval_policy(
         with open(out, "w") as fh:
             for o in outcomes:
                 fh.write(json.dumps(o.__dict__) + "\n")
+    if chart is not None:
+        from factask.evaluation.policy_chart import plot_scores
+
+        plot_scores(scores, chart, title=f"{policy} on {split} seeds ({episodes} per task)")
     if as_json:
         typer.echo(json.dumps({"policy": policy, "split": split,
-                               "tasks": [s.to_dict() for s in scores]}))
+                               "tasks": [s.to_dict() for s in scores],
+                               "chart": None if chart is None else str(chart)}))
         return
     table = Table(title=f"{policy} on {split} seeds ({episodes} per task)")
     for col in ("task", "success once", "success at end", "mean reward"):

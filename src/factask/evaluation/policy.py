@@ -21,6 +21,7 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 from multiprocessing import get_context
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -183,16 +184,41 @@ def run_policy_episode(env: Any, policy: Any, task: str, seed: int) -> EpisodeOu
                           float(info.get("total_reward", 0.0)), steps, failure)
 
 
+def video_path(video_dir: str, task: str, seed: int) -> Path:
+    """Where the video of one evaluated episode goes."""
+    slug = "".join(ch if ch.isalnum() or ch in "-_" else "_" for ch in task)[-60:]
+    return Path(video_dir) / f"{slug}-seed{seed}.mp4"
+
+
 def evaluate_task_seeds(policy_spec: str, task: str, seeds: Sequence[int],
                         robot: str = "floating", obs_mode: str = "state",
-                        image_size: tuple[int, int] | None = None) -> list[EpisodeOutcome]:
-    """Evaluate a policy on one task's seeds in this process (the worker's entry point)."""
+                        image_size: tuple[int, int] | None = None,
+                        video_dir: str | None = None, videos: int = 0
+                        ) -> list[EpisodeOutcome]:
+    """Evaluate a policy on one task's seeds in this process (the worker's entry point).
+
+    Args:
+        video_dir: Write MP4s of the first ``videos`` episodes here (front camera).
+    """
     from factask.registration import make_env
 
     env = make_env(task, robot=robot, obs_mode=obs_mode, image_size=image_size)
     try:
         policy = load_policy(policy_spec, env)
-        return [run_policy_episode(env, policy, task, s) for s in seeds]
+        outcomes = []
+        for k, seed in enumerate(seeds):
+            recording = None
+            if video_dir is not None and k < videos:
+                from factask.viz import EpisodeVideo
+
+                recording = EpisodeVideo(video_path(video_dir, task, seed), fps=10.0)
+                recording.attach(env.unwrapped)
+            try:
+                outcomes.append(run_policy_episode(env, policy, task, seed))
+            finally:
+                if recording is not None:
+                    recording.finish()
+        return outcomes
     finally:
         env.close()
 
@@ -200,7 +226,8 @@ def evaluate_task_seeds(policy_spec: str, task: str, seeds: Sequence[int],
 def evaluate_policy(policy_spec: str, tasks: Sequence[str], episodes: int,
                     split: str = "test", robot: str = "floating", obs_mode: str = "state",
                     workers: int | None = None, image_size: tuple[int, int] | None = None,
-                    on_episodes: Callable[[list[EpisodeOutcome]], None] | None = None
+                    on_episodes: Callable[[list[EpisodeOutcome]], None] | None = None,
+                    video_dir: str | None = None, videos: int = 0
                     ) -> tuple[list[EpisodeOutcome], list[TaskScore]]:
     """Evaluate a policy on every task's first ``episodes`` seeds of ``split``.
 
@@ -214,6 +241,8 @@ def evaluate_policy(policy_spec: str, tasks: Sequence[str], episodes: int,
         workers: Processes (default: cores); tasks run in parallel.
         image_size: Camera size for image modes.
         on_episodes: Called with each task's outcomes as it finishes.
+        video_dir: Folder of episode videos (:func:`video_path` names them).
+        videos: Episodes per task to film (the first ones).
 
     Returns:
         (outcomes in task then seed order, one score per task).
@@ -226,7 +255,9 @@ def evaluate_policy(policy_spec: str, tasks: Sequence[str], episodes: int,
     seeds = split_seeds(split, episodes)
     workers = workers or os.cpu_count() or 1
     results: dict[str, list[EpisodeOutcome]] = {}
-    args = (robot, obs_mode, image_size)
+    if video_dir is not None:
+        Path(video_dir).mkdir(parents=True, exist_ok=True)
+    args = (robot, obs_mode, image_size, video_dir, videos)
     if workers == 1 or len(tasks) == 1:
         for task in tasks:
             results[task] = evaluate_task_seeds(policy_spec, task, seeds, *args)
