@@ -62,8 +62,11 @@ RETREAT = 0.015
 REST_SPEED = 0.02
 #: ... or after this long (s).
 REST_MAX_TIME = 0.3
-#: Before release, objects must move slower than this (m/s) ...
+#: Before release, objects must move slower than this (m/s) when the held one
+#: can roll (a ball let go while it swings rolls away: nothing slows it) ...
 RELEASE_SPEED = 0.003
+#: ... or this when it cannot (a box set down moving at 1 cm/s stops at once) ...
+RELEASE_SPEED_FLAT = 0.01
 #: ... or this many seconds pass.
 RELEASE_MAX_TIME = 0.5
 #: Default cap on physics steps of one primitive (40 s at dt = 2 ms).
@@ -277,32 +280,64 @@ class SuctionRobot(ABC):
             raise PrimitiveAbort("object lost during transport")
         # Release only once everything is still: a ball let go while it still swings
         # on the cup rolls away (nothing slows a rolling ball on the table).
-        self._wait_for_rest(RELEASE_SPEED, RELEASE_MAX_TIME)
+        rolls = self.gripper.held_can_roll()
+        self._wait_for_rest(RELEASE_SPEED if rolls else RELEASE_SPEED_FLAT, RELEASE_MAX_TIME)
         self.suction_off()
         self._follow(self._path([(self._cmd_pos + RETREAT * up, self._cmd_yaw)]))
         self._wait_for_rest()
         return grasped
 
     def _transfer(self, goal: np.ndarray, yaw: float) -> None:
-        """Up to the clearance height, over, and down to ``goal`` in one blended motion
-        (the arm settles at the end and checks the goal was reached)."""
+        """Up, over and down to ``goal`` in one blended motion (the arm settles at the
+        end and checks the goal was reached).
+
+        The move over is a straight line that clears every object along the way
+        (and the held one, hanging below the tip) by CLEARANCE; it may slope, so
+        the climb to clear a tower at one end happens on the way, not straight up
+        at the other (:meth:`_travel_heights`).
+        """
         start = self._cmd_pos
-        # Only what lies along the way counts: the corridor is as wide as the held
-        # object's footprint plus the clearance.
-        top = self.gripper.obstacle_top(start, goal, self.gripper.held_footprint()
-                                        + CUP_CLEARANCE)
-        bottom = self.gripper.held_bottom()
-        hang = 0.0 if bottom is None else max(0.0, float(self.ee_pose().pos[2]) - bottom)
-        travel = max(top + hang + CLEARANCE, MIN_TRAVEL_HEIGHT, float(goal[2]))
+        h_start, h_goal = self._travel_heights(start, goal)
         points: list[tuple[np.ndarray, float]] = []
-        if start[2] < travel - 1e-4:
-            points.append((np.array([start[0], start[1], travel]), self._cmd_yaw))
-        level = max(travel, float(start[2]))
+        if start[2] < h_start - 1e-4:
+            points.append((np.array([start[0], start[1], h_start]), self._cmd_yaw))
         if np.linalg.norm(goal[:2] - start[:2]) > 1e-4 or abs(yaw - self._cmd_yaw) > 1e-4:
-            points.append((np.array([goal[0], goal[1], level]), yaw))
+            points.append((np.array([goal[0], goal[1], h_goal]), yaw))
         points.append((np.asarray(goal, dtype=float), yaw))
         self._follow(self._path(points))
         self._settle()
+
+    def _travel_heights(self, start: np.ndarray, goal: np.ndarray) -> tuple[float, float]:
+        """Tip heights above ``start`` and above ``goal`` of the move over.
+
+        Every object along the way (the corridor as wide as the held object's
+        footprint plus the cup's clearance) needs the line at least ``its top +
+        the held object's hang + CLEARANCE`` high wherever it lies under it. One
+        end is at the highest need (as a level move would be); the other is as low
+        as the needs allow, whichever of the two choices climbs and descends less.
+        """
+        t_lo, t_hi, top = self.gripper.corridor_obstacles(
+            start, goal, self.gripper.held_footprint() + CUP_CLEARANCE)
+        bottom = self.gripper.held_bottom()
+        hang = 0.0 if bottom is None else max(0.0, float(self.ee_pose().pos[2]) - bottom)
+        need = top + hang + CLEARANCE
+        z0, z1 = float(start[2]), float(goal[2])
+        high = max(float(need.max(initial=0.0)), MIN_TRAVEL_HEIGHT, z1)
+        # The line's height is linear along it: checking both ends of each shadow suffices.
+        t = np.concatenate([t_lo, t_hi])
+        n2 = np.concatenate([need, need])
+        rise = t < 1.0 - 1e-9   # line ends at `high` above the goal: the start end may be low
+        low_start = max(MIN_TRAVEL_HEIGHT, z0, float(((n2 - high * t)[rise] / (1.0 - t[rise]))
+                                                     .max(initial=0.0)))
+        fall = t > 1e-9         # line starts at `high` above the start: the goal end may be low
+        low_goal = max(MIN_TRAVEL_HEIGHT, z1, float(((n2 - high * (1.0 - t))[fall] / t[fall])
+                                                    .max(initial=0.0)))
+        low_start, low_goal = min(low_start, high), min(low_goal, high)
+        climb_rising = max(0.0, low_start - z0) + (high - z1)
+        climb_falling = max(0.0, high - z0) + (low_goal - z1)
+        if climb_rising <= climb_falling:
+            return max(low_start, z0), high
+        return max(high, z0), low_goal
 
     def _yaw_plan(self, pick: Pose, place: Pose) -> tuple[float, float]:
         """Unwrapped tool yaws at the pick and at the place.

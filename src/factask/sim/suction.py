@@ -16,6 +16,8 @@ body1's frame (w, x, y, z), ``[10]`` torque scale.
 
 from __future__ import annotations
 
+import math
+
 import mujoco
 import numpy as np
 
@@ -45,6 +47,9 @@ WELD_SOLIMP = (0.95, 0.99, 0.001, 0.5, 2.0)
 #: object rests when its centre moves slower than the speed asked for, and its
 #: points this far out too (|angular velocity| x this).
 REST_RADIUS = 0.05
+#: Geom types that can roll.
+_ROUND_GEOMS = np.array([int(mujoco.mjtGeom.mjGEOM_SPHERE), int(mujoco.mjtGeom.mjGEOM_CAPSULE),
+                         int(mujoco.mjtGeom.mjGEOM_ELLIPSOID), int(mujoco.mjtGeom.mjGEOM_CYLINDER)])
 #: Collision bits of robot geoms: they collide with ordinary geoms (bit 0) but
 #: not with each other (no self-collision among the simplified link shapes).
 ROBOT_CONTYPE = 2
@@ -269,20 +274,49 @@ class SuctionGripper:
         Returns:
             The height of the highest object top that counts.
         """
-        if len(self.object_geoms) == 0:
-            return 0.0
-        centre, half = self._object_boxes()
-        keep = np.ones(len(centre), dtype=bool)
-        if self._held is not None:
-            keep &= self.geom_root[self.object_geoms] != self._held
         if start is not None and goal is not None:
-            a, b = np.asarray(start[:2], float), np.asarray(goal[:2], float)
-            ab = b - a
-            t = np.clip((centre[:, :2] - a) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0)
-            gap = np.abs(centre[:, :2] - (a + t[:, None] * ab)) - half[:, :2]
-            keep &= (np.maximum(gap, 0.0) ** 2).sum(axis=1) <= margin ** 2
-        top = centre[keep, 2] + half[keep, 2]
+            top = self.corridor_obstacles(start, goal, margin)[2]
+        else:
+            centre, half = self._object_boxes()
+            top = (centre[:, 2] + half[:, 2])[self._not_held()]
         return float(top.max()) if len(top) else 0.0
+
+    def _not_held(self) -> np.ndarray:
+        """Bool per object geom: not a geom of the held object."""
+        if self._held is None:
+            return np.ones(len(self.object_geoms), dtype=bool)
+        return self.geom_root[self.object_geoms] != self._held
+
+    def corridor_obstacles(self, start: np.ndarray, goal: np.ndarray,
+                           margin: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The object geoms (not the held object's) within ``margin`` of the straight
+        line from ``start`` to ``goal`` (x, y): where along it and how high.
+
+        Args:
+            start: Start of the line (its x, y count).
+            goal: End of the line.
+            margin: Half width (m) of the corridor beyond each geom's box.
+
+        Returns:
+            ``(t_lo, t_hi, top)``, one entry per geom in the corridor: the part
+            ``[t_lo, t_hi]`` of the line (0 at ``start``, 1 at ``goal``) that its box,
+            grown by ``margin``, spans, and the height of its top (m).
+        """
+        if len(self.object_geoms) == 0:
+            return np.zeros(0), np.zeros(0), np.zeros(0)
+        centre, half = self._object_boxes()
+        a, b = np.asarray(start[:2], float), np.asarray(goal[:2], float)
+        ab = b - a
+        length2 = max(float(ab @ ab), 1e-12)
+        t = np.clip((centre[:, :2] - a) @ ab / length2, 0.0, 1.0)
+        gap = np.abs(centre[:, :2] - (a + t[:, None] * ab)) - half[:, :2]
+        keep = self._not_held() & ((np.maximum(gap, 0.0) ** 2).sum(axis=1) <= margin ** 2)
+        # The box's shadow on the line: centre +- (its extent along the line + margin).
+        unit = np.abs(ab) / math.sqrt(length2)
+        reach = (half[keep, :2] @ unit + margin) / math.sqrt(length2)
+        tc = (centre[keep, :2] - a) @ ab / length2
+        return (np.clip(tc - reach, 0.0, 1.0), np.clip(tc + reach, 0.0, 1.0),
+                centre[keep, 2] + half[keep, 2])
 
     def held_footprint(self) -> float:
         """Largest horizontal distance (m) from the tip axis to the held object's box
@@ -296,6 +330,14 @@ class SuctionGripper:
         tip = self.data.xpos[self.cup_body, :2]
         reach = np.abs(centre[mine, :2] - tip) + half[mine, :2]
         return float(np.sqrt((reach ** 2).sum(axis=1)).max())
+
+    def held_can_roll(self) -> bool:
+        """True when the held object has a round geom (sphere, capsule, ellipsoid,
+        cylinder): set down while moving, it may roll on."""
+        if self._held is None:
+            return False
+        mine = self.object_geoms[self.geom_root[self.object_geoms] == self._held]
+        return bool(np.isin(self.model.geom_type[mine], _ROUND_GEOMS).any())
 
     def held_bottom(self) -> float | None:
         """Lowest point (m) of the held object, or None when nothing is held."""
