@@ -107,6 +107,11 @@ def xyaxes_quat(xyaxes: tuple[float, ...]) -> tuple[float, ...]:
     return tuple(quat.tolist())
 
 
+#: Default classes of object geoms and of goal markers (:func:`_add_classes`).
+OBJECT_CLASS = "object"
+MARKER_CLASS = "marker"
+
+
 def new_spec(model: str, timestep: float, gravity: Sequence[float], impratio: float,
              shadow_size: int = SHADOW_SIZE) -> mujoco.MjSpec:
     """An empty spec with factask's physics and rendering options.
@@ -140,15 +145,25 @@ def new_spec(model: str, timestep: float, gravity: Sequence[float], impratio: fl
     vis.headlight.ambient = list(HEADLIGHT_AMBIENT)
     vis.headlight.diffuse = list(HEADLIGHT_DIFFUSE)
     vis.headlight.specular = list(HEADLIGHT_SPECULAR)
+    _add_classes(spec)
     return spec
 
 
-def _object_contacts(geom: mujoco.MjsGeom) -> None:
+def _object_contacts(geom: mujoco.MjsGeom | mujoco.MjsDefault) -> None:
     """Contact parameters of colliding object geoms (the MJCF ``object`` class)."""
-    geom.friction = list(OBJECT_FRICTION)
-    geom.condim = OBJECT_CONDIM
-    geom.solref = list(OBJECT_SOLREF)
-    geom.solimp = [*OBJECT_SOLIMP, 0.5, 2.0]
+    target = geom.geom if isinstance(geom, mujoco.MjsDefault) else geom
+    target.friction = list(OBJECT_FRICTION)
+    target.condim = OBJECT_CONDIM
+    target.solref = list(OBJECT_SOLREF)
+    target.solimp = [*OBJECT_SOLIMP, 0.5, 2.0]
+
+
+def _add_classes(spec: mujoco.MjSpec) -> None:
+    """The default classes of object geoms (contact parameters) and of goal markers
+    (no collision): set once per scene, not per geom."""
+    _object_contacts(spec.add_default(OBJECT_CLASS, spec.default))
+    marker = spec.add_default(MARKER_CLASS, spec.default).geom
+    marker.contype = marker.conaffinity = 0
 
 
 def add_table(spec: mujoco.MjSpec) -> mujoco.MjsGeom:
@@ -183,7 +198,7 @@ def add_object(spec: mujoco.MjSpec, plan: ObjectPlan) -> BodyHandles:
     """Add one object body (see :func:`factask.sim.parts.plan_object`) to the world.
 
     Args:
-        spec: The scene's spec.
+        spec: The scene's spec (made by :func:`new_spec`: it holds the classes).
         plan: The object's plan.
 
     Returns:
@@ -193,18 +208,15 @@ def add_object(spec: mujoco.MjSpec, plan: ObjectPlan) -> BodyHandles:
     if plan.quat is not None:
         body.quat = list(plan.quat)
     joint = None if plan.mocap else body.add_freejoint(name=plan.joint_name)
+    cls = spec.find_default(OBJECT_CLASS if plan.collides else MARKER_CLASS)
     geoms = []
     for g in plan.geoms:
-        geom = body.add_geom(name=g.name, type=GEOM_TYPES[g.type], size=size3(g.size),
+        geom = body.add_geom(cls, name=g.name, type=GEOM_TYPES[g.type], size=size3(g.size),
                              pos=list(g.pos), rgba=list(g.rgba), group=g.group)
         if g.quat is not None:
             geom.quat = list(g.quat)
-        if plan.collides:
-            _object_contacts(geom)
-            if g.type == "sphere":
-                geom.condim = ROLLING_CONDIM
-        else:
-            geom.contype = geom.conaffinity = 0
+        if plan.collides and g.type == "sphere":
+            geom.condim = ROLLING_CONDIM
         if g.mass is not None:
             geom.mass = g.mass
         geoms.append(geom)

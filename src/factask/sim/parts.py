@@ -26,7 +26,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -488,41 +488,69 @@ def plan_object(
     Raises:
         AssetError: bad kind, size, colour or mass.
     """
+    mocap, collides, geoms = _body_plan(name, kind, size, color, mass, fixed, hollow,
+                                        visual_only, alpha, group)
+    return ObjectPlan(
+        name=name, pos=fmt(pos if pos is not None else (0.0, 0.0, size[2] / 2)),
+        quat=None if quat is None else fmt(quat), mocap=mocap, collides=collides,
+        geoms=tuple(GeomPlan(f"{name}{GEOM_SEPARATOR}{part}", *rest) for part, *rest in geoms),
+    )
+
+
+def _body_plan(name: str, kind: str, size: Any, color: str, mass: float | None,
+               fixed: bool | None, hollow: HollowShape, visual_only: bool, alpha: float,
+               group: int | None) -> tuple[bool, bool, tuple[tuple[Any, ...], ...]]:
+    """(mocap, collides, geoms as (part, type, size, pos, quat, rgba, group, mass)) of
+    an object: everything of its plan but the names and the pose. Scenes repeat the
+    same objects (a row of blocks), so the checked result is cached; a failure is
+    never cached and names ``name``."""
     try:
-        spec = kind_spec(kind)
-    except UnknownKindError as exc:
-        raise AssetError(name, str(exc), "use one of the listed kinds") from None
-    try:
-        shapes = _shapes(kind, tuple(float(v) for v in size), hollow)
+        return _body_plan_cached(kind, tuple(float(v) for v in size), color, mass, fixed,
+                                 hollow, visual_only, alpha, group)
+    except _PlanError as exc:
+        raise AssetError(name, exc.message, exc.fix) from None
     except (AssetError, TypeError, ValueError):
         kind_parts(kind, size, name=name, hollow=hollow)  # raises, naming the object
         raise
+
+
+class _PlanError(Exception):
+    """An object description that cannot be planned (turned into AssetError with its name)."""
+
+    def __init__(self, message: str, fix: str) -> None:
+        super().__init__(message)
+        self.message, self.fix = message, fix
+
+
+@functools.lru_cache(maxsize=4096)
+def _body_plan_cached(kind: str, size: tuple[float, ...], color: str, mass: float | None,
+                      fixed: bool | None, hollow: HollowShape, visual_only: bool, alpha: float,
+                      group: int | None) -> tuple[bool, bool, tuple[tuple[Any, ...], ...]]:
+    try:
+        spec = kind_spec(kind)
+    except UnknownKindError as exc:
+        raise _PlanError(str(exc), "use one of the listed kinds") from None
+    shapes = _shapes(kind, size, hollow)
     try:
         color_rgba = fmt(rgba(color, alpha))
     except UnknownColorError as exc:
-        raise AssetError(name, str(exc), "use a palette colour") from None
+        raise _PlanError(str(exc), "use a palette colour") from None
     collides = spec.collides and not visual_only
     is_fixed = (not spec.movable) if fixed is None else bool(fixed)
     mocap = is_fixed or not collides
     total_mass = default_mass(kind, size) if mass is None else float(mass)
     if not (math.isfinite(total_mass) and total_mass > 0):
-        raise AssetError(name, f"mass must be a positive number of kg, got {mass}",
+        raise _PlanError(f"mass must be a positive number of kg, got {mass}",
                          "give a mass such as 0.05")
     if group is None:
         group = MARKER_GROUP if visual_only else OBJECT_GROUP
     geoms = tuple(
-        GeomPlan(
-            name=f"{name}{GEOM_SEPARATOR}{part}", type=gtype, size=gsize, pos=gpos, quat=gquat,
-            rgba=color_rgba, group=group,
-            # Share the object's mass by volume so its centre of mass is right.
-            mass=None if mocap else round(total_mass * share, 12),
-        )
+        # Share the object's mass by volume so its centre of mass is right.
+        (part, gtype, gsize, gpos, gquat, color_rgba, group,
+         None if mocap else round(total_mass * share, 12))
         for part, gtype, gsize, gpos, gquat, share in shapes
     )
-    return ObjectPlan(
-        name=name, pos=fmt(pos if pos is not None else (0.0, 0.0, size[2] / 2)),
-        quat=None if quat is None else fmt(quat), mocap=mocap, collides=collides, geoms=geoms,
-    )
+    return mocap, collides, geoms
 
 
 @functools.lru_cache(maxsize=16)
