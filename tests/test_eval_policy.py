@@ -66,3 +66,16 @@ def test_a_bad_policy_names_the_fix() -> None:
         load_policy("no_such_module_xyz:f", None)
     result = CliRunner().invoke(app, ["eval-policy", "nope:nothing", TASK, "--workers", "1"])
     assert result.exit_code == 2
+
+
+@pytest.mark.slow
+def test_eval_policy_on_ray_equals_in_process() -> None:
+    ray = pytest.importorskip("ray", reason="Ray is optional: pip install 'factask[ray]'")
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    try:
+        tasks = [TASK, "align-box-corner"]
+        on_ray, _ = evaluate_policy("oracle", tasks, 2, ray_address="auto")
+        here, _ = evaluate_policy("oracle", tasks, 2, workers=1)
+        assert on_ray == here
+    finally:
+        ray.shutdown()

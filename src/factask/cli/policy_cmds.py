@@ -38,6 +38,8 @@ def eval_policy(
                                           "--videos episodes of each task here."),
     videos: int = typer.Option(1, "--videos", min=0, max=MAX_EPISODES,
                                help="Episodes per task filmed (with --video-dir)."),
+    ray: str | None = typer.Option(None, "--ray", help="Run the tasks on Ray: 'auto', "
+                                   "'local' or a cluster address (pip install 'factask[ray]')."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
 ) -> None:
     """Evaluate a policy: success once, success at the end and mean total reward per task,
@@ -56,7 +58,8 @@ def eval_policy(
         outcomes, scores = evaluate_policy(
             policy, names, episodes, split=split, robot=robot, obs_mode=obs_mode,
             workers=workers or os.cpu_count(),
-            video_dir=None if video_dir is None else str(video_dir), videos=videos)
+            video_dir=None if video_dir is None else str(video_dir), videos=videos,
+            ray_address=ray)
     except FactaskError as exc:
         err_console.print(str(exc), style="red", markup=False)
         raise typer.Exit(2) from None

@@ -18,13 +18,12 @@ import pickle
 import shutil
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, field
-from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
 from factask.datasets.lerobot import DEFAULT_FPS, LeRobotWriter
+from factask.datasets.parallel import run_jobs
 from factask.datasets.recording import EpisodeRecord
 from factask.datasets.splits import split_seeds
 from factask.datasets.states import write_states
@@ -165,28 +164,6 @@ def _widths(config: CollectConfig) -> tuple[int, int]:
     return 7 * objects, factors
 
 
-def _run_ray(todo: Sequence[Shard], config: CollectConfig, shard_dir: Path, address: str,
-             done: Callable[[Shard], None]) -> None:
-    try:
-        import ray
-    except ImportError as exc:
-        raise CollectError("--ray needs Ray (fix: pip install 'factask[ray]')") from exc
-    started = not ray.is_initialized()
-    if started:
-        ray.init(address=None if address == "local" else address, include_dashboard=False,
-                 log_to_driver=False)
-    try:
-        remote = ray.remote(run_shard)
-        pending = {remote.remote(s, config, str(shard_dir)): s for s in todo}
-        while pending:
-            ready, _ = ray.wait(list(pending), num_returns=1)
-            ray.get(ready[0])
-            done(pending.pop(ready[0]))
-    finally:
-        if started:
-            ray.shutdown()
-
-
 def collect(config: CollectConfig, root: Path, workers: int | None = None,
             ray_address: str | None = None,
             on_shard: Callable[[Shard], None] | None = None) -> CollectSummary:
@@ -204,6 +181,7 @@ def collect(config: CollectConfig, root: Path, workers: int | None = None,
 
     Raises:
         CollectError: the folder holds a finished dataset or another run's shards.
+        ParallelError: ``ray_address`` without Ray installed.
     """
     root = Path(root)
     if (root / "meta" / "info.json").exists():
@@ -216,24 +194,12 @@ def collect(config: CollectConfig, root: Path, workers: int | None = None,
         stale.unlink()
     start = time.perf_counter()
 
-    def done(shard: Shard) -> None:
+    def done(i: int, _path: str) -> None:
         if on_shard is not None:
-            on_shard(shard)
+            on_shard(todo[i])
 
-    workers = workers or os.cpu_count() or 1
-    if ray_address:
-        _run_ray(todo, config, shard_dir, ray_address, done)
-    elif workers == 1 or len(todo) <= 1:
-        for shard in todo:
-            run_shard(shard, config, str(shard_dir))
-            done(shard)
-    else:
-        # spawn: a forked child would inherit the parent's GL and MuJoCo state.
-        with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
-            futures = {pool.submit(run_shard, s, config, str(shard_dir)): s for s in todo}
-            for fut in as_completed(futures):
-                fut.result()
-                done(futures[fut])
+    run_jobs(run_shard, [(s, config, str(shard_dir)) for s in todo],
+             workers=workers or os.cpu_count() or 1, ray_address=ray_address, on_done=done)
     seconds = time.perf_counter() - start
     summary = merge_shards(config, root, shards)
     summary.shards_run, summary.shards_resumed = len(todo), len(shards) - len(todo)

@@ -18,14 +18,13 @@ import inspect
 import math
 import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
-from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from factask.datasets.parallel import run_jobs
 from factask.datasets.splits import split_seeds
 from factask.model.errors import FactaskError
 
@@ -227,7 +226,8 @@ def evaluate_policy(policy_spec: str, tasks: Sequence[str], episodes: int,
                     split: str = "test", robot: str = "floating", obs_mode: str = "state",
                     workers: int | None = None, image_size: tuple[int, int] | None = None,
                     on_episodes: Callable[[list[EpisodeOutcome]], None] | None = None,
-                    video_dir: str | None = None, videos: int = 0
+                    video_dir: str | None = None, videos: int = 0,
+                    ray_address: str | None = None
                     ) -> tuple[list[EpisodeOutcome], list[TaskScore]]:
     """Evaluate a policy on every task's first ``episodes`` seeds of ``split``.
 
@@ -243,6 +243,7 @@ def evaluate_policy(policy_spec: str, tasks: Sequence[str], episodes: int,
         on_episodes: Called with each task's outcomes as it finishes.
         video_dir: Folder of episode videos (:func:`video_path` names them).
         videos: Episodes per task to film (the first ones).
+        ray_address: Run the tasks on Ray ("auto", "local" or an address).
 
     Returns:
         (outcomes in task then seed order, one score per task).
@@ -253,23 +254,12 @@ def evaluate_policy(policy_spec: str, tasks: Sequence[str], episodes: int,
     if policy_spec not in REFERENCE_POLICIES:
         load_policy(policy_spec, None)  # fail early, in this process
     seeds = split_seeds(split, episodes)
-    workers = workers or os.cpu_count() or 1
-    results: dict[str, list[EpisodeOutcome]] = {}
     if video_dir is not None:
         Path(video_dir).mkdir(parents=True, exist_ok=True)
     args = (robot, obs_mode, image_size, video_dir, videos)
-    if workers == 1 or len(tasks) == 1:
-        for task in tasks:
-            results[task] = evaluate_task_seeds(policy_spec, task, seeds, *args)
-            if on_episodes:
-                on_episodes(results[task])
-    else:
-        with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
-            futures = {t: pool.submit(evaluate_task_seeds, policy_spec, t, seeds, *args)
-                       for t in tasks}
-            for task, fut in futures.items():
-                results[task] = fut.result()
-                if on_episodes:
-                    on_episodes(results[task])
+    per_task = run_jobs(evaluate_task_seeds, [(policy_spec, t, seeds, *args) for t in tasks],
+                        workers=workers or os.cpu_count() or 1, ray_address=ray_address,
+                        on_done=lambda _i, out: on_episodes(out) if on_episodes else None)
+    results = dict(zip(tasks, per_task, strict=True))
     outcomes = [o for t in tasks for o in results[t]]
     return outcomes, [score(t, results[t]) for t in tasks]
