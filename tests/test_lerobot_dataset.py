@@ -80,6 +80,9 @@ def test_decoded_frames_match_re_rendered_states(dataset: Path) -> None:
 def test_replay_is_bit_identical(dataset: Path) -> None:
     states = read_states(dataset / "states" / "episode_000000.npz")
     assert compare_states(states, resimulate(states)) == []
+    # The low-level stream covers every action, in simulated time order.
+    assert set(states.control_step.tolist()) == set(range(states.steps))
+    assert np.all(np.diff(states.control_time) > 0) and states.control_tip.shape[1] == 8
     result = CliRunner().invoke(app, ["replay", str(dataset), "--episode", "1", "--json"])
     assert result.exit_code == 0, result.output
     assert json.loads(result.output)["identical"] is True

@@ -99,6 +99,17 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
     images: dict[str, list[np.ndarray]] = {c.name: [] for c in rig.cameras} if rig else {}
     snaps = [snapshot(env.data)]
     actions: list[np.ndarray] = []
+    stream: dict[str, list[Any]] = {"step": [], "time": [], "ctrl": [], "tip": []}
+
+    def sample() -> None:
+        # The low-level command stream, every few physics steps while an action runs.
+        stream["step"].append(len(actions))
+        stream["time"].append(float(env.data.time))
+        stream["ctrl"].append(env.data.ctrl.copy())
+        tip = env.robot.ee_pose()
+        stream["tip"].append([*tip.to_list(), 1.0 if env.robot.grasped() is not None else 0.0])
+
+    env.frame_callback = sample
     failure = failure or info.get("failure")
     while failure is None:
         action = act()
@@ -123,6 +134,7 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         failure = info.get("failure")
         if terminated or truncated:
             break
+    env.frame_callback = None
     final = float(info.get("total_reward", 0.0))
     t = len(actions)
     n_env = 7 * len(env.object_names)
@@ -135,7 +147,12 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         mjcf=env.scene.xml, graph=env.graph.to_json(indent=None), robot=env.robot_kind,
         seed=seed, qpos=np.stack([s[0] for s in snaps]), qvel=np.stack([s[1] for s in snaps]),
         mocap_pos=np.stack([s[2] for s in snaps]), mocap_quat=np.stack([s[3] for s in snaps]),
-        actions=np.asarray(actions, dtype=np.float64).reshape(t, 8))
+        actions=np.asarray(actions, dtype=np.float64).reshape(t, 8),
+        control_step=np.asarray(stream["step"], np.int32),
+        control_time=np.asarray(stream["time"], np.float64),
+        control=np.asarray(stream["ctrl"], np.float64).reshape(
+            len(stream["ctrl"]), env.model.nu),
+        control_tip=np.asarray(stream["tip"], np.float64).reshape(-1, 8))
     shapes = {c.name: (c.height, c.width, 3) for c in rig.cameras} if rig else {}
     return EpisodeRecord(
         task=env.graph.name, instruction=env.graph.description or env.graph.name, seed=seed,

@@ -6,13 +6,18 @@ One ``.npz`` per episode (``states/episode_XXXXXX.npz`` beside the dataset) with
 * ``graph``: the task graph's JSON, ``robot``, ``seed`` (re-simulate with factask);
 * ``qpos``, ``qvel`` (T + 1, nq / nv) float64, ``mocap_pos`` (T + 1, nmocap, 3),
   ``mocap_quat`` (T + 1, nmocap, 4): the state before each action and at the end;
-* ``actions`` (T, 8) float64: each action's pick (x, y, z, yaw) then place.
+* ``actions`` (T, 8) float64: each action's pick (x, y, z, yaw) then place;
+* the low-level stream, sampled while actions run (every few physics steps):
+  ``control_step`` (n,) the action it belongs to, ``control_time`` (n,) simulated
+  seconds, ``control`` (n, nu) the actuator commands (``data.ctrl``; the arm's joint
+  targets, empty for the mocap cup), ``control_tip`` (n, 8) the suction tip's pose
+  (x y z, quaternion w x y z) and suction on.
 """
 
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import mujoco
@@ -41,6 +46,10 @@ class EpisodeStates:
     mocap_pos: np.ndarray
     mocap_quat: np.ndarray
     actions: np.ndarray
+    control_step: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int32))
+    control_time: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    control: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    control_tip: np.ndarray = field(default_factory=lambda: np.zeros((0, 8)))
 
     @property
     def steps(self) -> int:
@@ -71,7 +80,9 @@ def write_states(path: Path, states: EpisodeStates) -> None:
             fh, version=np.int64(STATES_VERSION), mjcf=np.str_(states.mjcf),
             graph=np.str_(states.graph), robot=np.str_(states.robot),
             seed=np.int64(states.seed), qpos=states.qpos, qvel=states.qvel,
-            mocap_pos=states.mocap_pos, mocap_quat=states.mocap_quat, actions=states.actions)
+            mocap_pos=states.mocap_pos, mocap_quat=states.mocap_quat, actions=states.actions,
+            control_step=states.control_step, control_time=states.control_time,
+            control=states.control, control_tip=states.control_tip)
     os.replace(tmp, path)
 
 
@@ -90,7 +101,9 @@ def read_states(path: Path) -> EpisodeStates:
             return EpisodeStates(
                 mjcf=str(z["mjcf"]), graph=str(z["graph"]), robot=str(z["robot"]),
                 seed=int(z["seed"]), qpos=z["qpos"], qvel=z["qvel"],
-                mocap_pos=z["mocap_pos"], mocap_quat=z["mocap_quat"], actions=z["actions"])
+                mocap_pos=z["mocap_pos"], mocap_quat=z["mocap_quat"], actions=z["actions"],
+                control_step=z["control_step"], control_time=z["control_time"],
+                control=z["control"], control_tip=z["control_tip"])
     except (OSError, KeyError, ValueError) as exc:
         if isinstance(exc, StatesFileError):
             raise
