@@ -250,3 +250,32 @@ def test_a_timed_out_request_is_abandoned_on_the_server_side() -> None:
         with pytest.raises(LLMError, match="Timeout"):
             client.complete(MSGS)
     assert abandoned == [1, 1]  # each timed-out try restarts the server (local model)
+
+
+def test_a_chunked_model_package_is_joined_once_into_the_model_cache(tmp_path, monkeypatch):
+    from factask.gen import local
+
+    pkg = tmp_path / "site" / "fake_chunked_gguf"
+    pkg.mkdir(parents=True)
+    # The package's documented API: assemble(output_path, overwrite) joins its parts.
+    (pkg / "__init__.py").write_text(
+        "from pathlib import Path\n"
+        "CALLS = []\n"
+        "def assemble(output_path, overwrite=False):\n"
+        "    CALLS.append(str(output_path))\n"
+        "    Path(output_path).write_bytes(b'GGUF' + b'0' * 8)\n"
+        "    return Path(output_path)\n")
+    monkeypatch.syspath_prepend(str(tmp_path / "site"))
+    monkeypatch.setenv("FACTASK_MODEL_CACHE", str(tmp_path / "models"))
+    spec = local.LocalModelSpec("fake", "fake_chunked_gguf", "fake.gguf", 2048,
+                                "pip install fake", chunked=True)
+    monkeypatch.setitem(local.LOCAL_MODELS, "fake", spec)
+    found, path = local.resolve_local("local/fake")
+    assert found is spec and path == tmp_path / "models" / "fake.gguf"
+    assert path.read_bytes().startswith(b"GGUF")
+
+    missing = local.LocalModelSpec("gone", "no_such_package_xyz", "g.gguf", 2048,
+                                   "pip install gone", chunked=True)
+    monkeypatch.setitem(local.LOCAL_MODELS, "gone", missing)
+    with pytest.raises(local.LocalModelError, match="pip install gone"):
+        local.resolve_local("local/gone")

@@ -188,3 +188,16 @@ def test_llama_grammar_schema_keeps_the_length_bound_and_drops_only_the_text_pat
     assert name["pattern"] == "^[a-z][a-z0-9]*(_[a-z0-9]+)*$"  # no bounded repetition
     assert for_llama_grammar(schema) != schema and schema_problems(
         {"subtasks": [{"name": "a", "description": "x\ny"}]}, schema)  # the check keeps it
+
+
+@given(st.floats(0.5001, 1e6, allow_nan=False) | st.floats(-1e6, 0.0, allow_nan=False))
+def test_an_out_of_range_optional_number_is_reported_with_its_bound(spacing: float) -> None:
+    # A nullable number is an anyOf [number, null]: the feedback must name the bound
+    # the number broke, not "not valid under any of the given schemas".
+    schema = goal_answer({"red_block": "block", "blue_block": "block"})
+    answer = {"goal": {"type": "row", "objects": ["red_block"], "spacing": spacing,
+                       "along": None, "on": None, "ordered": False}, "description": "x"}
+    problems = schema_problems(answer, schema)
+    assert len(problems) == 1 and problems[0].startswith("goal.spacing: ")
+    assert "maximum of 0.5" in problems[0] or "less than or equal to the minimum" \
+        in problems[0], problems

