@@ -8,6 +8,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from factask.gen.conversation import RETRY_TEMPERATURES
 from factask.gen.demo import DEMO_PROPOSAL, demo_answers, demo_graph, demo_responder
 from factask.gen.llm import LLMClient, LLMConfig, ResponseCache
 from factask.gen.loopback import LoopbackServer, ScriptedResponder
@@ -94,9 +95,15 @@ def test_repairs_that_never_succeed_are_bounded_and_reported() -> None:
 
 
 def test_a_repeated_answer_stops_the_step_early() -> None:
-    result, server = _run({"one_shot": ["still thinking..."]}, "one-shot", max_repairs=3)
-    assert len(server.requests) == 2  # the second answer repeats the first: stop
-    assert "repeated an earlier answer" in result.steps[-1].feedback
+    result, server = _run({"one_shot": ["still thinking..."]}, "one-shot", max_repairs=5)
+    # The second answer repeats the first: the third try samples at the warmest
+    # temperature; it repeats again: stop (3 of the 6 allowed attempts).
+    assert len(server.requests) == 3
+    temps = [r["temperature"] for r in server.requests]
+    assert temps[2] == max(RETRY_TEMPERATURES) > temps[1]
+    assert len({r["seed"] for r in server.requests}) == 3
+    assert "repeats an earlier one" in result.steps[1].feedback
+    assert "repeated an earlier answer twice" in result.steps[-1].feedback
     assert result.level_reached == "none"
 
 

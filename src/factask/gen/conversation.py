@@ -11,8 +11,9 @@
   answer and its feedback.
 * **Repairs.** The answer is evaluated (schema, then the ladder); on failure the
   feedback goes back as the next user message. Each retry samples differently
-  (:func:`sampling`: another seed, a higher temperature), and a step stops early
-  when the model repeats an answer it already gave.
+  (:func:`sampling`: another seed, a higher temperature); after a repeated
+  answer the next try is at the warmest temperature, and a step stops early when
+  the model repeats itself twice (:data:`factask.gen.steps.MAX_REPEATS`).
 """
 
 from __future__ import annotations

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
 
 from factask.gen.conversation import (
+    RETRY_TEMPERATURES,
     Budget,
     PromptLevel,
     answer_tokens,
@@ -41,6 +42,9 @@ from factask.model.errors import FactaskError, InvalidValueError
 from factask.model.graph import TaskGraph
 
 T = TypeVar("T")
+
+#: A step stops once the model has repeated earlier answers this many times.
+MAX_REPEATS = 2
 StepCallback = Callable[[AttemptRecord], None]
 #: An evaluation turns answer text into (artefact or None, level, feedback or None).
 Evaluation = tuple[Any, Level, "str | None"]
@@ -201,6 +205,7 @@ class StepRunner:
         best: tuple[int, Any, Level, str | None] | None = None
         feedback: str | None = None
         seen: set[str] = set()
+        repeats = 0
         last = first_attempt + self.max_repairs
         for attempt in range(first_attempt, last + 1):
             conversation = self.budget.trim(messages, max_tokens)
@@ -208,7 +213,11 @@ class StepRunner:
                 feedback = (feedback or "") + "\n(the repair conversation no longer fits " \
                     "the model's context)"
                 break
-            temperature, seed = self._sampling(attempt - first_attempt)
+            # After a repeated answer the next try samples at the warmest temperature:
+            # a small model under a grammar often repeats itself at 0.4.
+            temperature, seed = self._sampling(
+                len(RETRY_TEMPERATURES) if repeats else attempt - first_attempt)
+            seed += attempt if repeats else 0
             try:
                 reply = self.client.complete(conversation, schema=schema,
                                              schema_name=schema_name, max_tokens=max_tokens,
@@ -226,8 +235,11 @@ class StepRunner:
             norm = normalised_answer(reply.text)
             repeated = norm in seen
             seen.add(norm)
+            repeats += repeated
             if repeated and feedback is not None:
-                feedback += "\n(The model repeated an earlier answer: the step stops here.)"
+                feedback += ("\n(The model repeated an earlier answer twice: the step stops "
+                             "here.)" if repeats >= MAX_REPEATS else
+                             "\n(This answer repeats an earlier one: write a different one.)")
             self._record(AttemptRecord(step, attempt, feedback is None, level, feedback,
                                        reply.cached, reply.usage.total_tokens,
                                        reply.usage.cost_usd, prompt_level=level_index_,
@@ -236,7 +248,7 @@ class StepRunner:
                 best = (level_index(level), value, level, feedback)
             if feedback is None:
                 return Outcome(value, level, True, None)
-            if repeated:
+            if repeats >= MAX_REPEATS:
                 break
             if attempt < last:
                 messages = [*messages, {"role": "assistant", "content": reply.text},
