@@ -12,6 +12,7 @@ from typing import Any
 
 import av
 import numpy as np
+import pyarrow as pa
 import pyarrow.parquet as pq
 
 DEFAULT_KEYS = ("timestamp", "frame_index", "episode_index", "index", "task_index")
@@ -67,8 +68,11 @@ def load_dataset(root: Path) -> dict[str, Any]:
     tasks_table = pq.read_table(root / "meta" / "tasks.parquet")
     tasks = dict(zip(tasks_table.column("task_index").to_pylist(),
                      tasks_table.column("task").to_pylist(), strict=True))
-    data_file = root / info["data_path"].format(chunk_index=0, file_index=0)
-    table = pq.read_table(data_file)
+    # Data files in (chunk, file) order hold the frames in global index order.
+    data_files = sorted((root / "data").glob("chunk-*/file-*.parquet"))
+    _check(bool(data_files), "no data files")
+    per_file = {(int(f.parent.name[6:]), int(f.stem[5:])): pq.read_table(f) for f in data_files}
+    table = pa.concat_tables([per_file[k] for k in sorted(per_file)])
     plain = {k: f for k, f in feats.items() if f["dtype"] != "video"}
     _check(set(plain) == set(table.column_names),
            f"data columns {sorted(table.column_names)} != features {sorted(plain)}")
@@ -82,9 +86,11 @@ def load_dataset(root: Path) -> dict[str, Any]:
     eps_table = pq.read_table(root / "meta" / "episodes" / "chunk-000" / "file-000.parquet")
     episodes = eps_table.to_pylist()
     _check(len(episodes) == info["total_episodes"], "total_episodes disagrees")
-    videos = {k: decode_video(root / info["video_path"].format(
-        video_key=k, chunk_index=0, file_index=0))
-        for k, f in feats.items() if f["dtype"] == "video"}
+    video_keys = [k for k, f in feats.items() if f["dtype"] == "video"]
+    videos: dict[tuple[str, int, int], tuple[np.ndarray, np.ndarray]] = {}
+    for key in video_keys:
+        for path in sorted((root / "videos" / key).glob("chunk-*/file-*.mp4")):
+            videos[(key, int(path.parent.name[6:]), int(path.stem[5:]))] = decode_video(path)
     for e in episodes:
         i, length = e["episode_index"], e["length"]
         lo, hi = e["dataset_from_index"], e["dataset_to_index"]
@@ -95,20 +101,24 @@ def load_dataset(root: Path) -> dict[str, Any]:
         _check(np.allclose(frames["timestamp"][lo:hi], np.arange(length) / fps),
                f"episode {i}: timestamps must be frame_index / fps")
         _check(tasks[int(frames["task_index"][lo])] in e["tasks"], f"episode {i}: task")
-        for key, (vframes, vtimes) in videos.items():
-            t0, t1 = e[f"videos/{key}/from_timestamp"], e[f"videos/{key}/to_timestamp"]
-            sel = (vtimes >= t0 - 1e-6) & (vtimes < t1 - 1e-6)
-            _check(int(sel.sum()) == length, f"episode {i}: {key} has {sel.sum()} frames")
+        own = per_file[(e["data/chunk_index"], e["data/file_index"])]
+        _check(i in set(own.column("episode_index").to_pylist()),
+               f"episode {i}: not in its data file")
+        for key in video_keys:
+            vframes = episode_video({"episodes": episodes, "videos": videos}, key, i)
+            _check(len(vframes) == length, f"episode {i}: {key} has {len(vframes)} frames")
             _check(vframes.shape[1:] == tuple(feats[key]["shape"]), f"{key}: frame shape")
-    for key, (vframes, _) in videos.items():
-        _check(len(vframes) == n, f"{key}: {len(vframes)} video frames for {n} frames")
+    for key in video_keys:
+        total = sum(len(v[0]) for (k, _, _), v in videos.items() if k == key)
+        _check(total == n, f"{key}: {total} video frames for {n} frames")
     return {"info": info, "tasks": tasks, "frames": frames, "episodes": episodes,
             "videos": videos}
 
 
 def episode_video(ds: dict[str, Any], key: str, episode: int) -> np.ndarray:
-    """The decoded frames of one episode of one video key."""
+    """The decoded frames of one episode of one video key (from its own file)."""
     e = ds["episodes"][episode]
-    vframes, vtimes = ds["videos"][key]
+    vframes, vtimes = ds["videos"][(key, e[f"videos/{key}/chunk_index"],
+                                    e[f"videos/{key}/file_index"])]
     t0, t1 = e[f"videos/{key}/from_timestamp"], e[f"videos/{key}/to_timestamp"]
     return vframes[(vtimes >= t0 - 1e-6) & (vtimes < t1 - 1e-6)]

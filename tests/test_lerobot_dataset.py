@@ -97,6 +97,24 @@ def test_seed_splits_are_disjoint_and_documented() -> None:
         split_seeds("val", MAX_VAL_EPISODES + 1)
 
 
+def test_files_roll_over_by_size_and_the_reader_follows(tmp_path: Path) -> None:
+    """Tiny size targets: every episode starts new data and video files."""
+    config = CollectConfig(tasks=TASKS, episodes=2, image_size=SIZE, shard_size=2,
+                           data_mb=1e-4, video_mb=1e-5)
+    root = tmp_path / "rolled"
+    summary = collect(config, root, workers=1)
+    ds = load_dataset(root)
+    files = {(e["data/chunk_index"], e["data/file_index"]) for e in ds["episodes"]}
+    videos = {e["videos/observation.images.front/file_index"] for e in ds["episodes"]}
+    assert len(files) == len(videos) == summary.episodes_kept >= 3
+    cams = ravens_cameras(*SIZE)
+    last = len(ds["episodes"]) - 1
+    states = read_states(root / ds["episodes"][last]["factask/states_path"])
+    decoded = episode_video(ds, "observation.images.front", last)
+    rendered = render_states(states, cams[:1])["front"]
+    assert np.mean(np.abs(decoded.astype(float) - rendered.astype(float))) < 3.0
+
+
 def test_collect_refuses_a_finished_dataset(dataset: Path) -> None:
     config = CollectConfig(tasks=TASKS, episodes=2, image_size=SIZE, shard_size=1)
     with pytest.raises(CollectError, match="already holds a dataset"):

@@ -1,27 +1,28 @@
 """A LeRobot v3.0 dataset writer on pyarrow and PyAV (no ``lerobot``, no torch).
 
-Layout (LeRobot's path templates, one chunk and one file per kind)::
+Layout (LeRobot's path templates; a file rolls over to the next once it passes its size
+target, :mod:`factask.datasets.lerobot_files`)::
 
     meta/info.json                       codebase_version "v3.0", fps, features, totals
     meta/stats.json                      min / max / mean / std / count per feature
     meta/tasks.parquet                   task (the language instruction) -> task_index
-    meta/episodes/chunk-000/file-000.parquet   one row per episode
-    data/chunk-000/file-000.parquet      one row per frame, all episodes
-    videos/observation.images.<camera>/chunk-000/file-000.mp4   all episodes, in order
+    meta/episodes/chunk-000/file-000.parquet   one row per episode (with its files)
+    data/chunk-CCC/file-FFF.parquet      one row per frame, many episodes per file
+    videos/observation.images.<camera>/chunk-CCC/file-FFF.mp4   many episodes per file
 
 Per frame: ``observation.state`` (suction tip pose, suction), ``observation.environment_state``
 (object poses, zero-padded to the largest task), ``action`` (pick and place, x y z yaw),
 ``next.reward`` (the reward change), ``next.total_reward``, ``next.factor_rewards``
 (per-factor progress, zero-padded), ``next.done``, ``next.success``, ``language_goal``
 (the current factor's goal), and LeRobot's ``timestamp``, ``frame_index``,
-``episode_index``, ``index``, ``task_index``. Videos are H.264 (yuv420p); frame k of the
-file has presentation time k / fps, so an episode spans [from_timestamp, to_timestamp).
+``episode_index``, ``index``, ``task_index``. Videos are H.264 (yuv420p); frame k of a
+file has presentation time k / fps, so an episode spans [from_timestamp, to_timestamp)
+of its file.
 """
 
 from __future__ import annotations
 
 import json
-from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -29,6 +30,7 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from factask.datasets.lerobot_files import RollingParquet, RollingVideo, RunningStats
 from factask.datasets.recording import ACTION_NAMES, STATE_NAMES, EpisodeRecord
 from factask.model.errors import FactaskError
 from factask.model.tolerances import SUCCESS_REWARD
@@ -38,14 +40,12 @@ DATA_PATH = "data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"
 VIDEO_PATH = "videos/{video_key}/chunk-{chunk_index:03d}/file-{file_index:03d}.mp4"
 EPISODES_PATH = "meta/episodes/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"
 TASKS_PATH = "meta/tasks.parquet"
-#: LeRobot's defaults, recorded in info.json (this writer keeps one file per kind).
+#: LeRobot's defaults: files per chunk folder, size targets of data and video files.
 CHUNKS_SIZE = 1000
 DATA_FILES_SIZE_IN_MB = 100
 VIDEO_FILES_SIZE_IN_MB = 200
 #: Default frames per second: one frame per pick-and-place decision, shown at 1 Hz.
 DEFAULT_FPS = 1
-#: H.264 quality (lower is better; 0 is lossless luma, still 4:2:0 chroma).
-VIDEO_CRF = 15
 
 
 class DatasetWriteError(FactaskError, ValueError):
@@ -71,14 +71,17 @@ class LeRobotWriter:
         factor_width: Width of ``next.factor_rewards`` (most factors).
         fps: Frames per second of timestamps and videos.
         robot_type: Recorded in info.json.
+        data_mb: Size target of a data file (MB).
+        video_mb: Size target of a video file (MB).
 
     Raises:
-        DatasetWriteError: a dataset is already there, or an odd image size.
+        DatasetWriteError: a dataset is already there, an odd image size, bad fps.
     """
 
     def __init__(self, root: Path, cameras: dict[str, tuple[int, int]], env_width: int,
-                 factor_width: int, fps: int = DEFAULT_FPS, robot_type: str | None = None
-                 ) -> None:
+                 factor_width: int, fps: int = DEFAULT_FPS, robot_type: str | None = None,
+                 data_mb: float = DATA_FILES_SIZE_IN_MB,
+                 video_mb: float = VIDEO_FILES_SIZE_IN_MB) -> None:
         self.root = Path(root)
         if (self.root / "meta" / "info.json").exists():
             raise DatasetWriteError(f"{self.root} already holds a dataset (fix: give a new "
@@ -89,47 +92,75 @@ class LeRobotWriter:
                                         "sides for yuv420p video (fix: e.g. --size 160x120)")
         if fps <= 0:
             raise DatasetWriteError(f"fps must be a positive integer, got {fps}")
+        if not (data_mb > 0 and video_mb > 0):
+            raise DatasetWriteError(f"file size targets must be positive, got data {data_mb} "
+                                    f"MB and video {video_mb} MB")
         self.cameras, self.fps, self.robot_type = dict(cameras), int(fps), robot_type
         self.env_width, self.factor_width = env_width, factor_width
-        self.columns: dict[str, list[Any]] = {k: [] for k in (
-            "observation.state", "observation.environment_state", "action", "next.reward",
-            "next.total_reward", "next.factor_rewards", "next.done", "next.success",
-            "language_goal", "timestamp", "frame_index", "episode_index", "index",
-            "task_index")}
+        self.data_mb, self.video_mb = data_mb, video_mb
         self.episodes: list[dict[str, Any]] = []
         self.tasks: dict[str, int] = {}
         self.frames = 0
-        self._video_frames = 0
-        self._image_sums = {c: np.zeros((3, 3)) for c in cameras}  # sum, sum sq, min/max
-        self._image_min = {c: np.full(3, np.inf) for c in cameras}
-        self._image_max = {c: np.full(3, -np.inf) for c in cameras}
-        self._containers: dict[str, Any] = {}
-        self._streams: dict[str, Any] = {}
-        self._open_videos()
+        feats = self.features()
+        self._plain = {k: f for k, f in feats.items() if f["dtype"] != "video"}
+        self._stats = {k: RunningStats() for k, f in feats.items() if f["dtype"] != "string"}
+        self._data = RollingParquet(self.root, DATA_PATH, self._schema(), data_mb, CHUNKS_SIZE)
+        self._videos = {cam: RollingVideo(self.root, VIDEO_PATH, image_key(cam), size,
+                                          self.fps, video_mb, CHUNKS_SIZE)
+                        for cam, size in self.cameras.items()}
 
-    def _open_videos(self) -> None:
-        import av
+    def _schema(self) -> pa.Schema:
+        fields = []
+        for key, f in self._plain.items():
+            base = pa.string() if f["dtype"] == "string" else pa.from_numpy_dtype(
+                np.dtype(f["dtype"]))
+            fields.append(pa.field(key, base if f["shape"] == [1] or f["dtype"] == "string"
+                                   else pa.list_(base, f["shape"][0])))
+        return pa.schema(fields)
 
-        for cam, (h, w) in self.cameras.items():
-            path = self.root / VIDEO_PATH.format(video_key=image_key(cam), chunk_index=0,
-                                                 file_index=0)
-            path.parent.mkdir(parents=True, exist_ok=True)
-            container = av.open(str(path), mode="w")
-            stream = container.add_stream("libx264", rate=self.fps)
-            stream.width, stream.height, stream.pix_fmt = w, h, "yuv420p"
-            stream.time_base = Fraction(1, self.fps)
-            # Every frame a keyframe: random access by timestamp stays exact and cheap.
-            stream.options = {"crf": str(VIDEO_CRF), "g": "1", "bf": "0"}
-            self._containers[cam], self._streams[cam] = container, stream
+    def _frame_columns(self, ep: EpisodeRecord, index: int, task_index: int
+                       ) -> dict[str, np.ndarray | list[str]]:
+        n, start = ep.length, self.frames
+        env = np.zeros((n, self.env_width), np.float32)
+        env[:, :ep.environment_state.shape[1]] = ep.environment_state
+        fac = np.zeros((n, self.factor_width), np.float32)
+        fac[:, :ep.factor_rewards.shape[1]] = ep.factor_rewards
+        return {
+            "observation.state": ep.state.astype(np.float32),
+            "observation.environment_state": env,
+            "action": ep.action.astype(np.float32),
+            "next.reward": ep.reward.astype(np.float32),
+            "next.total_reward": ep.total_reward.astype(np.float32),
+            "next.factor_rewards": fac,
+            "next.done": ep.done.astype(bool),
+            "next.success": ep.total_reward >= SUCCESS_REWARD,
+            "language_goal": list(ep.goal),
+            "timestamp": np.arange(n, dtype=np.float32) / self.fps,
+            "frame_index": np.arange(n, dtype=np.int64),
+            "episode_index": np.full(n, index, np.int64),
+            "index": np.arange(start, start + n, dtype=np.int64),
+            "task_index": np.full(n, task_index, np.int64),
+        }
+
+    def _table(self, columns: dict[str, Any]) -> pa.Table:
+        arrays = []
+        for key, f in self._plain.items():
+            values = columns[key]
+            if f["dtype"] == "string":
+                arrays.append(pa.array(values, pa.string()))
+            elif f["shape"] == [1]:
+                arrays.append(pa.array(np.asarray(values, dtype=f["dtype"])))
+            else:
+                flat = np.asarray(values, dtype=f["dtype"]).reshape(-1)
+                arrays.append(pa.FixedSizeListArray.from_arrays(pa.array(flat), f["shape"][0]))
+        return pa.Table.from_arrays(arrays, schema=self._data.schema)
 
     def add_episode(self, ep: EpisodeRecord, states_path: str | None = None) -> int:
         """Append one episode; returns its episode index.
 
         Raises:
-            DatasetWriteError: its cameras or widths do not fit this dataset.
+            DatasetWriteError: its cameras, widths or image counts do not fit.
         """
-        import av
-
         if set(ep.images) != set(self.cameras):
             raise DatasetWriteError(f"episode cameras {sorted(ep.images)} differ from the "
                                     f"dataset's {sorted(self.cameras)}")
@@ -137,62 +168,35 @@ class LeRobotWriter:
                 ep.factor_rewards.shape[1] > self.factor_width:
             raise DatasetWriteError(f"task {ep.task!r} has more objects or factors than "
                                     "the dataset was sized for")
-        index = len(self.episodes)
-        task_index = self.tasks.setdefault(ep.instruction, len(self.tasks))
-        n, start = ep.length, self.frames
-        env = np.zeros((n, self.env_width), np.float32)
-        env[:, :ep.environment_state.shape[1]] = ep.environment_state
-        fac = np.zeros((n, self.factor_width), np.float32)
-        fac[:, :ep.factor_rewards.shape[1]] = ep.factor_rewards
-        c = self.columns
-        c["observation.state"].extend(ep.state.astype(np.float32))
-        c["observation.environment_state"].extend(env)
-        c["action"].extend(ep.action.astype(np.float32))
-        c["next.reward"].extend(ep.reward.astype(np.float32))
-        c["next.total_reward"].extend(ep.total_reward.astype(np.float32))
-        c["next.factor_rewards"].extend(fac)
-        c["next.done"].extend(ep.done.astype(bool))
-        c["next.success"].extend(ep.total_reward >= SUCCESS_REWARD)
-        c["language_goal"].extend(ep.goal)
-        c["timestamp"].extend(np.arange(n, dtype=np.float32) / self.fps)
-        c["frame_index"].extend(range(n))
-        c["episode_index"].extend([index] * n)
-        c["index"].extend(range(start, start + n))
-        c["task_index"].extend([task_index] * n)
-        row: dict[str, Any] = {
-            "episode_index": index, "tasks": [ep.instruction], "length": n,
-            "data/chunk_index": 0, "data/file_index": 0,
-            "dataset_from_index": start, "dataset_to_index": start + n,
-        }
+        n = ep.length
         for cam, frames in ep.images.items():
             if len(frames) != n:
                 raise DatasetWriteError(f"camera {cam!r}: {len(frames)} images for {n} frames")
-            stream, container = self._streams[cam], self._containers[cam]
-            for k, img in enumerate(frames):
-                frame = av.VideoFrame.from_ndarray(np.ascontiguousarray(img), format="rgb24")
-                frame.pts = self._video_frames + k
-                frame.time_base = Fraction(1, self.fps)
-                for packet in stream.encode(frame):
-                    container.mux(packet)
-            if n:
-                pix = frames.reshape(-1, 3).astype(np.float64) / 255.0
-                self._image_sums[cam][0] += pix.sum(0)
-                self._image_sums[cam][1] += (pix ** 2).sum(0)
-                self._image_sums[cam][2] += len(pix)
-                self._image_min[cam] = np.minimum(self._image_min[cam], pix.min(0))
-                self._image_max[cam] = np.maximum(self._image_max[cam], pix.max(0))
+        index = len(self.episodes)
+        task_index = self.tasks.setdefault(ep.instruction, len(self.tasks))
+        columns = self._frame_columns(ep, index, task_index)
+        for key, stats in self._stats.items():
+            if key in columns:
+                stats.add(np.asarray(columns[key]))
+        chunk, file = self._data.write(self._table(columns))
+        row: dict[str, Any] = {
+            "episode_index": index, "tasks": [ep.instruction], "length": n,
+            "data/chunk_index": chunk, "data/file_index": file,
+            "dataset_from_index": self.frames, "dataset_to_index": self.frames + n,
+        }
+        for cam, frames in ep.images.items():
             key = image_key(cam)
-            row[f"videos/{key}/chunk_index"] = 0
-            row[f"videos/{key}/file_index"] = 0
-            row[f"videos/{key}/from_timestamp"] = self._video_frames / self.fps
-            row[f"videos/{key}/to_timestamp"] = (self._video_frames + n) / self.fps
+            v_chunk, v_file, t0, t1 = self._videos[cam].write(frames)
+            if n:
+                self._stats[key].add(frames.reshape(-1, 3) / 255.0)
+            row.update({f"videos/{key}/chunk_index": v_chunk, f"videos/{key}/file_index": v_file,
+                        f"videos/{key}/from_timestamp": t0, f"videos/{key}/to_timestamp": t1})
         row.update({"meta/episodes/chunk_index": 0, "meta/episodes/file_index": 0,
                     "factask/task": ep.task, "factask/seed": ep.seed,
                     "factask/success": ep.success, "factask/final_reward": ep.final_reward,
                     "factask/states_path": states_path or ""})
         self.episodes.append(row)
         self.frames += n
-        self._video_frames += n
         return index
 
     # ------------------------------------------------------------- metadata
@@ -221,48 +225,14 @@ class LeRobotWriter:
             feats[key] = _vec(dtype, 1)
         return feats
 
-    def _data_table(self) -> pa.Table:
-        arrays, feats = {}, self.features()
-        for key, values in self.columns.items():
-            f = feats[key]
-            if f["dtype"] == "string":
-                arrays[key] = pa.array(values, pa.string())
-            elif f["shape"] == [1]:
-                arrays[key] = pa.array(np.asarray(values, dtype=f["dtype"]))
-            else:
-                flat = np.asarray(values, dtype=f["dtype"]).reshape(-1)
-                arrays[key] = pa.FixedSizeListArray.from_arrays(pa.array(flat), f["shape"][0])
-        return pa.table(arrays)
-
-    def _stats(self, table: pa.Table) -> dict[str, Any]:
-        stats: dict[str, Any] = {}
-        for key, f in self.features().items():
-            if f["dtype"] in ("string", "video") or key not in table.column_names:
-                continue
-            col = table.column(key).combine_chunks()
-            values = (col.flatten() if f["shape"] != [1] else col).to_numpy(
-                zero_copy_only=False).astype(np.float64).reshape(len(col), -1)
-            if not len(values):
-                continue
-            stats[key] = {"min": values.min(0).tolist(), "max": values.max(0).tolist(),
-                          "mean": values.mean(0).tolist(), "std": values.std(0).tolist(),
-                          "count": [len(values)]}
-        for cam in self.cameras:
-            s, count = self._image_sums[cam], self._image_sums[cam][2][0]
-            if not count:
-                continue
-            mean = s[0] / count
-            std = np.sqrt(np.maximum(s[1] / count - mean ** 2, 0.0))
-            # LeRobot keeps image stats per channel as (3, 1, 1), values in [0, 1].
-            stats[image_key(cam)] = {
-                k: [[[float(v)]] for v in arr] for k, arr in (
-                    ("min", self._image_min[cam]), ("max", self._image_max[cam]),
-                    ("mean", mean), ("std", std))} | {"count": [int(count)]}
-        return stats
+    def _close_files(self) -> None:
+        self._data.close()
+        for video in self._videos.values():
+            video.close()
 
     def finalize(self, splits: dict[str, str] | None = None,
                  extra: dict[str, Any] | None = None) -> dict[str, Any]:
-        """Close the videos and write data, episodes, tasks, stats and info.
+        """Close the data and video files; write episodes, tasks, stats and info.
 
         Args:
             splits: LeRobot's ``splits`` ("train": "0:N", episode ranges).
@@ -271,31 +241,24 @@ class LeRobotWriter:
         Returns:
             The info.json content.
         """
-        for cam, container in self._containers.items():
-            for packet in self._streams[cam].encode():
-                container.mux(packet)
-            container.close()
-        self._containers.clear()
-        table = self._data_table()
-        data_path = self.root / DATA_PATH.format(chunk_index=0, file_index=0)
-        data_path.parent.mkdir(parents=True, exist_ok=True)
-        pq.write_table(table, data_path)
+        self._close_files()
         ep_path = self.root / EPISODES_PATH.format(chunk_index=0, file_index=0)
         ep_path.parent.mkdir(parents=True, exist_ok=True)
         pq.write_table(pa.Table.from_pylist(self.episodes) if self.episodes else
                        pa.table({"episode_index": pa.array([], pa.int64())}), ep_path)
         self._write_tasks()
-        stats = self._stats(table)
+        feats = self.features()
+        stats = {k: d for k, s in self._stats.items()
+                 if (d := s.as_dict(image=feats[k]["dtype"] == "video")) is not None}
         (self.root / "meta" / "stats.json").write_text(json.dumps(stats, indent=2))
         info = {
             "codebase_version": CODEBASE_VERSION, "robot_type": self.robot_type,
             "total_episodes": len(self.episodes), "total_frames": self.frames,
             "total_tasks": len(self.tasks), "chunks_size": CHUNKS_SIZE,
-            "data_files_size_in_mb": DATA_FILES_SIZE_IN_MB,
-            "video_files_size_in_mb": VIDEO_FILES_SIZE_IN_MB, "fps": self.fps,
-            "splits": splits or {"train": f"0:{len(self.episodes)}"},
+            "data_files_size_in_mb": self.data_mb, "video_files_size_in_mb": self.video_mb,
+            "fps": self.fps, "splits": splits or {"train": f"0:{len(self.episodes)}"},
             "data_path": DATA_PATH, "video_path": VIDEO_PATH if self.cameras else None,
-            "features": self.features(),
+            "features": feats,
         }
         if extra:
             info["factask"] = extra
@@ -317,7 +280,5 @@ class LeRobotWriter:
         pq.write_table(table, self.root / TASKS_PATH)
 
     def abort(self) -> None:
-        """Close open video files without writing metadata."""
-        for container in self._containers.values():
-            container.close()
-        self._containers.clear()
+        """Close open files without writing metadata (no info.json: not a dataset)."""
+        self._close_files()

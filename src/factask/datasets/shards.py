@@ -22,7 +22,12 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-from factask.datasets.lerobot import DEFAULT_FPS, LeRobotWriter
+from factask.datasets.lerobot import (
+    DATA_FILES_SIZE_IN_MB,
+    DEFAULT_FPS,
+    VIDEO_FILES_SIZE_IN_MB,
+    LeRobotWriter,
+)
 from factask.datasets.parallel import run_jobs
 from factask.datasets.recording import EpisodeRecord
 from factask.datasets.splits import split_seeds
@@ -52,6 +57,8 @@ class CollectConfig:
         fps: Frames per second of timestamps and videos.
         keep_failed: Keep episodes that did not succeed.
         shard_size: Seeds per shard.
+        data_mb: Size target of one data parquet file (LeRobot's default 100 MB).
+        video_mb: Size target of one MP4 file (LeRobot's default 200 MB).
     """
 
     tasks: tuple[str, ...]
@@ -62,6 +69,8 @@ class CollectConfig:
     fps: int = DEFAULT_FPS
     keep_failed: bool = False
     shard_size: int = DEFAULT_SHARD_SIZE
+    data_mb: float = DATA_FILES_SIZE_IN_MB
+    video_mb: float = VIDEO_FILES_SIZE_IN_MB
 
 
 @dataclass(frozen=True)
@@ -217,7 +226,8 @@ def merge_shards(config: CollectConfig, root: Path, shards: Sequence[Shard]) -> 
         w, h = config.image_size
         cameras = {name: (h, w) for name in ("front", "left", "right")}
     writer = LeRobotWriter(root, cameras, env_width, factor_width, fps=config.fps,
-                           robot_type=config.robot)
+                           robot_type=config.robot, data_mb=config.data_mb,
+                           video_mb=config.video_mb)
     kept_seeds: list[int] = []
     try:
         for shard in shards:
