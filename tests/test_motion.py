@@ -44,3 +44,16 @@ def test_curve_move_of_two_knots_is_the_straight_move() -> None:
     shape, prof = curve_move(np.array([a, b]), VMAX, AMAX)
     assert prof == profile(b - a, VMAX, AMAX)
     np.testing.assert_allclose(shape(np.array([0.5]))[0], 0.5 * (b - a))
+
+
+def test_natural_spline_matches_scipy() -> None:
+    from scipy.interpolate import CubicSpline
+
+    from factask.sim.motion import _NaturalSpline
+
+    u = np.array([0.0, 0.3, 0.55, 1.0])
+    y = np.random.default_rng(0).normal(size=(4, 6))
+    ours, ref = _NaturalSpline(u, y), CubicSpline(u, y, axis=0, bc_type="natural")
+    s = np.linspace(0.0, 1.0, 101)
+    for derivative in (0, 1, 2):
+        np.testing.assert_allclose(ours(s, derivative), ref(s, derivative), atol=1e-9)

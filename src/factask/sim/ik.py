@@ -197,21 +197,24 @@ class TopDownIK:
         rt = target.reshape(3, 3)
         q = np.array(q0, dtype=float)
         err = np.zeros(6)
+        damping = DLS_DAMPING * np.eye(6)
         for _ in range(iterations):
             d.qpos[:] = q
             mujoco.mj_kinematics(m, d)
             mujoco.mj_comPos(m, d)
             err[:3] = pos - d.site_xpos[self._site]
             rc = d.site_xmat[self._site].reshape(3, 3)
-            # Rotation error: half the sum of axis cross products (small-angle axis-angle).
-            err[3:] = 0.5 * (np.cross(rc[:, 0], rt[:, 0]) + np.cross(rc[:, 1], rt[:, 1])
-                             + np.cross(rc[:, 2], rt[:, 2]))
+            # Rotation error: half the sum of axis cross products (small-angle axis-angle),
+            # sum_k rc[:, k] x rt[:, k] written out (np.cross costs more than the rest).
+            err[3] = 0.5 * float(rc[1] @ rt[2] - rc[2] @ rt[1])
+            err[4] = 0.5 * float(rc[2] @ rt[0] - rc[0] @ rt[2])
+            err[5] = 0.5 * float(rc[0] @ rt[1] - rc[1] @ rt[0])
             if float(err[:3] @ err[:3]) < DLS_POS_TOL ** 2 and \
                     float(err[3:] @ err[3:]) < DLS_ROT_TOL ** 2:
                 break
             mujoco.mj_jacSite(m, d, self._jac[:3], self._jac[3:], self._site)
             j = self._jac
-            dq = j.T @ np.linalg.solve(j @ j.T + DLS_DAMPING * np.eye(6), err)
+            dq = j.T @ np.linalg.solve(j @ j.T + damping, err)
             # Bounded steps keep the Newton iteration from jumping to another branch.
             biggest = float(np.abs(dq).max())
             if biggest > DLS_MAX_STEP:

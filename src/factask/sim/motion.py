@@ -27,7 +27,6 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 #: A move's shape: its displacement from its start at path parameters ``s``
 #: (k,) in [0, 1], shape (k, dims); None: the straight line.
@@ -163,7 +162,7 @@ def constant_speed(start: np.ndarray, goal: np.ndarray, duration: float,
 def curve_move(knots: np.ndarray, vmax: np.ndarray, amax: np.ndarray) -> tuple[Shape, Profile]:
     """A smooth move through ``knots`` (start, via points, end) and its fastest profile.
 
-    The curve is a cubic spline through the knots, parameterised by chord length
+    The curve is a natural cubic spline through the knots, parameterised by chord length
     (``s`` from 0 to 1). Axis ``i`` moves at ``q_i'(s) ds/dt`` and accelerates at
     ``q_i''(s) (ds/dt)^2 + q_i'(s) d2s/dt2``: the profile is the trapezoid of
     :func:`profile` under the largest ``|q_i'|``, slowed down evenly until the
@@ -183,8 +182,7 @@ def curve_move(knots: np.ndarray, vmax: np.ndarray, amax: np.ndarray) -> tuple[S
     if len(knots) < 3 or total <= 1e-12:
         delta = knots[-1] - knots[0]
         return (lambda s: s[:, None] * delta[None, :]), profile(delta, vmax, amax)
-    u = np.concatenate([[0.0], np.cumsum(chord)]) / total
-    spline = CubicSpline(u, knots, axis=0)
+    spline = _NaturalSpline(np.concatenate([[0.0], np.cumsum(chord)]) / total, knots)
     us = np.linspace(0.0, 1.0, _CURVE_SAMPLES)
     d1 = np.abs(spline(us, 1)).max(axis=0)
     d2 = np.abs(spline(us, 2)).max(axis=0)
@@ -195,6 +193,43 @@ def curve_move(knots: np.ndarray, vmax: np.ndarray, amax: np.ndarray) -> tuple[S
         prof = profile(d1, vmax, amax, min_time=prof.duration * math.sqrt(need))
     start = knots[0]
     return (lambda s: spline(s) - start[None, :]), prof
+
+
+class _NaturalSpline:
+    """The natural cubic spline through ``(u[i], y[i])`` (zero curvature at both
+    ends), and its first two derivatives; a few knots, so a dense solve is cheap.
+
+    Args:
+        u: Increasing parameters (m,), m >= 3.
+        y: Values (m, dims).
+    """
+
+    def __init__(self, u: np.ndarray, y: np.ndarray) -> None:
+        h = np.diff(u)
+        slope = np.diff(y, axis=0) / h[:, None]
+        m = len(u)
+        # Second derivatives at the inner knots: the tridiagonal continuity system.
+        a = np.zeros((m - 2, m - 2))
+        idx = np.arange(m - 2)
+        a[idx, idx] = 2.0 * (h[:-1] + h[1:])
+        a[idx[1:], idx[:-1]] = h[1:-1]
+        a[idx[:-1], idx[1:]] = h[1:-1]
+        curv = np.zeros_like(y)
+        curv[1:-1] = np.linalg.solve(a, 6.0 * np.diff(slope, axis=0))
+        self.u, self.y, self.h, self.curv = u, y, h, curv
+        self.b = slope - h[:, None] * (2.0 * curv[:-1] + curv[1:]) / 6.0
+
+    def __call__(self, s: np.ndarray, derivative: int = 0) -> np.ndarray:
+        """Values (or the ``derivative``-th derivative) at ``s`` (k,), shape (k, dims)."""
+        i = np.clip(np.searchsorted(self.u, s, side="right") - 1, 0, len(self.h) - 1)
+        t = (s - self.u[i])[:, None]
+        c0, c1, h = self.curv[i], self.curv[i + 1], self.h[i][:, None]
+        jerk = (c1 - c0) / h
+        if derivative == 0:
+            return self.y[i] + self.b[i] * t + c0 * t * t / 2.0 + jerk * t ** 3 / 6.0
+        if derivative == 1:
+            return self.b[i] + c0 * t + jerk * t * t / 2.0
+        return c0 + jerk * t
 
 
 def move_starts(profiles: list[Profile], overlap: Sequence[float]) -> list[float]:
