@@ -73,3 +73,34 @@ def test_no_successful_call_exits_3(tmp_path) -> None:
                                   str(tmp_path / "run")], env=env)
     assert res.exit_code == 3, res.output
     assert "no LLM call succeeded" in res.output
+
+
+def test_generate_json_is_one_object_on_stdout_with_the_steps_on_stderr(tmp_path) -> None:
+    out = tmp_path / "task.json"
+    with LoopbackServer(demo_responder(broken=True)) as server:
+        res = runner.invoke(
+            app, ["generate", DEMO_PROPOSAL, "-a", "one-shot", "--model", "openai/scripted",
+                  "--api-base", server.url, "--out", str(out), "--episodes", "1", "--json"])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert data["level_reached"] == "completion" and data["exit_code"] == 0
+    assert data["graph_file"] == str(out) and out.exists()
+    assert "one_shot attempt 0: failed" in res.stderr
+
+
+def test_benchmark_takes_comma_lists_and_prints_json(tmp_path) -> None:
+    tasks = tmp_path / "tasks.json"
+    tasks.write_text(json.dumps([{"name": "stack-blue-on-red-in-zone",
+                                  "description": "put the red block in the zone, "
+                                                      "then the blue block on it"}]))
+    with LoopbackServer(demo_responder()) as server:
+        res = runner.invoke(
+            app, ["benchmark", "-a", "one-shot,one-shot", "--tasks", str(tasks),
+                  "--model", "openai/scripted", "--api-base", server.url, "--episodes", "1",
+                  "-o", str(tmp_path / "run"), "--json"])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert data["exit_code"] == 0 and list(data["approaches"]) == ["one-shot"]
+    bad = runner.invoke(app, ["benchmark", "-a", "one-shot,[bold]x[/bold]",
+                              "-o", str(tmp_path / "b")])
+    assert bad.exit_code == 2 and "[bold]x[/bold]" in bad.output

@@ -14,13 +14,13 @@ from typing import TYPE_CHECKING, Any, NoReturn
 import typer
 from rich.console import Console
 
-from factask.cli.app import ROBOT_HELP, app, check_robot
+from factask.cli.app import JSON_HELP, ROBOT_HELP, app, check_robot, fail
 
 if TYPE_CHECKING:
     from factask.gen.strategies import Generator
 
 console = Console(highlight=False)
-err_console = Console(stderr=True, soft_wrap=True, highlight=False)
+err_console = Console(stderr=True, highlight=False)
 
 _APPROACH_HELP = "one-shot (baseline), variables-first (approach 1) or subtasks-first (approach 2)"
 
@@ -37,8 +37,24 @@ _FORMAT_HELP = ("structured output: auto (per provider), json_schema, llama_cpp,
 
 
 def _fail(message: str, code: int = EXIT_CONFIG) -> NoReturn:
-    err_console.print(f"[red]error:[/red] {message}")
-    raise typer.Exit(code)
+    # Plain text: a provider's message may hold square brackets.
+    raise fail(f"error: {message}", code)
+
+
+def _approaches(given: list[str], allow_all: bool) -> list[str]:
+    """``-a`` values, each a name or a comma list (``-a a,b`` = ``-a a -a b``), in
+    order, without repeats; ``all`` (where allowed) expands to every approach."""
+    from factask.gen.results import APPROACHES
+
+    out: list[str] = []
+    for item in (n.strip() for a in given for n in a.split(",") if n.strip()):
+        for name in (APPROACHES if allow_all and item == "all" else (item,)):
+            if name not in APPROACHES:
+                _fail(f"unknown approach {name!r}; use {', '.join(APPROACHES)}"
+                      + (" or all" if allow_all else ""))
+            if name not in out:
+                out.append(name)
+    return out
 
 
 @contextmanager
@@ -75,14 +91,19 @@ def _session(model: str | None, api_base: str | None, cache: Path | None,
         _fail(str(exc))
 
 
-def _print_step(rec: Any) -> None:
-    mark = "[green]ok[/green]" if rec.ok else "[red]failed[/red]"
-    cached = " [dim](cached)[/dim]" if rec.cached else ""
-    console.print(f"  {rec.step} attempt {rec.attempt}: {mark}, level "
+def _step_printer(say: Console) -> Any:
+    """Prints each attempt of a step as it happens (on stderr under ``--json``)."""
+
+    def print_step(rec: Any) -> None:
+        mark = "[green]ok[/green]" if rec.ok else "[red]failed[/red]"
+        cached = " [dim](cached)[/dim]" if rec.cached else ""
+        say.print(f"  {rec.step} attempt {rec.attempt}: {mark}, level "
                   f"[bold]{rec.level}[/bold]{cached}")
-    if rec.feedback:
-        for line in rec.feedback.splitlines()[:12]:
-            console.print(f"      {line}", markup=False)
+        if rec.feedback:
+            for line in rec.feedback.splitlines()[:12]:
+                say.print(f"      {line}", markup=False)
+
+    return print_step
 
 
 @app.command()
@@ -101,42 +122,57 @@ def generate(
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
     seed: int = typer.Option(None, "--seed", help="Sampling seed ($FACTASK_SEED)."),
     response_format: str = typer.Option(None, "--response-format", help=_FORMAT_HELP),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
 ) -> None:
     """Generate a task graph with an LLM, verify it, write it.
 
     Exit status: 0 completion reached, 1 not reached, 2 the configuration cannot
     work (key, model, quota, context; one line says the fix), 3 no LLM call
-    succeeded.
+    succeeded. With ``--json`` the steps go to stderr and stdout holds one
+    object: the generation's record (``GenerationResult.to_dict()``) plus
+    ``graph_file`` and ``exit_code``.
     """
-    from factask.gen.results import APPROACHES
+    import json
 
-    if approach not in APPROACHES:
-        _fail(f"unknown approach {approach!r}; use {', '.join(APPROACHES)}")
+    from rich.markup import escape
+
+    chosen = _approaches([approach], allow_all=False)
+    if len(chosen) != 1:
+        _fail(f"--approach {approach}: generate takes one approach (benchmark takes several)")
+    approach = chosen[0]
+    say = err_console if as_json else console
     with _session(model, api_base, cache, max_repairs, episodes, memory, robot, temperature,
-                  response_format, seed, _print_step) as gen:
-        console.print(f"[bold]generate[/bold] ({approach}, {gen.client.config.model}, "
-                      f"structured output: {gen.client.form}): {proposal}")
+                  response_format, seed, _step_printer(say)) as gen:
+        say.print(f"[bold]generate[/bold] ({approach}, {escape(gen.client.config.model)}, "
+                  f"structured output: {gen.client.form}): {escape(proposal)}")
         result = gen.generate(proposal, approach)
         succeeded = gen.client.succeeded
+    path = None
     if result.graph is not None:
         path = out or Path(f"{result.task}.json")
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(result.graph.to_json())
-        console.print(f"graph written to {path}")
+        say.print(f"graph written to {escape(str(path))}")
     u = result.usage
-    console.print(f"level reached: [bold]{result.level_reached}[/bold]; {u.calls} call(s) "
-                  f"({u.cached_calls} cached), {u.total_tokens} tokens, ${u.cost_usd:.4f}")
+    say.print(f"level reached: [bold]{result.level_reached}[/bold]; {u.calls} call(s) "
+              f"({u.cached_calls} cached), {u.total_tokens} tokens, ${u.cost_usd:.4f}")
     if result.failure:
-        console.print(f"[yellow]failure:[/yellow] {result.failure.splitlines()[0]}")
-    if succeeded == 0:
+        say.print(f"[yellow]failure:[/yellow] {escape(result.failure.splitlines()[0])}")
+    code = EXIT_NO_CALL if succeeded == 0 else (0 if result.completed else 1)
+    if as_json:
+        print(json.dumps({**result.to_dict(), "graph_file": str(path) if path else None,
+                          "exit_code": code}))
+    if code == EXIT_NO_CALL:
         _fail(f"no LLM call succeeded: {(result.failure or '').splitlines()[0]}", EXIT_NO_CALL)
-    raise typer.Exit(0 if result.completed else 1)
+    raise typer.Exit(code)
 
 
 @app.command()
 def benchmark(
     approach: list[str] = typer.Option(["all"], "--approach", "-a",
-                                       help=f"{_APPROACH_HELP}, repeatable, or 'all'."),
+                                       help=f"{_APPROACH_HELP}; repeat it or give a "
+                                            "comma list (-a one-shot,subtasks-first), or "
+                                            "'all'."),
     model: str = typer.Option(None, "--model", "-m", help=_MODEL_HELP),
     api_base: str = typer.Option(None, "--api-base", help="API base URL ($FACTASK_API_BASE)."),
     tasks: Path = typer.Option(None, "--tasks",
@@ -157,12 +193,17 @@ def benchmark(
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
     seed: int = typer.Option(None, "--seed", help="Sampling seed ($FACTASK_SEED)."),
     response_format: str = typer.Option(None, "--response-format", help=_FORMAT_HELP),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
 ) -> None:
     """Run a task list through generation + verification; write JSONL, summary, chart.
 
     Exit status: 0 done, 2 the configuration cannot work (one line says the fix;
-    finished pairs are kept), 3 no LLM call succeeded.
+    finished pairs are kept), 3 no LLM call succeeded. With ``--json`` progress
+    goes to stderr and stdout holds the summary (``summary.json``'s object) plus
+    ``exit_code``.
     """
+    import json
+
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from factask.evaluation.benchmark import (
@@ -176,15 +217,8 @@ def benchmark(
         run_benchmark,
         summary_table,
     )
-    from factask.gen.results import APPROACHES
-
-    approaches: list[str] = []
-    for a in approach:
-        for item in (APPROACHES if a == "all" else (a,)):
-            if item not in APPROACHES:
-                _fail(f"unknown approach {item!r}; use {', '.join(APPROACHES)} or all")
-            if item not in approaches:
-                approaches.append(item)
+    approaches = _approaches(approach, allow_all=True)
+    say = err_console if as_json else console
     if sample not in ("all", "research55"):
         _fail(f"unknown sample {sample!r}; use all or research55")
     tasks_path = tasks or default_tasks_path()
@@ -202,12 +236,12 @@ def benchmark(
     total = len(task_list) * len(approaches)
     already = sum(1 for t in task_list for a in approaches if (a, t.name) in done)
     if already:
-        console.print(f"resuming {out}: {already} of {total} pair(s) already finished")
+        say.print(f"resuming {out}: {already} of {total} pair(s) already finished")
     ran = {"pairs": 0, "sent": 0}
     with _session(model, api_base, cache_dir, max_repairs, episodes, memory, robot,
                   temperature, response_format, seed) as gen, \
             Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                     console=console) as progress:
+                     console=say) as progress:
         bar = progress.add_task("benchmark", total=total, completed=already)
 
         def on_start(a: str, t: Any) -> None:
@@ -230,9 +264,13 @@ def benchmark(
         except BenchmarkError as exc:
             _fail(str(exc))
         succeeded = gen.client.succeeded
-    console.print(summary_table(summary), markup=False)
-    console.print(f"results: {out / RESULTS_FILE}; summary: {out / 'summary.json'}, "
-                  f"{out / 'summary.md'}; chart: {out / 'rates.png'}")
-    if ran["sent"] and succeeded == 0:
+    say.print(summary_table(summary), markup=False)
+    say.print(f"results: {out / RESULTS_FILE}; summary: {out / 'summary.json'}, "
+              f"{out / 'summary.md'}; chart: {out / 'rates.png'}", markup=False)
+    no_call = bool(ran["sent"]) and succeeded == 0
+    if as_json:
+        print(json.dumps({**summary, "exit_code": EXIT_NO_CALL if no_call else 0},
+                         default=str))
+    if no_call:
         _fail(f"no LLM call succeeded in {ran['sent']} generation(s): see the failures in "
               f"{out / RESULTS_FILE}", EXIT_NO_CALL)
