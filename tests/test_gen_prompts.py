@@ -96,7 +96,7 @@ def test_library_task_examples_are_valid_graphs_shown_in_the_one_shot_prompt() -
     assert len(found) == 2 and found[0].score >= found[1].score
     for e in found:
         parse_graph(e.payload)
-    text = render("one_shot", task_name="t", task_description="d",
+    text = render("one_shot", task_name="t", task_description="d", mentions="-",
                   examples=render_examples(found), schema="{}")
     assert found[0].name in text and "Step: one_shot" in text
 

@@ -36,6 +36,7 @@ from factask.gen.fragments import (
 )
 from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
 from factask.gen.memory import SubtaskMemory
+from factask.gen.mentions import mentions_text
 from factask.gen.prompts import render
 from factask.gen.results import APPROACHES, GenerationResult
 from factask.gen.schemas import (
@@ -229,6 +230,7 @@ class Generator(StepRunner):
 
         def prompt(lv: PromptLevel) -> str:
             return render("one_shot", task_name=task, task_description=desc,
+                          mentions=mentions_text(f"{desc} {task}"),
                           examples=self.examples(query, ("tasks", "memory"), lv.examples),
                           schema=self.schema_for_prompt(schema, lv))
 
@@ -296,6 +298,7 @@ class Generator(StepRunner):
 
         def prompt(lv: PromptLevel) -> str:
             return render("variables", task_name=task, task_description=desc,
+                          mentions=mentions_text(f"{desc} {task}"),
                           examples=self.examples(query, ("tasks", "memory"), lv.examples),
                           schema=self.schema_for_prompt(schema, lv))
 
@@ -364,6 +367,7 @@ class Generator(StepRunner):
             def prompt(lv: PromptLevel, sub: Any = sub, schema: Any = schema) -> str:
                 return render(
                     "subtask_design", task_name=task, task_description=desc,
+                    mentions=mentions_text(f"{desc} {task}"),
                     outline=outline_text, subtask_name=sub.name,
                     subtask_description=sub.description, earlier=earlier_text(earlier),
                     examples=self.examples(f"{sub.name} {sub.description}",

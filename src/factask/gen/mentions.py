@@ -1,0 +1,133 @@
+"""The objects a proposal names, read from its words: a hint for the model.
+
+"put the three red blocks in the green zone" names ``red_blocks`` (3 blocks,
+red) and ``green_zone`` (a green zone). The prompts of the steps that declare
+variables (``one_shot``, ``variables``, ``subtask_design``) list these mentions
+with the names to give them, so a model -- a small one above all, which tends to
+copy names from the examples instead -- starts from the objects the proposal
+asks for. It is a hint only: the schema and the verification ladder decide.
+
+Only the vocabulary is recognised (the colours of :mod:`factask.model.palette`,
+the asset kinds of :mod:`factask.model.kinds` and a few synonyms), so a mention
+is always something the graph model can express.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from factask.model.kinds import ASSET_KINDS
+from factask.model.palette import COLOR_NAMES
+
+#: Words that name a kind, singular (a plural ``s``/``es`` is also read).
+KIND_WORDS: dict[str, str] = {
+    **{kind: kind for kind in ASSET_KINDS},
+    "cube": "block", "brick": "block", "sphere": "ball", "marble": "ball",
+    "cup": "bowl", "bin": "container", "tray": "container", "area": "zone",
+    "region": "zone", "target": "zone", "pillar": "cylinder", "can": "cylinder",
+}
+#: Count words (a digit string is read too).
+NUMBER_WORDS: dict[str, int] = {
+    "a": 1, "an": 1, "one": 1, "single": 1, "two": 2, "pair": 2, "three": 3, "four": 4,
+    "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10,
+}
+#: Most mentions listed (a proposal is a sentence or two, not an inventory).
+MAX_MENTIONS = 8
+#: Largest count read from a proposal (the graph model's count limit is larger).
+MAX_COUNT = 16
+
+_WORD = re.compile(r"[a-z0-9]+")
+
+
+@dataclass(frozen=True)
+class Mention:
+    """One object the proposal names.
+
+    Attributes:
+        name: The variable name to give it (``red_block``, ``red_blocks``, ``zone``).
+        kind: Its asset kind.
+        color: Its colour, or None when the proposal gives none.
+        count: How many (1 unless the proposal says).
+    """
+
+    name: str
+    kind: str
+    color: str | None
+    count: int
+
+    def describe(self) -> str:
+        """``red_blocks: kind block, colour red, count 3``."""
+        parts = [f"kind {self.kind}"]
+        if self.color:
+            parts.append(f"colour {self.color}")
+        parts.append(f"count {self.count}")
+        return f"{self.name}: {', '.join(parts)}"
+
+
+def _kind_of(word: str) -> tuple[str | None, bool]:
+    """(kind, plural) of a word, or (None, False)."""
+    if word in KIND_WORDS:
+        return KIND_WORDS[word], False
+    for suffix in ("es", "s"):
+        stem = word[: -len(suffix)]
+        if word.endswith(suffix) and stem in KIND_WORDS:
+            return KIND_WORDS[stem], True
+    return None, False
+
+
+def mentions(proposal: str) -> list[Mention]:
+    """The objects ``proposal`` names, in order, each once.
+
+    A mention is a kind word with the colour words and the count word just
+    before it: ``three red blocks``; ``red and green zones`` names a red zone and
+    a green zone; ``six red and blue blocks`` three of each. A plural without a
+    count counts 2 (per colour).
+
+    Args:
+        proposal: The task proposal (any text; only its words are read).
+
+    Returns:
+        At most :data:`MAX_MENTIONS` mentions, first occurrence first.
+    """
+    words = _WORD.findall(proposal.lower().replace("_", " ").replace("-", " ")[:4000])
+    found: dict[str, Mention] = {}
+    for i, word in enumerate(words):
+        kind, plural = _kind_of(word)
+        if kind is None:
+            continue
+        colors: list[str] = []
+        j = i - 1
+        while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or") and colors)):
+            if words[j] in COLOR_NAMES:
+                colors.insert(0, words[j])
+            j -= 1
+        before = words[j] if j >= 0 else ""
+        total = int(before) if before.isdigit() else NUMBER_WORDS.get(before, 0)
+        for color in colors or [None]:
+            if total and len(colors) > 1:
+                count = max(total // len(colors), 1)
+            elif len(colors) > 1:
+                count = 1  # "red and green zones": one of each
+            else:
+                count = total or (2 if plural else 1)
+            count = min(count, MAX_COUNT)
+            stem = f"{color}_{kind}" if color else kind
+            name = f"{stem}s" if count > 1 else stem
+            if stem in found or f"{stem}s" in found:
+                continue
+            found[name] = Mention(name, kind, color, count)
+            if len(found) >= MAX_MENTIONS:
+                return list(found.values())
+    return list(found.values())
+
+
+def mentions_text(proposal: str) -> str:
+    """The prompt's list of mentions, one per line (``(none recognised)`` if none)."""
+    found = mentions(proposal)
+    if not found:
+        return "(none recognised: choose the objects yourself)"
+    return "\n".join(f"- {m.describe()}" for m in found)
+
+
+__all__ = ["KIND_WORDS", "MAX_MENTIONS", "Mention", "mentions", "mentions_text"]

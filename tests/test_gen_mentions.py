@@ -1,0 +1,51 @@
+"""The objects a proposal names (factask.gen.mentions): a parser of outside
+input, so property-based as well as by example."""
+
+from __future__ import annotations
+
+import re
+
+from hypothesis import given
+from hypothesis import strategies as st
+
+from factask.gen.mentions import MAX_MENTIONS, mentions, mentions_text
+from factask.model.kinds import ASSET_KINDS
+from factask.model.names import NAME_PATTERN
+from factask.model.palette import COLOR_NAMES
+
+
+def _names(text: str) -> list[tuple[str, str, str | None, int]]:
+    return [(m.name, m.kind, m.color, m.count) for m in mentions(text)]
+
+
+def test_colour_kind_and_count_are_read_from_the_words() -> None:
+    assert _names("put the red block in the green zone") == [
+        ("red_block", "block", "red", 1), ("green_zone", "zone", "green", 1)]
+    assert _names("Place three red cubes and 2 blue cylinders in a brown bowl.") == [
+        ("red_blocks", "block", "red", 3), ("blue_cylinders", "cylinder", "blue", 2),
+        ("brown_bowl", "bowl", "brown", 1)]
+    assert _names("six red and blue blocks around the zone") == [
+        ("red_blocks", "block", "red", 3), ("blue_blocks", "block", "blue", 3),
+        ("zone", "zone", None, 1)]
+    assert _names("sort the spheres into the red and green zones") == [
+        ("balls", "ball", None, 2), ("red_zone", "zone", "red", 1),
+        ("green_zone", "zone", "green", 1)]
+
+
+def test_a_proposal_naming_nothing_says_so() -> None:
+    assert mentions("do something clever") == []
+    assert "none recognised" in mentions_text("do something clever")
+
+
+@given(st.text(max_size=300) | st.lists(st.sampled_from(
+    [*ASSET_KINDS, *COLOR_NAMES, "and", "three", "12", "blocks", "the", "-", "_"]),
+    max_size=60).map(" ".join))
+def test_any_text_gives_valid_distinct_bounded_mentions(text: str) -> None:
+    found = mentions(text)
+    assert len(found) <= MAX_MENTIONS
+    assert len({m.name for m in found}) == len(found)
+    for m in found:
+        assert re.fullmatch(NAME_PATTERN, m.name) and "__" not in m.name, m
+        assert m.kind in ASSET_KINDS and (m.color is None or m.color in COLOR_NAMES)
+        assert 1 <= m.count <= 16
+    assert mentions_text(text).count("\n") == max(len(found) - 1, 0)
