@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -201,3 +202,42 @@ def test_an_out_of_range_optional_number_is_reported_with_its_bound(spacing: flo
     assert len(problems) == 1 and problems[0].startswith("goal.spacing: ")
     assert "maximum of 0.5" in problems[0] or "less than or equal to the minimum" \
         in problems[0], problems
+
+
+def _numbers(node: object) -> list[dict]:
+    """Every number schema (or enum of numbers) in a schema tree."""
+    found: list[dict] = []
+    if isinstance(node, dict):
+        if node.get("type") == "number" or (
+                "enum" in node and node["enum"] and all(
+                    isinstance(v, float) for v in node["enum"])):
+            found.append(node)
+        for v in node.values():
+            found += _numbers(v)
+    elif isinstance(node, list):
+        for v in node:
+            found += _numbers(v)
+    return found
+
+
+@pytest.mark.parametrize("step", sorted(SCHEMAS))
+def test_llama_grammar_numbers_are_round_values_within_the_bounds(step: str) -> None:
+    from jsonschema import Draft202012Validator
+
+    from factask.gen.providers import for_llama_grammar
+
+    sent = for_llama_grammar(SCHEMAS[step])
+    for node in _numbers(sent):
+        # Bounded numbers became enums; every value passes the real schema's bounds.
+        assert "enum" in node, (step, node)
+        assert node["enum"] == sorted(node["enum"]) and len(node["enum"]) >= 5
+    for strict, loose in zip(_numbers(SCHEMAS[step]), _numbers(sent), strict=True):
+        for value in loose["enum"]:
+            assert Draft202012Validator(strict).is_valid(value), (step, strict, value)
+
+
+def test_a_size_taller_than_the_workspace_breaks_the_variables_schema() -> None:
+    variable = {"name": "zone", "description": "x", "kind": "zone", "size": [0.3, 0.3, 0.75],
+                "color": "green", "count": 1, "initial": {"type": "table"}}
+    problems = schema_problems({"variables": [variable]}, SCHEMAS["variables"])
+    assert problems == ["variables.0.size.2: 0.75 is greater than the maximum of 0.3"]

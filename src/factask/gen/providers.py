@@ -98,8 +98,12 @@ def for_llama_grammar(schema: Any) -> Any:
     with ``*``), so ``{0,n}`` becomes ``*`` and ``{1,n}`` becomes ``+``; a string
     with both a ``pattern`` and a ``maxLength`` keeps only the length (the
     converter ignores ``maxLength`` beside a pattern, so a small model would write
-    text until its token budget ran out). The answer is still checked against the
-    whole schema, so nothing the grammar lets through goes unnoticed.
+    text until its token budget ran out). The converter ignores a number's
+    bounds, so a number bounded on both sides becomes an enum of the round values
+    of :data:`GRID` within its bounds (a size of 1.25 m or a weight of 3 can then
+    not be written; a grid of round values is what a person would choose too).
+    The answer is still checked against the whole schema, so nothing the grammar
+    lets through goes unnoticed.
     """
     if isinstance(schema, list):
         return [for_llama_grammar(v) for v in schema]
@@ -111,7 +115,37 @@ def for_llama_grammar(schema: Any) -> Any:
             del out["pattern"]
         else:
             out["pattern"] = _UNBOUNDED_ONE.sub("+", _UNBOUNDED_ZERO.sub("*", out["pattern"]))
+    if out.get("type") == "number" and "enum" not in out:
+        values = grid_within(out)
+        if values:
+            out = {"enum": values}
     return out
+
+
+#: Round numbers a bounded number may take under llama.cpp's grammar: 1, 1.2,
+#: 1.5, 2, 2.5, 3, 4, 5, 6, 8 times the powers of ten from 0.001 to 100, the
+#: multiples of 15 up to 360 (angles in degrees), both signs, and 0 (a range
+#: keeps those within its bounds).
+GRID: tuple[float, ...] = tuple(sorted(
+    {sign * round(m * 10.0 ** e, 6) for sign in (1, -1)
+     for m in (1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8) for e in range(-3, 3)}
+    | {float(a) for a in range(-360, 361, 15)}))
+
+
+def grid_within(schema: Mapping[str, Any]) -> list[float]:
+    """The :data:`GRID` values within a number schema's bounds ([] if it is not
+    bounded on both sides)."""
+    lo = schema.get("minimum", schema.get("exclusiveMinimum"))
+    hi = schema.get("maximum", schema.get("exclusiveMaximum"))
+    if not isinstance(lo, (int, float)) or not isinstance(hi, (int, float)):
+        return []
+
+    def inside(v: float) -> bool:
+        low_ok = v > schema["exclusiveMinimum"] if "exclusiveMinimum" in schema else v >= lo
+        high_ok = v < schema["exclusiveMaximum"] if "exclusiveMaximum" in schema else v <= hi
+        return low_ok and high_ok
+
+    return [v for v in GRID if inside(v)]
 
 
 _UNBOUNDED_ZERO = re.compile(r"\{0,\d+\}")

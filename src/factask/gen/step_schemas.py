@@ -22,6 +22,7 @@ from typing import Any
 from factask.gen.schemas import MAX_FACTORS, MAX_SUBTASKS, MAX_VARIABLES
 from factask.model.factors import SubtaskFactor
 from factask.model.kinds import ASSET_KINDS, kind_spec
+from factask.model.limits import MAX_HEIGHT, MAX_HORIZONTAL, MIN_LENGTH
 from factask.model.palette import COLOR_NAMES
 from factask.model.variables import StateVariable
 from factask.relations import RELATION_TYPES
@@ -132,6 +133,11 @@ def placement_schema(names: Sequence[str] | None = None) -> Schema:
     return {"anyOf": options}
 
 
+def _length(most: float) -> Schema:
+    """A length in metres from the model's smallest to ``most``."""
+    return {"type": "number", "minimum": MIN_LENGTH, "maximum": most}
+
+
 def variable_schema(names: Sequence[str] | None = None) -> Schema:
     """One state variable: name, description, kind, size, colour, count, initial.
 
@@ -143,7 +149,11 @@ def variable_schema(names: Sequence[str] | None = None) -> Schema:
         "description": text(),
         "kind": {"type": "string", "enum": list(ASSET_KINDS)},
         # null: the kind's default size (the safe choice for a small model).
-        "size": _nullable(array(_field_schema(StateVariable, "size")["prefixItems"][0], 3, 3)),
+        # x, y, z in metres with the graph model's bounds per axis (a height
+        # above the workspace's is refused by the model too).
+        "size": _nullable({"type": "array", "minItems": 3, "maxItems": 3, "items": False,
+                           "prefixItems": [_length(MAX_HORIZONTAL), _length(MAX_HORIZONTAL),
+                                           _length(MAX_HEIGHT)]}),
         "color": {"type": "string", "enum": list(COLOR_NAMES)},
         "count": _field_schema(StateVariable, "count"),
         "initial": placement_schema(names),
