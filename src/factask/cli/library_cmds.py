@@ -15,7 +15,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from factask.cli.app import app
-from factask.library import UnknownTaskError, get_task, list_tasks
+from factask.library import UnknownTaskError, get_task, list_tasks, task_names
+from factask.library.tags import matches_tags, reuse_stats
 from factask.model import SubtaskFactor, TaskGraph
 from factask.model.errors import quote
 
@@ -26,28 +27,50 @@ err_console = Console(stderr=True, soft_wrap=True)
 @app.command("list")
 def list_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print a JSON list instead of a table."),
+    tag: list[str] = typer.Option(
+        [], "--tag", help="Only tasks with this tag (repeat or comma-separate: all must "
+        "match); a bare value matches any prefix, e.g. stacking = family:stacking."),
+    stats: bool = typer.Option(False, "--stats", help="Also print the subtask-reuse figure "
+                               "(factors built from shared templates / all factors)."),
 ) -> None:
-    """List the library's tasks with their sizes and the templates they use."""
-    infos = list_tasks()
+    """List the library's tasks with their sizes, templates and tags."""
+    wanted = [t.strip() for item in tag for t in item.split(",") if t.strip()]
+    infos = [i for i in list_tasks() if matches_tags(i.tags, wanted)]
     if as_json:
         typer.echo(json.dumps([i.to_dict() for i in infos], indent=2))
+        if stats:
+            typer.echo(_stats_text(), err=True)
         return
     if not console.is_terminal:  # piped: plain tab-separated lines, nothing cut
-        typer.echo("task\tvars\tfactors\tmovable\ttemplates")
+        typer.echo("task\tvars\tfactors\tmovable\ttemplates\ttags")
         for i in infos:
             typer.echo(f"{i.name}\t{i.n_variables}\t{i.n_factors}\t{i.n_movable}\t"
-                       + ",".join(i.templates))
-        return
-    table = Table(title=f"factask library: {len(infos)} tasks")
-    table.add_column("task", style="bold")
-    table.add_column("vars", justify="right")
-    table.add_column("factors", justify="right")
-    table.add_column("movable", justify="right")
-    table.add_column("templates")
-    for i in infos:
-        table.add_row(escape(i.name), str(i.n_variables), str(i.n_factors), str(i.n_movable),
-                      ", ".join(i.templates))
-    console.print(table)
+                       + ",".join(i.templates) + "\t" + ",".join(i.tags))
+    else:
+        table = Table(title=f"factask library: {len(infos)} tasks")
+        table.add_column("task", style="bold")
+        table.add_column("vars", justify="right")
+        table.add_column("factors", justify="right")
+        table.add_column("movable", justify="right")
+        table.add_column("templates")
+        table.add_column("tags")
+        for i in infos:
+            table.add_row(escape(i.name), str(i.n_variables), str(i.n_factors),
+                          str(i.n_movable), ", ".join(i.templates), escape(", ".join(i.tags)))
+        console.print(table)
+    if stats:
+        typer.echo(_stats_text())
+
+
+def _stats_text() -> str:
+    """The reuse figure of the whole library (whatever --tag listed), then one line
+    per template."""
+    st = reuse_stats({name: get_task(name) for name in task_names()})
+    lines = [f"tasks: {st.tasks}, factors: {st.factors}, built from shared templates: "
+             f"{st.shared} ({100 * st.reuse:.1f} % subtask reuse)"]
+    for name, (tasks, factors) in sorted(st.per_template.items(), key=lambda kv: -kv[1][1]):
+        lines.append(f"  {name}: {factors} factors in {tasks} tasks")
+    return "\n".join(lines)
 
 
 def _goal_text(f: SubtaskFactor) -> str:

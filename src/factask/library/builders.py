@@ -8,6 +8,7 @@ task goes through the same three steps, so tasks stay data built from templates.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
@@ -18,15 +19,28 @@ from factask.model.errors import InvalidValueError
 
 #: Task name -> builder (filled by :func:`register`, read by ``factask.library.tasks``).
 BUILDERS: dict[str, Callable[[], TaskGraph]] = {}
+#: Task name -> its family (what kind of task it is: stacking, placing, sorting, ...).
+FAMILIES: dict[str, str] = {}
+#: Task name -> tags the author gave beyond those read off the graph (see
+#: :func:`factask.library.tags.task_tags`).
+EXTRA_TAGS: dict[str, tuple[str, ...]] = {}
 
 
-def register(name: str) -> Callable[[Callable[[], TaskGraph]], Callable[[], TaskGraph]]:
-    """Decorator: record ``builder`` as the library task ``name`` (kebab-case)."""
+def register(name: str, *, family: str | None = None, tags: Sequence[str] = ()
+             ) -> Callable[[Callable[[], TaskGraph]], Callable[[], TaskGraph]]:
+    """Decorator: record ``builder`` as the library task ``name`` (kebab-case).
+
+    ``family`` defaults to the catalogue module's topic (``catalog_stacking`` ->
+    ``stacking``); ``tags`` adds tags that the graph cannot tell (e.g. ``barrier``).
+    """
 
     def deco(builder: Callable[[], TaskGraph]) -> Callable[[], TaskGraph]:
         if name in BUILDERS:
             raise InvalidValueError(f"library task {name!r} is registered twice")
         BUILDERS[name] = builder
+        module = builder.__module__.rsplit(".", 1)[-1]
+        FAMILIES[name] = family or module.removeprefix("catalog_").removeprefix("gensim_")
+        EXTRA_TAGS[name] = tuple(tags)
         return builder
 
     return deco
@@ -90,3 +104,23 @@ def assemble(name: str, description: str, *fragments: TaskGraph | Sequence[TaskG
     if extra:
         flat.append(TaskGraph(name=name, variables=list(extra)))
     return _compose(*flat, name=name, description=description).ensure_valid()
+
+
+def colored(kind: str, colors: Sequence[str], size: Sequence[float] | None = None,
+            suffix: str | None = None, **extra: Any) -> list[StateVariable]:
+    """One variable per colour, named ``<colour>_<suffix or kind>`` (sorting tasks
+    pair these up with :func:`factask.library.templates.match_pairs`)."""
+    return [var(f"{c}_{suffix or kind}", kind, c, size, **extra) for c in colors]
+
+
+def barrier(x: float, span: float = 0.8, color: str = "gray") -> list[StateVariable]:
+    """Fixed low bars (2 cm wide and high) across the table at depth ``x``, together
+    ``span`` long and centred on y = 0: GenSim's "line of small blocks" that the
+    robot must carry objects over without knocking it. Segments stay under 30 cm
+    (the library's largest fixed object)."""
+    n = max(1, math.ceil(span / 0.30 - 1e-9))
+    length = span / n
+    return [var(f"barrier_{k + 1}", "box", color, (length, 0.02, 0.02), fixed=True,
+                initial=at(x, -span / 2 + (k + 0.5) * length, 90.0),
+                description="a fixed low barrier the robot must reach over")
+            for k in range(n)]

@@ -15,11 +15,13 @@ from dataclasses import dataclass, field
 # Importing the catalogue modules registers their builders.
 from factask.library import (  # noqa: F401
     catalog_arranging,
+    catalog_gensim_sorting,
     catalog_placing,
     catalog_stacking,
     catalog_structures,
 )
 from factask.library.builders import BUILDERS
+from factask.library.tags import graph_tags, task_tags
 from factask.model import FactaskError, TaskGraph
 
 #: Task name -> builder returning a fresh, validated graph.
@@ -49,6 +51,7 @@ class TaskInfo:
     n_factors: int
     templates: tuple[str, ...] = field(default_factory=tuple)
     n_movable: int = 0
+    tags: tuple[str, ...] = field(default_factory=tuple)
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -58,6 +61,7 @@ class TaskInfo:
             "n_factors": self.n_factors,
             "n_movable": self.n_movable,
             "templates": list(self.templates),
+            "tags": list(self.tags),
         }
 
 
@@ -98,6 +102,7 @@ def task_info(graph: TaskGraph) -> TaskInfo:
         n_factors=len(graph.factors),
         templates=templates_used(graph),
         n_movable=graph.movable_object_count(),
+        tags=task_tags(graph.name, graph) if graph.name in TASKS else graph_tags(graph),
     )
 
 
