@@ -36,6 +36,7 @@ AssetKind = Literal[
     "ell",
     "fixture",
     "kit",
+    "pile",
 ]
 
 KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
@@ -101,6 +102,9 @@ _SPECS = [
              (0.12, 0.12, 0.04), movable=False, receptacle=True, region=True),
     KindSpec("kit", "flat kitting plate", (0.28, 0.20, 0.005), movable=False, support=True,
              region=True),
+    KindSpec("pile", "pile of small blocks pushed as one (Ravens small block: 1 cm cube); "
+             "size = one block, count = number of blocks, spawned in a cluster",
+             (0.01, 0.01, 0.01), movable=True),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.

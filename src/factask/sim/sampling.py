@@ -44,6 +44,7 @@ from factask.scene.objects import (
     rest_surface_z,
     resting_pose,
 )
+from factask.sim.pile import is_pile, layout_area, place_pile
 
 #: Whole-layout restarts before :func:`sample_layout` gives up.
 MAX_LAYOUT_RESTARTS = 8
@@ -70,11 +71,10 @@ def _placement_priority(graph: TaskGraph) -> list[str]:
     def key(v: object) -> tuple[int, int, int, float, int]:
         assert hasattr(v, "name")
         var = graph.variable(v.name)  # type: ignore[attr-defined]
-        ex = var.extents
         return (0 if isinstance(var.initial, AtFixedPose) else 1,
                 0 if var.is_fixed else 1,
                 0 if var.name in referenced else 1,
-                -ex[0] * ex[1], index[var.name])
+                -layout_area(var), index[var.name])
 
     return [v.name for v in sorted(table, key=key)]
 
@@ -174,6 +174,13 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
     poses: dict[str, Pose] = {}
     for vname in _placement_priority(graph):
         var = graph.variable(vname)
+        if is_pile(var):
+            cluster = place_pile(var, objs, occ, rng, tries)
+            if cluster is None:
+                raise _Placement(var.instances[0], f"no free spot for the pile's cluster "
+                                 f"in {tries} tries")
+            poses.update(cluster)
+            continue
         for inst in var.instances:
             obj = objs[inst]
             if isinstance(var.initial, AtFixedPose):

@@ -1,0 +1,148 @@
+"""Piles of small blocks: the kind, the starting cluster, ``pile_in_zone``."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from factask.geometry import Pose, quat_from_yaw
+from factask.model import parse_graph
+from factask.model.graph import TaskGraph
+from factask.relations.pile_in_zone import PileInZone, block_inside
+from factask.scene.objects import Area, objects_by_name
+from factask.sim.checks import check_task
+from factask.sim.pile import pile_half_extent
+from factask.sim.reset import reset_layout
+from factask.sim.sampling import sample_layout
+
+
+def _sweep(count: int = 30, fraction: float = 0.9, extra: list | None = None) -> TaskGraph:
+    return parse_graph({
+        "name": "sweep_test",
+        "variables": [{"name": "red_pile", "kind": "pile", "count": count, "color": "red"},
+                      {"name": "green_zone", "kind": "zone", "color": "green"},
+                      *(extra or [])],
+        "factors": [{"name": "sweep", "goal": {"type": "pile_in_zone", "objects": ["red_pile"],
+                                               "zone": "green_zone", "fraction": fraction}}],
+    })
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_pile_starts_as_one_cluster_clear_of_other_objects(seed: int) -> None:
+    graph = _sweep(40, extra=[{"name": "blue_box", "kind": "box", "color": "blue", "count": 3}])
+    layout = sample_layout(graph, np.random.default_rng(seed))
+    var = graph.variable("red_pile")
+    xy = np.array([layout[i].pos[:2] for i in var.instances])
+    half = pile_half_extent(var)
+    assert np.all(xy.max(axis=0) - xy.min(axis=0) <= 2 * half + 1e-9)
+    # No two blocks overlap (centres further apart than a block's diagonal).
+    d = np.linalg.norm(xy[:, None] - xy[None, :], axis=-1) + np.eye(len(xy))
+    assert d.min() > math.hypot(0.01, 0.01)
+    boxes = np.array([layout[i].pos[:2] for i in graph.variable("blue_box").instances])
+    gaps = np.linalg.norm(xy[:, None] - boxes[None, :], axis=-1)
+    assert gaps.min() > 0.03 + 0.005  # a box's half diagonal-ish plus a block's half side
+    again = sample_layout(graph, np.random.default_rng(seed))
+    assert all(np.array_equal(layout[n].pos, again[n].pos) for n in layout)
+
+
+def test_a_pile_at_a_fixed_pose_is_centred_there() -> None:
+    graph = _sweep(9)
+    data = graph.to_dict()
+    data["variables"][0]["initial"] = {"type": "pose", "x": 0.4, "y": 0.1}
+    graph = parse_graph(data)
+    layout = sample_layout(graph, np.random.default_rng(0))
+    xy = np.array([layout[i].pos[:2] for i in graph.variable("red_pile").instances])
+    assert np.linalg.norm(xy.mean(axis=0) - [0.4, 0.1]) < 0.01
+
+
+def test_pile_in_zone_moves_piles_only() -> None:
+    with pytest.raises(Exception, match="pile_in_zone moves piles"):
+        parse_graph({
+            "name": "bad",
+            "variables": [{"name": "b", "kind": "block"}, {"name": "z", "kind": "zone"}],
+            "factors": [{"name": "f", "goal": {"type": "pile_in_zone", "objects": ["b"],
+                                               "zone": "z"}}],
+        })
+
+
+def _status_with(graph: TaskGraph, solved: dict, poses: dict, held: frozenset = frozenset()):
+    return check_task(graph, solved, poses, held).factors["sweep"]
+
+
+def _placed_in_zone(graph: TaskGraph, seed: int = 0) -> tuple[dict, dict]:
+    layout, solved = reset_layout(graph, np.random.default_rng(seed))
+    objs = objects_by_name(graph)
+    poses = dict(layout)
+    poses.update(solved["sweep"].targets(objs))
+    return solved, poses
+
+
+def test_progress_is_the_fraction_inside_and_satisfied_at_the_threshold() -> None:
+    graph = _sweep(20, fraction=0.8)
+    solved, poses = _placed_in_zone(graph)
+    st_all = _status_with(graph, solved, poses)
+    assert st_all.progress == 1.0 and st_all.satisfied
+    zone = poses["green_zone"].pos
+    names = graph.variable("red_pile").instances
+    far = dict(poses)
+    for k, n in enumerate(names[:4]):  # 4 of 20 out: 80 %, exactly the threshold
+        far[n] = Pose(zone + np.array([0.0, 0.2 + 0.02 * k, 0.0]), poses[n].quat)
+    s = _status_with(graph, solved, far)
+    assert s.progress == pytest.approx(0.8) and s.satisfied
+    far[names[4]] = Pose(zone + np.array([0.0, 0.3, 0.0]), poses[names[4]].quat)
+    s = _status_with(graph, solved, far)
+    assert s.progress == pytest.approx(0.75) and not s.satisfied
+    assert names[4] in s.detail or "+" in s.detail
+
+
+def test_a_held_block_does_not_count() -> None:
+    graph = _sweep(10, fraction=1.0)
+    solved, poses = _placed_in_zone(graph)
+    held = frozenset({graph.variable("red_pile").instances[0]})
+    s = _status_with(graph, solved, poses, held)
+    assert s.progress == pytest.approx(0.9) and not s.satisfied
+
+
+@settings(max_examples=60, deadline=None)
+@given(x=st.floats(-0.2, 0.2), y=st.floats(-0.2, 0.2), dx=st.floats(-0.01, 0.01),
+       dy=st.floats(-0.01, 0.01), yaw=st.floats(-math.pi, math.pi),
+       round_area=st.booleans())
+def test_a_blocks_share_inside_is_continuous(x: float, y: float, dx: float, dy: float,
+                                             yaw: float, round_area: bool) -> None:
+    """Lipschitz: moving a block by d changes its share by at most |d| sqrt(2) / side."""
+    area = Area(np.array([0.1, -0.05]), yaw, np.array([0.06, 0.04]), round_area)
+    side = 0.01
+    a = block_inside(area, np.array([[0.1 + x, -0.05 + y]]), side)[0]
+    b = block_inside(area, np.array([[0.1 + x + dx, -0.05 + y + dy]]), side)[0]
+    assert 0.0 <= a <= 1.0
+    assert abs(a - b) <= math.sqrt(2) * math.hypot(dx, dy) / side + 1e-9
+
+
+@settings(max_examples=25, deadline=None)
+@given(k=st.integers(0, 9), dx=st.floats(-0.2, 0.2), dy=st.floats(-0.2, 0.2))
+def test_factor_progress_is_continuous_in_one_blocks_position(k: int, dx: float,
+                                                              dy: float) -> None:
+    graph = _sweep(10, fraction=1.0)
+    solved, poses = _placed_in_zone(graph)
+    name = graph.variable("red_pile").instances[k]
+    base = _status_with(graph, solved, poses).progress
+    steps = np.linspace(0.0, 1.0, 21)
+    values = []
+    for t in steps:
+        moved = dict(poses)
+        p = poses[name]
+        moved[name] = Pose(p.pos + t * np.array([dx, dy, 0.0]), quat_from_yaw(0.3 * t))
+        values.append(_status_with(graph, solved, moved).progress)
+    assert values[0] == pytest.approx(base)
+    step = math.hypot(dx, dy) / 20
+    # One of 10 blocks moves by `step` per sample: progress moves by <= sqrt(2) step / side / 10.
+    assert np.max(np.abs(np.diff(values))) <= math.sqrt(2) * step / 0.01 / 10 + 1e-9
+
+
+def test_the_relation_is_registered_with_its_default_threshold() -> None:
+    goal = PileInZone(objects=["p"], zone="z")
+    assert goal.type == "pile_in_zone" and 0.5 < goal.fraction < 1.0
