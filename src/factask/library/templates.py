@@ -180,7 +180,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="align_to_corner",
         description="Align a corner of the {objects} with the {corner} marker.",
-        slots=[_objects("the object to align", ["box", "block", "cylinder"]),
+        slots=[_objects("the object to align", ["box", "block", "cylinder", "ball"]),
                _slot("corner", "the L-shaped corner marker", ["corner"])],
         factors=[SubtaskFactor(
             name="corner",
