@@ -345,3 +345,35 @@ def _one_factor(graph, i):
     from factask.model import extract_fragment
 
     return extract_fragment(graph, graph.factors[i].name)
+
+
+@pytest.mark.parametrize("approach", ["variables-first", "subtasks-first"])
+def test_subtasks_moving_one_object_are_sequenced_in_the_plans_order(approach: str) -> None:
+    # The red block goes to the zone, then onto... the zone again is pointless, so:
+    # first into the zone (a milestone), then stacked on the blue block (final).
+    from factask.gen.demo import BLUE, RED, ZONE
+
+    on_blue = {"type": "on", "objects": ["red_block"], "support": "blue_block"}
+    in_zone = {"type": "in_zone", "objects": ["red_block"], "zone": "green_zone"}
+    script = dict(demo_answers())
+    script["subtask_plan"] = json.dumps({"subtasks": [
+        {"name": "red_to_zone", "description": "put the red block in the zone",
+         "variables": ["red_block", "green_zone"], "initial_setup": ""},
+        {"name": "red_on_blue", "description": "then put the red block on the blue block",
+         "variables": ["red_block", "blue_block"], "initial_setup": ""}]})
+    script["subtask_goal:red_to_zone"] = json.dumps({"goal": in_zone, "description": ""})
+    script["subtask_goal:red_on_blue"] = json.dumps({"goal": on_blue, "description": ""})
+    script["subtask_outline"] = json.dumps({"subtasks": [
+        {"name": "red_to_zone", "description": "the red block is in the zone"},
+        {"name": "red_on_blue", "description": "the red block is on the blue block"}]})
+    script["subtask_design:red_to_zone"] = json.dumps(
+        {"variables": [RED, ZONE], "goal": in_zone, "description": ""})
+    script["subtask_design:red_on_blue"] = json.dumps(
+        {"variables": [RED, BLUE], "goal": on_blue, "description": ""})
+    result, _ = _run(script, approach, max_repairs=0)
+    assert result.graph is not None, result.failure
+    by_name = {f.name.split("__")[-1]: f for f in result.graph.factors}
+    first, second = (next(f for n, f in by_name.items() if n.endswith(k))
+                     for k in ("red_to_zone", "red_on_blue"))
+    assert first.milestone and not second.milestone and first.name in second.after
+    assert result.graph.problems() == []

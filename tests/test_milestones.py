@@ -153,3 +153,26 @@ def test_the_library_towers_of_hanoi_has_seven_moves_four_milestones() -> None:
     assert len(g.factors) == 7
     assert g.milestones() == [g.factor_names()[k] for k in (0, 1, 2, 4)]
     assert g.factor_order() == g.factor_names()
+
+
+@given(move_sequences(), st.data())
+def test_a_listed_plan_gets_the_order_and_milestones_its_listing_implies(
+        graph: TaskGraph, data: st.DataObject) -> None:
+    from factask.model.order import in_listed_order
+
+    # Forget the order and the milestones (what an LLM's plan gives): the listing
+    # alone restores a valid graph whose order keeps the listing for each block.
+    keep = data.draw(st.lists(st.booleans(), min_size=len(graph.factors),
+                              max_size=len(graph.factors)))
+    loose = [f.model_copy(update={"after": f.after if k else [], "milestone": False})
+             for f, k in zip(graph.factors, keep, strict=True)]
+    fixed = in_listed_order(loose)
+    result = graph.model_copy(update={"factors": fixed})
+    assert result.problems() == []
+    order = result.factor_order()
+    for var in {o for f in fixed for o in f.goal.objects}:
+        movers = [f.name for f in fixed if var in f.goal.objects]
+        assert [n for n in order if n in movers] == movers
+        assert [f.milestone for f in fixed if f.name in movers] == \
+            [True] * (len(movers) - 1) + [False]
+    assert in_listed_order(fixed) == fixed  # nothing left to add

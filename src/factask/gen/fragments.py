@@ -100,9 +100,12 @@ def fragment(task: str, factor: SubtaskFactor, variables: list[StateVariable]) -
     return graph
 
 
-def merge_problems(design: SubtaskDesign, defined: dict[str, tuple[StateVariable, str]],
-                    moved: dict[str, str]) -> list[Problem]:
-    """Conflicts of a new subtask with the earlier ones (shared names, moved twice)."""
+def merge_problems(design: SubtaskDesign,
+                   defined: dict[str, tuple[StateVariable, str]]) -> list[Problem]:
+    """Conflicts of a new subtask with the earlier ones: a shared name defined
+    differently. (An object that an earlier subtask moved may be moved again: the
+    outline's order sequences the two, the earlier one a milestone --
+    :func:`factask.model.order.in_listed_order`.)"""
     problems = []
     for v in design.variables:
         if v.name in defined and defined[v.name][0] != v:
@@ -112,10 +115,4 @@ def merge_problems(design: SubtaskDesign, defined: dict[str, tuple[StateVariable
             problems.append(Problem(v.name, "", f"defined differently by subtask {where!r} "
                                     f"({'; '.join(diff)})",
                                     "repeat it exactly, leave it out, or use a new name"))
-    for o in design.goal.objects:
-        if o in moved:
-            problems.append(Problem(o, "goal.objects", f"is already moved by subtask "
-                                    f"{moved[o]!r}; an object has one goal",
-                                    "anchor on it instead (e.g. 'on' with support) or move "
-                                    "another object"))
     return problems

@@ -55,6 +55,7 @@ from factask.model.errors import CompositionError, FactaskError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
 from factask.model.names import slugify
+from factask.model.order import in_listed_order
 from factask.model.templates import compose, extract_fragment
 from factask.model.variables import StateVariable
 
@@ -286,9 +287,12 @@ class Generator(StepRunner):
         graph = None
         problem = None
         try:
+            # The plan lists its subtasks in the order they are done: that order
+            # sequences the subtasks that move the same object (earlier ones
+            # become milestones, as in Ravens' goal queue).
             graph = TaskGraph(name=task, description=desc, variables=variables,
-                              factors=[f.model_copy(update={"weight": 1.0 / n})
-                                       for f in factors])
+                              factors=in_listed_order([f.model_copy(update={"weight": 1.0 / n})
+                                                       for f in factors]))
         except ValidationError as exc:
             problem = format_problems(problems_from_pydantic(exc, {}))
         self._verify_assembled(task, desc, graph, problem)
@@ -358,7 +362,6 @@ class Generator(StepRunner):
         outline = self._ask_outline(task, desc, query)
         outline_text = "; ".join(f"`{s.name}`: {s.description}" for s in outline.subtasks)
         defined: dict[str, tuple[StateVariable, str]] = {}  # name -> (variable, subtask)
-        moved: dict[str, str] = {}  # variable -> subtask that moves it
         fragments: list[TaskGraph] = []
         earlier: list[dict[str, Any]] = []
         for sub in outline.subtasks:
@@ -376,7 +379,7 @@ class Generator(StepRunner):
 
             def evaluate(text: str, sub: Any = sub, schema: Any = schema) -> Evaluation:
                 design = validate_answer(read_strict(text, schema), SubtaskDesign)
-                problems = merge_problems(design, defined, moved)
+                problems = merge_problems(design, defined)
                 if problems:
                     return None, "none", (
                         "The subtask's variables conflict with the earlier subtasks "
@@ -404,8 +407,6 @@ class Generator(StepRunner):
             fragments.append(piece)
             for v in piece.variables:
                 defined.setdefault(v.name, (v, sub.name))
-            for o in piece.factors[0].goal.objects:
-                moved.setdefault(o, sub.name)
             earlier.append({"subtask": sub.name, "verified": out.ok,
                             "variables": [v.model_dump(mode="json", exclude_none=True)
                                           for v in piece.variables],
@@ -415,6 +416,8 @@ class Generator(StepRunner):
         problem = None
         try:
             graph = compose(*fragments, name=task, description=desc)
+            # The outline is in the order the subtasks are done (see variables-first).
+            graph = graph.model_copy(update={"factors": in_listed_order(graph.factors)})
         except CompositionError as exc:
             problem = f"Merging the subtasks failed: {exc}"
         self._verify_assembled(task, desc, graph, problem)

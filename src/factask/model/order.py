@@ -25,6 +25,7 @@ Rules (each broken rule is a :class:`Problem` naming the factor):
 from __future__ import annotations
 
 from collections.abc import Sequence
+from itertools import pairwise
 from typing import TYPE_CHECKING
 
 import networkx as nx
@@ -134,5 +135,49 @@ def mover_problems(factors: Sequence[SubtaskFactor], d: nx.DiGraph) -> list[Prob
     return out
 
 
-__all__ = ["cycle_problems", "dependency_graph", "mover_problems", "movers_by_variable",
-           "topological_order"]
+def in_listed_order(factors: Sequence[SubtaskFactor]) -> list[SubtaskFactor]:
+    """The factors with the order their listing implies for shared objects.
+
+    For a plan whose subtasks are listed in the order they are done (an LLM's
+    subtask plan or outline): where several factors move the same variable and
+    nothing orders them yet, each goes ``after`` the previous one in the list,
+    and every one but the last is a milestone -- the rule that
+    :func:`mover_problems` checks, made to hold the way the listing says. Pairs
+    already ordered (either way, by ``after`` or by anchors) are left alone, and
+    an edge that would close a cycle is not added (the validation then reports
+    the cycle the factors already have).
+
+    Args:
+        factors: The factors in listed order.
+
+    Returns:
+        Copies of the factors (the same objects where nothing changes).
+    """
+    d = dependency_graph(factors)
+    added: dict[str, list[str]] = {}
+    for who in movers_by_variable(factors).values():
+        for a, b in pairwise(who):
+            if nx.has_path(d, a, b) or nx.has_path(d, b, a):
+                continue
+            d.add_edge(a, b, why="listed order")
+            added.setdefault(b, []).append(a)
+    if not nx.is_directed_acyclic_graph(d):
+        return list(factors)
+    earlier: set[str] = set()
+    for who in movers_by_variable(factors).values():
+        if len(who) > 1:
+            ordered = sorted(who, key=lambda n: sum(nx.has_path(d, m, n) for m in who))
+            earlier.update(ordered[:-1])
+    out = []
+    for f in factors:
+        update: dict[str, object] = {}
+        if f.name in added:
+            update["after"] = [*f.after, *(a for a in added[f.name] if a not in f.after)]
+        if f.name in earlier and not f.milestone:
+            update["milestone"] = True
+        out.append(f.model_copy(update=update) if update else f)
+    return out
+
+
+__all__ = ["cycle_problems", "dependency_graph", "in_listed_order", "mover_problems",
+           "movers_by_variable", "topological_order"]
