@@ -1,13 +1,15 @@
 """``pile_in_zone``: the small blocks of piles pushed into a region (Ravens' zone metric).
 
 A pile (kind ``pile``) is ``count`` small blocks that are pushed, not picked.
-The goal's progress is the fraction of the blocks' footprint area inside the
-region, averaged over the blocks: each block counts as a square of its
+The goal's progress is the share of the blocks' footprint area inside the
+region, averaged over the blocks and divided by the goal's ``fraction`` (capped
+at 1): each block counts as a square of its
 footprint's area, aligned with the region, so its share changes linearly while
 it crosses the region's edge (:func:`block_inside`). Progress is therefore a
 continuous (Lipschitz) function of the blocks' positions, and a per-factor
 reward stays informative while a push moves half the pile. The goal is
-satisfied once progress reaches the ``fraction`` the relation carries.
+satisfied once the share reaches the ``fraction`` the relation carries (progress
+1 then: the reward and the success agree).
 """
 
 from __future__ import annotations
@@ -84,8 +86,8 @@ def block_side(obj: SceneObject) -> float:
 
 class PileInZone(RelationBase):
     """Push the small blocks of the piles ``objects`` (kind pile) into the region
-    variable ``zone``. Progress is the fraction of the blocks inside (continuous);
-    satisfied once at least ``fraction`` of them are."""
+    variable ``zone``. Progress is the share of the blocks inside (continuous) over
+    ``fraction``; satisfied, with progress 1, once at least ``fraction`` of them are."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"zone": ("region",)}
 
@@ -172,13 +174,17 @@ class PileInZone(RelationBase):
         return Verdict(placed, problems)
 
     def status(self, solved: SolvedFactor, scene: CheckScene) -> FactorStatus:
-        """Progress = mean fraction of the blocks inside; satisfied at ``fraction``."""
+        """Progress = the blocks' mean share inside over ``fraction`` (at most 1);
+        satisfied once the share reaches ``fraction``."""
         frac = self.inside(solved, scene)
-        progress = float(np.mean(list(frac.values()))) if frac else 1.0
+        share = float(np.mean(list(frac.values()))) if frac else 1.0
         verdict = self.check(solved, scene)
         base = factor_status(solved, scene, verdict)
-        ok = progress + 1e-12 >= self.fraction
-        detail = (f"{progress:.0%} of {len(frac)} block(s) inside "
+        ok = share + 1e-12 >= self.fraction
+        # Over the threshold, so a satisfied goal has full progress: the reward and
+        # the success agree (an episode succeeds at reward >= 0.99).
+        progress = 1.0 if ok else share / self.fraction
+        detail = (f"{share:.0%} of {len(frac)} block(s) inside "
                   f"{'/'.join(solved.regions)} (needs {self.fraction:.0%})")
         shown = verdict.problems[:MAX_DETAIL_ITEMS]
         if shown:

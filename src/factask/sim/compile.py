@@ -39,6 +39,7 @@ from factask.sim.parts import (
     ObjectPlan,
     plan_object,
 )
+from factask.sim.push import add_spatula, needs_spatula
 from factask.sim.robot import attach_robot
 from factask.sim.robots import ROBOT_NAMES
 
@@ -340,6 +341,8 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float
     markers = [add_object(spec, plan) for plan in marker_plans]
     if robot is not None:
         attach_robot(spec, robot)
+        if needs_spatula(graph):  # Ravens' ee = Spatula: tasks that push
+            add_spatula(spec)
     return spec, objects, handles, markers
 
 

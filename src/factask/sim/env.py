@@ -41,6 +41,7 @@ from factask.sim.compile import (
     set_object_pose,
 )
 from factask.sim.health import physics_problem
+from factask.sim.push import push
 from factask.sim.reset import reset_layout
 from factask.sim.robot import SuctionRobot, make_robot
 
@@ -104,7 +105,10 @@ class FactaskEnv(gym.Env):
 
     Action (dict): ``pick`` and ``place``, each (x, y, z, yaw): the suction tip's
     position at the grasp (on the object's top) and at the release, and the tool
-    yaw; the object turns with the tool by ``place yaw - pick yaw``.
+    yaw; the object turns with the tool by ``place yaw - pick yaw``. A task that
+    pushes (a ``pile_in_zone`` goal: the robot has a spatula) also takes
+    ``start`` and ``end`` (x, y, z, yaw; only x, y are used): a push along the
+    table (:mod:`factask.sim.push`).
 
     Raises:
         GraphValidationError, CompileError: the graph cannot be compiled.
@@ -274,18 +278,25 @@ class FactaskEnv(gym.Env):
         """
         if self._status is None:
             raise ResetNeededError("call reset() before step()")
-        if not isinstance(action, dict) or not {"pick", "place"} <= set(action):
-            raise ActionError(f"action must be a dict with 'pick' and 'place', got {action!r}")
-        pick = _pose4(action["pick"], "pick")
-        place = _pose4(action["place"], "place")
+        pushing = isinstance(action, dict) and {"start", "end"} <= set(action)
+        if not pushing and (not isinstance(action, dict) or not {"pick", "place"} <= set(action)):
+            raise ActionError(f"action must be a dict with 'pick' and 'place' (or 'start' and "
+                              f"'end' of a push), got {action!r}")
+        first, second = ("start", "end") if pushing else ("pick", "place")
+        pick = _pose4(action[first], first)
+        place = _pose4(action[second], second)
         if self.failure is not None:
             return self._obs(), 0.0, True, False, self._info(self._status)
         # The reward is what *this action* changed: measure the baseline now, so
         # changes made from outside between steps are not credited to the action.
         prev = self._reward_now()
         max_steps = int(self.graph.limits.max_sim_seconds_per_action / self.model.opt.timestep)
-        result = self.robot.pick_and_place(pick, place, on_step=self.frame_callback,
-                                           max_steps=max_steps)
+        if pushing:  # a spatula's push (factask.sim.push)
+            result = push(self.robot, pick, place, on_step=self.frame_callback,
+                          max_steps=max_steps)
+        else:
+            result = self.robot.pick_and_place(pick, place, on_step=self.frame_callback,
+                                               max_steps=max_steps)
         self.actions_taken += 1
         self.failure = self.physics_failure()
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})

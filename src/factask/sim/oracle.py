@@ -18,6 +18,9 @@ poses and sizes, and the solved targets of every factor. Each call to
    ends at its target, turned to the target yaw modulo the object's symmetry by
    the shortest rotation.
 
+A ``pile_in_zone`` factor is worked on by pushes instead
+(:mod:`factask.sim.push_oracle`), until its threshold holds.
+
 It gives up, with the reason, when one object fails too often or no free spot
 exists for an obstacle.
 """
@@ -32,10 +35,12 @@ import numpy as np
 
 from factask.geometry import Pose, tilt_deg, wrap_angle
 from factask.model.kinds import yaw_symmetry_deg
+from factask.relations.pile_in_zone import PileInZone
 from factask.relations.status import MAX_TILT_DEG, FactorStatus
 from factask.scene.collision import occupying, parking_spot, resting_on
 from factask.scene.objects import SPHERE_KINDS, SceneObject, top_z
 from factask.sim.env import FactaskEnv
+from factask.sim.push_oracle import PushAction, plan_push
 
 #: Attempts at placing one object for one factor before the oracle gives up.
 MAX_ATTEMPTS_PER_OBJECT = 3
@@ -43,6 +48,8 @@ MAX_ATTEMPTS_PER_OBJECT = 3
 PARKING_CLEARANCE = 0.015
 #: Random candidate spots tried when parking an obstacle.
 PARKING_SAMPLES = 400
+#: Pushes in a row that do not raise a pile goal's progress before the oracle gives up.
+MAX_IDLE_PUSHES = 6
 
 
 @dataclass(frozen=True)
@@ -84,6 +91,8 @@ class Oracle:
         self.rng = np.random.default_rng(seed)
         self.attempts: Counter[tuple[str, str]] = Counter()
         self.failure: str | None = None
+        # Pile goals: the best progress seen (pushes that do not raise it count).
+        self._pile_best: dict[str, float] = {}
 
     def _targets(self, fname: str, status: FactorStatus) -> dict[str, Pose]:
         """Target pose of every unplaced object of a factor: the free slot its status
@@ -118,7 +127,7 @@ class Oracle:
         return self._action(self.env.objects[name], poses[name], spot, factor, why)
 
     # ------------------------------------------------------------------- act
-    def plan(self) -> OracleAction | None:
+    def plan(self) -> OracleAction | PushAction | None:
         """The next action, or None when done or giving up (see :attr:`failure`)."""
         env = self.env
         status = env.status()
@@ -136,6 +145,9 @@ class Oracle:
                 # A final goal reached earlier and disturbed since: a milestone still
                 # ahead may need its objects; restore it once the milestones are done.
                 continue
+            goal = env.graph.factor(fname).goal
+            if isinstance(goal, PileInZone):  # blocks are pushed, never picked
+                return self._push(fname, goal, fstatus, poses)
             for name in fstatus.placed:  # a success resets the object's retry budget
                 self.attempts.pop((fname, name), None)
             targets = self._targets(fname, fstatus)
@@ -168,6 +180,25 @@ class Oracle:
                                 f"place {name}")
         self.failure = "every factor is satisfied but the task is not (inconsistent checks)"
         return None
+
+    def _push(self, fname: str, goal: PileInZone, fstatus: FactorStatus,
+              poses: dict[str, Pose]) -> PushAction | None:
+        """The next push for a pile goal (:mod:`factask.sim.push_oracle`); gives up
+        when :data:`MAX_IDLE_PUSHES` pushes in a row did not raise its progress."""
+        best = self._pile_best.get(fname, -1.0)
+        if fstatus.progress > best + 1e-6:
+            self._pile_best[fname] = fstatus.progress
+            self.attempts[(fname, "")] = 0
+        self.attempts[(fname, "")] += 1
+        if self.attempts[(fname, "")] > MAX_IDLE_PUSHES:
+            self.failure = (f"factor {fname!r}: {MAX_IDLE_PUSHES} pushes did not raise its "
+                            f"progress ({fstatus.detail})")
+            return None
+        action = plan_push(fname, goal, self.env.solved[fname], self.env.objects, poses,
+                           self.env.held_objects())
+        if action is None:
+            self.failure = f"factor {fname!r}: no block outside but not satisfied"
+        return action
 
     def act(self) -> dict[str, np.ndarray] | None:
         """The next action for ``env.step``, or None (done, or gave up)."""
