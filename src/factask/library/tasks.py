@@ -17,6 +17,7 @@ from factask.library import (  # noqa: F401
     catalog_arranging,
     catalog_gensim_matching,
     catalog_gensim_sorting,
+    catalog_gensim_stacking,
     catalog_placing,
     catalog_stacking,
     catalog_structures,

@@ -1,0 +1,311 @@
+"""GenSim tasks that stack: towers on pallets, stands and cylinders, several columns,
+small pyramids in zones, and little assemblies (cars, H-shapes, castles on a line).
+
+Columns are ``stack_on_base``/``stack_column``; two-one pyramids are a row
+(``align_along_line`` or ``build_row``) with a ``pyramid_layer`` on it.
+"""
+
+from __future__ import annotations
+
+from factask.library.builders import (
+    assemble,
+    at,
+    barrier,
+    colored,
+    region,
+    register,
+    start_inside,
+    use,
+    var,
+)
+from factask.library.templates import match_pairs
+from factask.model import StateVariable, TaskGraph
+
+BLOCK = (0.04, 0.04, 0.04)
+PALLET = (0.30, 0.25, 0.0375)
+STAND = (0.15, 0.05, 0.005)
+ZONE = (0.12, 0.12, 0.001)
+#: A zone shaped for a base row of two blocks.
+PAIR_ZONE = (0.12, 0.06, 0.001)
+CORNER = (0.055, 0.055, 0.001)
+FIVE = ("red", "blue", "green", "yellow", "orange")
+
+
+def _pallet(**extra: object) -> StateVariable:
+    return var("pallet", "pallet", "brown", PALLET, description="the pallet", **extra)
+
+
+def _tower(name: str, description: str, layers: list[StateVariable],
+           base: StateVariable) -> TaskGraph:
+    return assemble(name, description, use("stack_on_base", layers=layers, base=base))
+
+
+@register("build-block-tower-on-pallet", family="stacking")
+def build_block_tower_on_pallet() -> TaskGraph:
+    layers = [var(f"{c}_block_{k // 2 + 1}", "block", c, BLOCK)
+              for k, c in enumerate(("red", "blue") * 3)]
+    return _tower("build-block-tower-on-pallet",
+                  "Stack six blocks (three red, three blue) on the pallet in alternating "
+                  "colours, starting with a red block at the bottom.", layers, _pallet())
+
+
+@register("color-coordinated-tower", family="stacking")
+def color_coordinated_tower() -> TaskGraph:
+    return _tower("color-coordinated-tower",
+                  "Stack five blocks on the pallet: red at the bottom, then blue, green, "
+                  "yellow and orange at the top.", colored("block", FIVE, BLOCK), _pallet())
+
+
+@register("color-coordinated-cylinder-stacking", family="stacking")
+def color_coordinated_cylinder_stacking() -> TaskGraph:
+    return _tower("color-coordinated-cylinder-stacking",
+                  "Stack the three cylinders on the pallet: red at the bottom, blue in the "
+                  "middle, green on top.",
+                  colored("cylinder", ("red", "blue", "green"), (0.05, 0.05, 0.04)), _pallet())
+
+
+@register("color-coordinated-box-in-pallet", family="stacking")
+def color_coordinated_box_in_pallet() -> TaskGraph:
+    return _tower("color-coordinated-box-in-pallet",
+                  "Stack four boxes on the pallet in the colour sequence red at the bottom, "
+                  "then blue, green and yellow.",
+                  colored("box", ("red", "blue", "green", "yellow"), (0.06, 0.06, 0.04)),
+                  _pallet())
+
+
+@register("color-coordinated-cylinder-pyramid", family="stacking")
+def color_coordinated_cylinder_pyramid() -> TaskGraph:
+    # GenSim calls it a pyramid but gives one bottom-to-top sequence of five single
+    # cylinders: a column (see docs/library.md).
+    return _tower("color-coordinated-cylinder-pyramid",
+                  "Stack five cylinders on the square pallet, from bottom to top orange, "
+                  "blue, green, yellow and red.",
+                  colored("cylinder", ("orange", "blue", "green", "yellow", "red"),
+                          (0.05, 0.05, 0.03)),
+                  var("pallet", "pallet", "brown", (0.2, 0.2, 0.0375),
+                      description="the square pallet"))
+
+
+@register("nested-boxes", family="stacking")
+def nested_boxes() -> TaskGraph:
+    big = var("yellow_box", "container", "yellow", (0.16, 0.16, 0.12),
+              description="the large open yellow box")
+    return _tower("nested-boxes",
+                  "Place three smaller boxes inside the large yellow box: blue at the bottom, "
+                  "then red, then green on top.",
+                  colored("box", ("blue", "red", "green"), (0.07, 0.07, 0.03)), big)
+
+
+@register("color-ordered-blocks-on-pallet", family="pallets")
+def color_ordered_blocks_on_pallet() -> TaskGraph:
+    colors = ("red", "blue", "green", "yellow", "orange", "purple")
+    pallet = _pallet()
+    return assemble("color-ordered-blocks-on-pallet",
+                    "Pick up six coloured blocks and place each on the pallet in the colour "
+                    "sequence red, blue, green, yellow, orange, purple.",
+                    match_pairs("palletize_layer",
+                                [(b, pallet) for b in colored("block", colors, BLOCK)],
+                                sequential=True))
+
+
+@register("color-sorted-blocks-on-pallet-with-barrier", family="pallets", tags=("barrier",))
+def color_sorted_blocks_on_pallet_with_barrier() -> TaskGraph:
+    pallet = _pallet(initial=at(0.65, 0.0, 90.0))
+    blocks = colored("block", ("red", "blue", "green", "yellow"), BLOCK,
+                     initial=region((0.27, 0.42), (-0.4, 0.4)))
+    return assemble("color-sorted-blocks-on-pallet-with-barrier",
+                    "Carry each block over the low barrier and place it on the pallet in the "
+                    "sequence red, blue, green, yellow.",
+                    match_pairs("palletize_layer", [(b, pallet) for b in blocks],
+                                sequential=True),
+                    extra=barrier(0.49, 0.6))
+
+
+@register("sort-and-stack-clr-blocks", family="stacking")
+def sort_and_stack_clr_blocks() -> TaskGraph:
+    pallet = _pallet()
+    blocks = colored("block", ("red", "blue", "green", "yellow"), BLOCK)
+    # First every block on the pallet (a milestone), then the stack that must hold.
+    sort = use("palletize_layer", objects=blocks, pallet=pallet, milestone=True)
+    return assemble("sort-and-stack-clr-blocks",
+                    "Place the red, blue, green and yellow blocks on the pallet, then stack "
+                    "them on the pallet: red at the bottom, then blue, green, yellow.",
+                    sort, use("stack_on_base", layers=blocks, base=pallet, after=[sort]))
+
+
+@register("colorful-block-tower-on-cylinder-base", family="stacking")
+def colorful_block_tower_on_cylinder_base() -> TaskGraph:
+    base = var("cylinder_base", "cylinder", "gray", (0.06, 0.06, 0.04),
+               description="the cylindrical base")
+    corner = var("corner", "corner", "green", CORNER, description="the corner of the table")
+    place = use("align_to_corner", objects=base, corner=corner)
+    blocks = colored("block", ("red", "blue", "green", "yellow"), BLOCK)
+    return assemble("colorful-block-tower-on-cylinder-base",
+                    "Put the cylindrical base in the corner, then stack four blocks on it: "
+                    "red, blue, green and yellow from bottom to top.",
+                    place, use("stack_on_base", layers=blocks, base=base, after=[place]))
+
+
+@register("corner-block-challenge", family="stacking")
+def corner_block_challenge() -> TaskGraph:
+    fragments: list[TaskGraph] = []
+    for side, y in (("left", 0.2), ("right", -0.2)):
+        corner = var(f"{side}_corner", "corner", "gray", CORNER, initial=at(0.6, y))
+        bottom = var(f"{side}_red_bottom", "block", "red", BLOCK)
+        rest = [var(f"{side}_red_top", "block", "red", BLOCK),
+                var(f"{side}_green_block", "block", "green", BLOCK),
+                var(f"{side}_blue_block", "block", "blue", BLOCK)]
+        first = use("align_to_corner", objects=bottom, corner=corner)
+        fragments += [first, use("stack_on_base", layers=rest, base=bottom, after=[first])]
+    return assemble("corner-block-challenge",
+                    "Construct two columns of four cubes, each in a corner: two red cubes, "
+                    "then a green and a blue one (eight cubes: four red, two green, two blue).",
+                    fragments)
+
+
+@register("color-coordinated-block-tower", family="stacking")
+def color_coordinated_block_tower() -> TaskGraph:
+    colors = ("red", "blue", "green")
+    stands = [var(f"{c}_stand", "stand", c, (0.07, 0.07, 0.005)) for c in colors]
+    towers = [use("stack_on_base", layers=var(f"{c}_blocks", "block", c, BLOCK, count=3),
+                  base=s) for c, s in zip(colors, stands, strict=True)]
+    return assemble("color-coordinated-block-tower",
+                    "Stack the blocks onto three stands by colour: a red, a blue and a green "
+                    "tower of three blocks each (GenSim: five each; see docs/library.md).",
+                    towers)
+
+
+@register("stack-color-coordinated-blocks", family="stacking")
+def stack_color_coordinated_blocks() -> TaskGraph:
+    pallet = _pallet()
+    return assemble("stack-color-coordinated-blocks",
+                    "Stack six blocks on the pallet in two stacks: red, blue, green from "
+                    "bottom to top, and yellow, orange, purple.",
+                    use("stack_on_base", layers=colored("block", ("red", "blue", "green"),
+                                                        BLOCK), base=pallet),
+                    use("stack_on_base", layers=colored("block", ("yellow", "orange", "purple"),
+                                                        BLOCK), base=pallet))
+
+
+@register("symmetric-block-stand-assembly", family="stacking")
+def symmetric_block_stand_assembly() -> TaskGraph:
+    fragments = []
+    for side in ("left", "right"):
+        stand = var(f"{side}_stand", "stand", "gray", STAND, description=f"the {side} stand")
+        for low, high in (("blue", "red"), ("red", "blue")):
+            layers = [var(f"{side}_{low}_base", "block", low, BLOCK),
+                      var(f"{side}_{high}_on_{low}", "block", high, BLOCK)]
+            fragments.append(use("stack_on_base", layers=layers, base=stand))
+    return assemble("symmetric-block-stand-assembly",
+                    "On each of two stands build two columns side by side: a red block on a "
+                    "blue one and a blue block on a red one, the two stands alike.", fragments)
+
+
+@register("build-cylinder-structure", family="structures")
+def build_cylinder_structure() -> TaskGraph:
+    base = var("square_base", "pallet", "gray", (0.15, 0.15, 0.02), description="the square base")
+    return assemble("build-cylinder-structure",
+                    "On the square base stand the red and blue cylinders side by side, the "
+                    "yellow one on the red and the green one on the blue: an 'H'.",
+                    use("stack_on_base", layers=colored("cylinder", ("red", "yellow"),
+                                                        (0.04, 0.04, 0.04)), base=base),
+                    use("stack_on_base", layers=colored("cylinder", ("blue", "green"),
+                                                        (0.04, 0.04, 0.04)), base=base))
+
+
+def _two_one_pyramid(color: str, zone: StateVariable) -> list[TaskGraph]:
+    """A pyramid of two blocks in a row on ``zone`` and one bridging them."""
+    base = var(f"{color}_base_blocks", "block", color, BLOCK, count=2)
+    top = var(f"{color}_top_block", "block", color, BLOCK)
+    return [use("align_along_line", objects=base, line=zone),
+            use("pyramid_layer", layer=top, below=base)]
+
+
+@register("color-coordinated-block-pyramid-construction", family="structures")
+def color_coordinated_block_pyramid_construction() -> TaskGraph:
+    zones = [var(f"{side}_zone", "zone", "gray", PAIR_ZONE, initial=at(0.55, y),
+                 description=f"the {side} zone") for side, y in (("left", 0.2), ("right", -0.2))]
+    return assemble("color-coordinated-block-pyramid-construction",
+                    "Build two pyramids of two blocks with one on top: a red one in the left "
+                    "zone and a blue one in the right zone.",
+                    _two_one_pyramid("red", zones[0]), _two_one_pyramid("blue", zones[1]))
+
+
+@register("color-coordinated-zone-stacking", family="structures")
+def color_coordinated_zone_stacking() -> TaskGraph:
+    colors = ("red", "blue", "green")
+    zones = [var(f"{c}_zone", "zone", c, PAIR_ZONE, initial=at(0.6, y))
+             for c, y in zip(colors, (0.3, 0.0, -0.3), strict=True)]
+    return assemble("color-coordinated-zone-stacking",
+                    "In each of three zones (red, blue, green from left to right) build a "
+                    "pyramid of its colour: two blocks at the base, one on top.",
+                    *[_two_one_pyramid(c, z) for c, z in zip(colors, zones, strict=True)])
+
+
+@register("triangle-block-arrangement", family="structures")
+def triangle_block_arrangement() -> TaskGraph:
+    bottom = var("red_blocks", "block", "red", BLOCK, count=3)
+    middle = var("green_blocks", "block", "green", BLOCK, count=2)
+    top = var("blue_block", "block", "blue", BLOCK)
+    return assemble("triangle-block-arrangement",
+                    "Arrange red, green and blue blocks in a triangle: three red blocks in a "
+                    "row, two green ones on them and one blue block on top.",
+                    use("build_row", objects=bottom),
+                    use("pyramid_layer", layer=middle, below=bottom),
+                    use("pyramid_layer", layer=top, below=middle))
+
+
+@register("color-coordinated-zone-arrangement", family="pallets", tags=("barrier",))
+def color_coordinated_zone_arrangement() -> TaskGraph:
+    colors = ("red", "blue", "green")
+    # Narrow pallets: three blocks fit on one only in a line.
+    pallets = [var(f"{c}_pallet", "pallet", c, (0.17, 0.06, 0.02), initial=at(0.66, y, 90.0))
+               for c, y in zip(colors, (0.3, 0.0, -0.3), strict=True)]
+    blocks = [var(f"{c}_blocks", "block", c, BLOCK, count=3,
+                  initial=region((0.27, 0.45), (-0.42, 0.42))) for c in colors]
+    return assemble("color-coordinated-zone-arrangement",
+                    "Place the three blocks of each colour on the pallet of that colour, in a "
+                    "line, carrying them over a low barrier.",
+                    match_pairs("palletize_layer", list(zip(blocks, pallets, strict=True))),
+                    extra=barrier(0.53, 0.9))
+
+
+@register("assemble-single-car", family="structures")
+def assemble_single_car() -> TaskGraph:
+    body = var("blue_body", "box", "blue", (0.10, 0.06, 0.04), description="the large blue box")
+    wheels = [var(f"green_wheel_{k}", "box", "green", (0.03, 0.03, 0.03),
+                  description="a tiny green box: a wheel") for k in (1, 2)]
+    roof = var("red_roof", "box", "red", (0.05, 0.05, 0.03), description="the smaller red box")
+    return assemble("assemble-single-car",
+                    "Build a mini car: the large blue box as the body with a tiny green wheel "
+                    "box on each side, and the smaller red box on top as the roof.",
+                    use("build_row", objects=[wheels[0], body, wheels[1]]),
+                    use("place_on_top", objects=roof, support=body))
+
+
+@register("code-ball-on-line", family="lines")
+def code_ball_on_line() -> TaskGraph:
+    line = var("line", "line", "black", (0.30, 0.01, 0.001), description="the line")
+    red, blue, green, yellow, orange = colored("block", FIVE, BLOCK)
+    row = use("align_along_line", objects=[red, blue, orange], line=line)
+    return assemble("code-ball-on-line",
+                    "Arrange five blocks on the line: red at one end, blue in the middle, "
+                    "orange at the other end, the green block on the blue one and the yellow "
+                    "block on the green one.",
+                    row, use("stack_on_base", layers=[green, yellow], base=blue, after=[row]))
+
+
+@register("color-coordinated-arch-construction", family="structures",
+          tags=("starts-inside",))
+def color_coordinated_arch_construction() -> TaskGraph:
+    box = var("container", "container", "brown", (0.20, 0.20, 0.05),
+              description="the container the blocks start in")
+    pallet = _pallet()
+    reds = var("red_blocks", "block", "red", BLOCK, count=2, initial=start_inside(box))
+    blue = var("blue_block", "block", "blue", BLOCK, initial=start_inside(box))
+    return assemble("color-coordinated-arch-construction",
+                    "Take the blocks out of the container and build an arch on the pallet: "
+                    "two red blocks side by side and a blue block across them (one layer; "
+                    "see docs/library.md).",
+                    use("palletize_layer", objects=reds, pallet=pallet),
+                    use("pyramid_layer", layer=blue, below=reds), extra=[box])
