@@ -1,8 +1,9 @@
-"""Regenerate the task table of docs/library.md from the registry.
+"""Regenerate the template and task tables of docs/library.md from the registry.
 
-The table sits between ``<!-- tasks:begin -->`` and ``<!-- tasks:end -->``; one
-row per task with its family, sizes, templates and description, read from the
-graphs so the page cannot drift from the code. Run:
+The tables sit between ``<!-- templates:begin -->``/``<!-- templates:end -->`` and
+``<!-- tasks:begin -->``/``<!-- tasks:end -->``: one row per template (slots, its
+factors' relations, the tasks using it) and one per task (family, sizes,
+templates, description), read from the code so the page cannot drift. Run:
 ``.venv/bin/python scripts/library_docs.py``.
 """
 
@@ -10,11 +11,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from factask.library import list_tasks
+from factask.library import TEMPLATES, list_tasks
 from factask.library.builders import FAMILIES
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "library.md"
-BEGIN, END = "<!-- tasks:begin -->", "<!-- tasks:end -->"
 
 
 def table() -> str:
@@ -28,11 +28,31 @@ def table() -> str:
     return "\n".join(rows)
 
 
+def template_table() -> str:
+    """The markdown table of every template and the tasks that use it."""
+    users: dict[str, list[str]] = {t: [] for t in TEMPLATES}
+    for i in list_tasks():
+        for t in i.templates:
+            users[t].append(i.name)
+    rows = ["| template | slots | factor: relation | tasks | used by |", "|---|---|---|---|---|"]
+    for name, t in TEMPLATES.items():
+        slots = ", ".join(f"`{s.name}`" + ("[]" if s.many else "") for s in t.slots)
+        factors = "; ".join(f"`{f.name}`: {f.goal.type}" for f in t.factors)
+        rows.append(f"| `{name}` | {slots} | {factors} | {len(users[name])} | "
+                    f"{', '.join(users[name])} |")
+    return "\n".join(rows)
+
+
+def _replace(text: str, marker: str, body: str) -> str:
+    begin, end = f"<!-- {marker}:begin -->", f"<!-- {marker}:end -->"
+    head, rest = text.split(begin, 1)
+    _, tail = rest.split(end, 1)
+    return f"{head}{begin}\n{body}\n{end}{tail}"
+
+
 def main() -> None:
-    text = DOC.read_text()
-    head, rest = text.split(BEGIN, 1)
-    _, tail = rest.split(END, 1)
-    DOC.write_text(f"{head}{BEGIN}\n{table()}\n{END}{tail}")
+    text = _replace(DOC.read_text(), "templates", template_table())
+    DOC.write_text(_replace(text, "tasks", table()))
     print(f"wrote {DOC}")
 
 

@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 # Importing the catalogue modules registers their builders.
 from factask.library import (  # noqa: F401
     catalog_arranging,
+    catalog_gensim_insertion,
+    catalog_gensim_lines,
     catalog_gensim_matching,
     catalog_gensim_sorting,
     catalog_gensim_stacking,

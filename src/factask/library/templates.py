@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 from factask.model import (
     Aligned,
+    AtPose,
     Circle,
     CompositionError,
     Inside,
@@ -26,6 +27,7 @@ from factask.model import (
     StateVariable,
     SubtaskFactor,
     SubtaskTemplate,
+    TargetPose,
     TaskGraph,
     TemplateSlot,
 )
@@ -231,6 +233,47 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
             name="along",
             description="line up the {objects} in a row along the {line}",
             goal=Row(objects=["objects"], along="line"),
+        )],
+    ),
+]
+
+#: Where ``to_line_end`` puts an object: 12 cm along a line from its centre (the
+#: far end of a 30 cm line, the object's centre 3 cm inside the end).
+LINE_END = 0.12
+#: Half the side of the square that ``square_around`` lays out (centres 9 cm apart:
+#: 4 cm blocks with 5 cm between them, clear of a 4 cm block at the centre).
+SQUARE_HALF = 0.045
+
+_TEMPLATE_LIST += [
+    SubtaskTemplate(
+        name="to_line_end",
+        description="Move the {objects} to the far end of the {line}.",
+        slots=[_objects("the object to move along the line"),
+               _slot("line", "the line whose end is the goal (30 cm long)", ["line"])],
+        factors=[SubtaskFactor(
+            name="line_end",
+            description="move the {objects} to the far end of the {line}",
+            goal=AtPose(objects=["objects"], frame="line", check_yaw=False,
+                        poses=[TargetPose(x=LINE_END, y=0.0)]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="square_around",
+        description="Place the {objects} on the four corners of a square centred on the "
+                    "{center}: first top left, then top right, bottom left, bottom right.",
+        slots=[_objects("four objects: top left, top right, bottom left, bottom right"),
+               _slot("center", "what the square is centred on (it rests on it if it is "
+                     "a support, e.g. a pallet)",
+                     ["pallet", "zone", "kit", "stand", "block", "box", "cylinder"])],
+        factors=[SubtaskFactor(
+            name="square",
+            description="place the {objects} on the corners of a square centred on the "
+                        "{center}",
+            goal=AtPose(objects=["objects"], frame="center", check_yaw=False,
+                        poses=[TargetPose(x=x, y=y) for x, y in
+                               ((SQUARE_HALF, SQUARE_HALF), (SQUARE_HALF, -SQUARE_HALF),
+                                (-SQUARE_HALF, SQUARE_HALF), (-SQUARE_HALF, -SQUARE_HALF))],
+                        matches=[[int(i == j) for j in range(4)] for i in range(4)]),
         )],
     ),
 ]

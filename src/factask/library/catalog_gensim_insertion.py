@@ -1,0 +1,210 @@
+"""GenSim insertion and kitting tasks: pieces into fixtures of their colour or shape.
+
+A fixture is an open frame whose hollow matches a piece (``insert_into_fixture``).
+Kitting boards are a ``kit`` plate with one fixture per silhouette standing on it,
+so "put the shape in its silhouette" is the same insertion subtask.
+"""
+
+from __future__ import annotations
+
+from factask.library.builders import (
+    assemble,
+    at,
+    barrier,
+    colored,
+    region,
+    register,
+    start_on,
+    use,
+    var,
+)
+from factask.library.templates import match_pairs
+from factask.model import StateVariable, TaskGraph
+
+BLOCK = (0.04, 0.04, 0.04)
+ELL = (0.08, 0.08, 0.04)
+ELL_FIXTURE = (0.12, 0.12, 0.04)
+BLOCK_FIXTURE = (0.08, 0.08, 0.04)
+CORNER = (0.055, 0.055, 0.001)
+FOUR = ("red", "blue", "green", "yellow")
+THREE = ("red", "blue", "green")
+NEAR = region((0.27, 0.42), (-0.42, 0.42))
+
+
+def _row(n: int, x: float = 0.64, span: float = 0.7) -> list[tuple[float, float]]:
+    """``n`` spots in a row at depth ``x``, left (+y) to right."""
+    step = span / n
+    return [(x, span / 2 - step / 2 - k * step) for k in range(n)]
+
+
+def _insert(name: str, description: str, pieces: list[StateVariable],
+            fixtures: list[StateVariable], *, sequential: bool = False,
+            extra: list[StateVariable] | None = None) -> TaskGraph:
+    return assemble(name, description,
+                    match_pairs("insert_into_fixture", list(zip(pieces, fixtures, strict=True)),
+                                sequential=sequential),
+                    extra=extra or [])
+
+
+@register("insert-ell-in-fixture", family="insertion")
+def insert_ell_in_fixture() -> TaskGraph:
+    return assemble("insert-ell-in-fixture",
+                    "Pick up the L-shaped block and insert it into the fixture on the tabletop.",
+                    use("insert_into_fixture", objects=var("blue_ell", "ell", "blue", ELL),
+                        fixture=var("fixture", "fixture", "gray", ELL_FIXTURE)))
+
+
+def _ordered_ells(name: str, description: str) -> TaskGraph:
+    fixtures = [var(f"{c}_fixture", "fixture", c, ELL_FIXTURE, initial=at(*xy))
+                for c, xy in zip(FOUR, _row(4, 0.62, 0.8), strict=True)]
+    return _insert(name, description, colored("ell", FOUR, ELL, initial=NEAR), fixtures,
+                   sequential=True)
+
+
+@register("color-ordered-insertion", family="insertion")
+def color_ordered_insertion() -> TaskGraph:
+    return _ordered_ells("color-ordered-insertion",
+                         "Insert each of four ells into the fixture of its colour, in order "
+                         "from left to right: red, blue, green, yellow.")
+
+
+@register("color-ordered-insertion-new", family="insertion")
+def color_ordered_insertion_new() -> TaskGraph:
+    return _ordered_ells("color-ordered-insertion-new",
+                         "Pick up the red, blue, green and yellow ells and insert each into the "
+                         "matching fixture, left to right in that order.")
+
+
+@register("sequential-block-insertion", family="insertion")
+def sequential_block_insertion() -> TaskGraph:
+    return _insert("sequential-block-insertion",
+                   "Insert each of four blocks into the fixture of its colour in the sequence "
+                   "red, blue, green, yellow.",
+                   colored("block", FOUR, BLOCK), colored("fixture", FOUR, BLOCK_FIXTURE),
+                   sequential=True)
+
+
+def _beyond_barrier(name: str, description: str, span: float = 0.8) -> TaskGraph:
+    fixtures = [var(f"{c}_fixture", "fixture", c, BLOCK_FIXTURE, initial=at(*xy))
+                for c, xy in zip(FOUR, _row(4, 0.64, span), strict=True)]
+    return _insert(name, description, colored("block", FOUR, BLOCK, initial=NEAR), fixtures,
+                   extra=barrier(0.52, span))
+
+
+@register("insert-blocks-lineup", family="insertion", tags=("barrier",))
+def insert_blocks_lineup() -> TaskGraph:
+    return _beyond_barrier("insert-blocks-lineup",
+                           "Insert each block into the fixture of its colour; the fixtures "
+                           "stand in a straight line behind a low barrier.")
+
+
+@register("mixed-color-block-barrier-insertion", family="insertion", tags=("barrier",))
+def mixed_color_block_barrier_insertion() -> TaskGraph:
+    return _beyond_barrier("mixed-color-block-barrier-insertion",
+                           "Insert the red, blue, green and yellow blocks into the fixtures of "
+                           "their colours, reaching over the barrier between blocks and "
+                           "fixtures.", span=0.6)
+
+
+@register("insert-ell-along-square-path", family="insertion")
+def insert_ell_along_square_path() -> TaskGraph:
+    # The fixtures stand on the corners of a square path (GenSim marks the path with
+    # small blocks; here the corners carry the fixtures and the path is not drawn).
+    spots = ((0.66, 0.25), (0.66, -0.25), (0.36, 0.25), (0.36, -0.25))
+    fixtures = [var(f"{c}_fixture", "fixture", c, ELL_FIXTURE, initial=at(*xy))
+                for c, xy in zip(FOUR, spots, strict=True)]
+    return _insert("insert-ell-along-square-path",
+                   "Insert each of four ells into the fixture of its colour; the fixtures "
+                   "stand on the corners of a square.",
+                   colored("ell", FOUR, ELL, initial=region((0.42, 0.6), (-0.15, 0.15))),
+                   fixtures)
+
+
+@register("color-coordinated-cylinder-in-box", family="insertion")
+def color_coordinated_cylinder_in_box() -> TaskGraph:
+    # GenSim's boxes with a slot on top: fixtures whose hollow takes a 4 cm cylinder.
+    return _insert("color-coordinated-cylinder-in-box",
+                   "Pick up each cylinder and insert it into the slot of the box of the same "
+                   "colour.", colored("cylinder", FOUR, (0.04, 0.04, 0.06)),
+                   colored("fixture", FOUR, BLOCK_FIXTURE, suffix="box"))
+
+
+@register("color-coordinated-cylinder-and-box-insertion", family="insertion")
+def color_coordinated_cylinder_and_box_insertion() -> TaskGraph:
+    colors = ("red", "blue", "yellow", "green")
+    return _insert("color-coordinated-cylinder-and-box-insertion",
+                   "Insert each cylinder into the slot on top of the box of the same colour, "
+                   "in the order red, blue, yellow, green.",
+                   colored("cylinder", colors, (0.04, 0.04, 0.06)),
+                   colored("fixture", colors, BLOCK_FIXTURE, suffix="box"), sequential=True)
+
+
+def _corner_pyramid(colors: tuple[str, ...]) -> list[StateVariable]:
+    """Corner markers laid out as a pyramid: a base row and the rest above it."""
+    if len(colors) == 3:
+        spots = [(0.42, 0.1), (0.42, -0.1), (0.62, 0.0)]
+    else:
+        spots = [(0.40, 0.18), (0.40, 0.0), (0.40, -0.18), (0.62, 0.0)]
+    return [var(f"{c}_corner", "corner", c, CORNER, initial=at(*xy),
+                description=f"the {c} slot of the corner pyramid")
+            for c, xy in zip(colors, spots, strict=True)]
+
+
+@register("insert-blocks-into-pyramid", family="corners")
+def insert_blocks_into_pyramid() -> TaskGraph:
+    return assemble("insert-blocks-into-pyramid",
+                    "Corner markers form a pyramid of colour-coded slots; put each of the red, "
+                    "blue and green blocks into the slot of its colour, from the bottom up.",
+                    match_pairs("align_to_corner",
+                                list(zip(colored("block", THREE, BLOCK), _corner_pyramid(THREE),
+                                         strict=True)), sequential=True))
+
+
+@register("block-insertion-in-corner-pyramid", family="corners")
+def block_insertion_in_corner_pyramid() -> TaskGraph:
+    return assemble("block-insertion-in-corner-pyramid",
+                    "A pyramid of corner markers has a slot per colour; insert the red, blue, "
+                    "green and yellow blocks into their slots from the bottom up.",
+                    match_pairs("align_to_corner",
+                                list(zip(colored("block", FOUR, BLOCK), _corner_pyramid(FOUR),
+                                         strict=True)), sequential=True))
+
+
+# ----------------------------------------------------------------------- kitting
+#: Kitting pieces and the hollow of each (GenSim's kit objects are letters and
+#: shapes; factask's rigid pieces are ells, blocks, boxes and cylinders).
+SHAPES = (("ell", (0.08, 0.08, 0.03), (0.12, 0.12, 0.03)),
+          ("block", (0.04, 0.04, 0.03), BLOCK_FIXTURE),
+          ("cylinder", (0.04, 0.04, 0.03), BLOCK_FIXTURE),
+          ("box", (0.05, 0.03, 0.03), (0.09, 0.07, 0.04)))
+KIT = (0.34, 0.30, 0.005)
+
+
+def _kit(colors: tuple[str, ...], n: int) -> tuple[list[StateVariable], list[StateVariable],
+                                                    StateVariable]:
+    """Pieces, their silhouettes (fixtures on the kit board) and the board."""
+    board = var("kit", "kit", "gray", KIT, initial=at(0.6, 0.0),
+                description="the kitting board with a silhouette per piece")
+    pieces, holes = [], []
+    for (kind, size, hole), color in zip(SHAPES[:n], colors, strict=True):
+        pieces.append(var(f"{color}_{kind}", kind, color, size))  # type: ignore[arg-type]
+        holes.append(var(f"{kind}_silhouette", "fixture", "gray", hole,
+                         initial=start_on(board), description=f"the {kind}'s silhouette"))
+    return pieces, holes, board
+
+
+@register("assembling-kits", family="kitting")
+def assembling_kits() -> TaskGraph:
+    pieces, holes, board = _kit(("red", "blue", "green"), 3)
+    return _insert("assembling-kits",
+                   "Pick up the different pieces and put each into its silhouette on the "
+                   "kitting board.", pieces, holes, extra=[board])
+
+
+@register("assembling-kits-seq", family="kitting")
+def assembling_kits_seq() -> TaskGraph:
+    pieces, holes, board = _kit(("red", "blue", "green"), 3)
+    return _insert("assembling-kits-seq",
+                   "Place each piece in its silhouette on the kitting board in the order "
+                   "given: the ell, then the block, then the cylinder.", pieces, holes,
+                   sequential=True, extra=[board])
