@@ -3,6 +3,7 @@ input, so property-based as well as by example."""
 
 from __future__ import annotations
 
+import json
 import re
 
 from hypothesis import given
@@ -49,3 +50,33 @@ def test_any_text_gives_valid_distinct_bounded_mentions(text: str) -> None:
         assert m.kind in ASSET_KINDS and (m.color is None or m.color in COLOR_NAMES)
         assert 1 <= m.count <= 16
     assert mentions_text(text).count("\n") == max(len(found) - 1, 0)
+
+
+def test_a_coloured_object_of_the_proposal_must_be_a_variable() -> None:
+    from factask.gen.mentions import grounding_feedback, missing_mentions
+    from factask.model.variables import StateVariable
+
+    proposal = "put the yellow cylinder in the blue zone, next to a bowl"
+    copied = [StateVariable(name="blue_cylinder", kind="cylinder", color="blue"),
+              StateVariable(name="green_zone", kind="zone", color="green")]
+    assert [m.name for m in missing_mentions(proposal, copied)] == [
+        "yellow_cylinder", "blue_zone"]  # the uncoloured bowl is not required
+    feedback = grounding_feedback(proposal, copied)
+    assert feedback and "yellow_cylinder: kind cylinder, colour yellow" in feedback
+    right = [StateVariable(name="cyl", kind="cylinder", color="yellow"),
+             StateVariable(name="target", kind="zone", color="blue")]
+    assert grounding_feedback(proposal, right) is None
+
+
+def test_a_generated_graph_lacking_a_named_object_gets_that_feedback() -> None:
+    from factask.gen.demo import DEMO_PROPOSAL, demo_graph
+    from test_gen_strategies import _run
+
+    wrong = demo_graph()
+    wrong["variables"][0]["color"] = "orange"  # the proposal's red block is missing
+    result, server = _run({"one_shot": [json.dumps(wrong), json.dumps(demo_graph())]},
+                          "one-shot", max_repairs=1)
+    assert "red_block: kind block, colour red" in result.steps[0].feedback
+    assert result.level_reached == "completion" and "red" in DEMO_PROPOSAL
+    assert any("red_block: kind block" in m["content"] for m in
+               server.requests[-1]["messages"] if m["role"] == "user")

@@ -15,7 +15,9 @@ is always something the graph model can express.
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from factask.model.kinds import ASSET_KINDS
 from factask.model.palette import COLOR_NAMES
@@ -130,4 +132,34 @@ def mentions_text(proposal: str) -> str:
     return "\n".join(f"- {m.describe()}" for m in found)
 
 
-__all__ = ["KIND_WORDS", "MAX_MENTIONS", "Mention", "mentions", "mentions_text"]
+def missing_mentions(proposal: str, variables: Sequence[Any]) -> list[Mention]:
+    """The coloured objects the proposal names that no variable is.
+
+    Only mentions with a colour are checked ("the yellow cylinder" needs a
+    yellow cylinder; "the zone" may be any zone): a colour and a kind together
+    say which object is meant, and a task without it is another task.
+
+    Args:
+        proposal: The task proposal.
+        variables: The answer's variables (objects with ``kind`` and ``color``).
+
+    Returns:
+        The unmatched mentions (empty: every coloured object is there).
+    """
+    have = {(getattr(v, "kind", None), getattr(v, "color", None)) for v in variables}
+    return [m for m in mentions(proposal) if m.color and (m.kind, m.color) not in have]
+
+
+def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
+    """Feedback naming the coloured objects of the proposal the answer lacks
+    (None: none lacking)."""
+    missing = missing_mentions(proposal, variables)
+    if not missing:
+        return None
+    lines = "\n".join(f"- {m.describe()}" for m in missing)
+    return ("The answer does not have every object the proposal names; add a variable "
+            f"for each (with this kind and colour):\n{lines}")
+
+
+__all__ = ["KIND_WORDS", "MAX_MENTIONS", "Mention", "grounding_feedback", "mentions",
+           "mentions_text", "missing_mentions"]

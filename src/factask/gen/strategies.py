@@ -36,7 +36,7 @@ from factask.gen.fragments import (
 )
 from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
 from factask.gen.memory import SubtaskMemory
-from factask.gen.mentions import mentions_text
+from factask.gen.mentions import grounding_feedback, mentions_text
 from factask.gen.prompts import render
 from factask.gen.results import APPROACHES, GenerationResult
 from factask.gen.schemas import (
@@ -179,6 +179,9 @@ class Generator(StepRunner):
             graph = self.verifier.syntax({**data, "name": task,
                                           "description": data.get("description") or desc})
             check_graph_size(graph)
+            lacking = grounding_feedback(f"{desc} {task}", graph.variables)
+            if lacking:
+                return None, "none", lacking
             outcome = self.verifier.check(graph)
             return graph, outcome.level, outcome.feedback
         return evaluate
@@ -192,6 +195,8 @@ class Generator(StepRunner):
             if found:
                 problem = (f"The assembled task graph is not valid ({len(found)} problem(s)):\n"
                            f"{format_problems(found)}")
+            else:
+                problem = grounding_feedback(f"{desc} {task}", graph.variables)
         level: Level = "none"
         if graph is not None and problem is None:
             outcome = self.verifier.check(graph)
@@ -312,6 +317,9 @@ class Generator(StepRunner):
             if found:
                 return None, "none", ("The variables are not consistent:\n"
                                       + format_problems(found))
+            lacking = grounding_feedback(f"{desc} {task}", answer.variables)
+            if lacking:
+                return None, "none", lacking
             return answer.variables, "syntax", None
 
         out = self.ask("variables", prompt, schema, "variables_answer", evaluate)
