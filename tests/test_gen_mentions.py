@@ -69,8 +69,9 @@ def test_a_coloured_object_of_the_proposal_must_be_a_variable() -> None:
 
 
 def test_a_generated_graph_lacking_a_named_object_gets_that_feedback() -> None:
-    from factask.gen.demo import DEMO_PROPOSAL, demo_graph
     from test_gen_strategies import _run
+
+    from factask.gen.demo import DEMO_PROPOSAL, demo_graph
 
     wrong = demo_graph()
     wrong["variables"][0]["color"] = "orange"  # the proposal's red block is missing
