@@ -162,3 +162,13 @@ def construct_corner_building() -> TaskGraph:
                     "blocks clockwise on the corners of a square around it.",
                     centre, use("square_around", objects=[green, blue, yellow, orange],
                                 center=red, after=[centre]))
+
+
+@register("align-cylinders-box", family="lines")
+def align_cylinders_box() -> TaskGraph:
+    box = var("box", "container", "brown", (0.20, 0.10, 0.08), description="the open box")
+    return assemble("align-cylinders-box",
+                    "Stand three cylinders upright in a row inside the box: red on the left, "
+                    "green in the middle, blue on the right.",
+                    use("align_along_line", objects=colored("cylinder", ("red", "green", "blue"),
+                                                            (0.04, 0.04, 0.06)), line=box))

@@ -196,3 +196,37 @@ def code_stack_wall() -> TaskGraph:
                     "next one.",
                     use("build_row", objects=var("wall_blocks", "block", "red", BLOCK,
                                                  count=3)))
+
+
+@register("kit-in-bowl-in-zone", family="kitting")
+def kit_in_bowl_in_zone() -> TaskGraph:
+    colors = ("red", "blue", "green")
+    spots = ((0.62, 0.3), (0.62, 0.0), (0.62, -0.3))
+    zones = [var(f"{c}_zone", "zone", c, (0.17, 0.17, 0.001), initial=at(*xy))
+             for c, xy in zip(colors, spots, strict=True)]
+    bowls = [var(f"{c}_bowl", "bowl", c, (0.15, 0.15, 0.05), initial=at(*xy),
+                 description=f"the {c} bowl standing in the {c} zone")
+             for c, xy in zip(colors, spots, strict=True)]
+    pieces = colored("ell", colors, (0.08, 0.08, 0.03), initial=region((0.27, 0.45),
+                                                                       (-0.42, 0.42)))
+    return assemble("kit-in-bowl-in-zone",
+                    "Pick up each L-shaped kit piece and place it in the bowl of its colour; "
+                    "the bowls stand in zones of their colour.",
+                    match_pairs("put_in_container", list(zip(pieces, bowls, strict=True))),
+                    extra=zones)
+
+
+@register("move-kit-from-zone-to-cylinder", family="kitting")
+def move_kit_from_zone_to_cylinder() -> TaskGraph:
+    # The start zone is a thin plate: factask's layout keeps objects off flat markers
+    # at reset, but lets them start on a support (docs/library.md).
+    zone = var("start_zone", "stand", "green", (0.12, 0.12, 0.004), initial=at(0.42, 0.2),
+               description="the zone the kit piece starts in (a thin plate)")
+    piece = var("red_kit", "block", "red", (0.04, 0.04, 0.03), initial=start_on(zone),
+                description="the kit piece")
+    return assemble("move-kit-from-zone-to-cylinder",
+                    "Move the kit piece from the green zone onto the top of the blue "
+                    "cylinder.",
+                    use("place_on_top", objects=piece,
+                        support=var("blue_cylinder", "cylinder", "blue", (0.06, 0.06, 0.05))),
+                    extra=[zone])

@@ -309,3 +309,23 @@ def color_coordinated_arch_construction() -> TaskGraph:
                     "see docs/library.md).",
                     use("palletize_layer", objects=reds, pallet=pallet),
                     use("pyramid_layer", layer=blue, below=reds), extra=[box])
+
+
+@register("symmetric-block-bridge-construction", family="structures")
+def symmetric_block_bridge_construction() -> TaskGraph:
+    stand = var("stand", "stand", "gray", STAND, description="the stand")
+    base = var("red_base_blocks", "block", "red", BLOCK, count=2,
+               description="two red blocks side by side: the bridge's base")
+    deck = var("blue_block_1", "block", "blue", BLOCK, description="the blue block bridging "
+               "the base")
+    # Alternating above the deck; with two red blocks in the base, seven of GenSim's
+    # eight blocks alternate (an eighth, blue, would sit on blue; docs/library.md).
+    column = [var(f"{c}_block_{k}", "block", c, BLOCK)
+              for c, k in (("red", 2), ("blue", 2), ("red", 3), ("blue", 3))]
+    row = use("align_along_line", objects=base, line=stand)
+    layer = use("pyramid_layer", layer=deck, below=base, after=[row])
+    return assemble("symmetric-block-bridge-construction",
+                    "On the stand, put two red blocks side by side, a blue block across them, "
+                    "then red, blue, red and blue blocks on top: a symmetric bridge of "
+                    "alternating colours.",
+                    row, layer, use("stack_on_base", layers=column, base=deck, after=[layer]))

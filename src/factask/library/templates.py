@@ -228,7 +228,8 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="align_along_line",
         description="Line up the {objects} in a row lying on the {line}.",
         slots=[_objects("the row's objects, in order"),
-               _slot("line", "the line (or zone) the row lies on", ["line", "zone"])],
+               _slot("line", "the line, zone, stand, pallet or container the row lies on",
+                     ["line", "zone", "stand", "pallet", "container"])],
         factors=[SubtaskFactor(
             name="along",
             description="line up the {objects} in a row along the {line}",
