@@ -207,3 +207,65 @@ def test_the_arm_sweeps_a_pile_into_its_zone() -> None:
 
     result = run_episode(_sweep(20), 0, robot="arm")
     assert result.success, result.failure
+
+
+# -------------------------------------------------------------- CLIPort layer
+@pytest.mark.parametrize("cls", ["SweepingPiles", "SeparatingPilesSeenColors",
+                                 "SeparatingPilesUnseenColors", "SeparatingPilesFull"])
+def test_cliport_pile_classes_import_as_one_pile_pushed_into_a_zone(cls: str) -> None:
+    from helpers import CLIPORT_ORIGINALS
+
+    from factask.compat.cliport import import_cliport
+    from factask.compat.cliport.piles import RAVENS_PILE_FRACTION
+    from factask.sim.push import needs_spatula
+
+    path = CLIPORT_ORIGINALS / ("sweeping_piles.py" if cls == "SweepingPiles"
+                                else "separating_piles.py")
+    result = import_cliport(path, class_name=cls, seed=0)
+    graph = result.graph
+    piles = [v for v in graph.variables if v.kind == "pile"]
+    assert len(piles) == 1 and piles[0].count == 50 and piles[0].extents == (0.01,) * 3
+    assert not [v for v in graph.variables if v.kind == "block"]  # no loose blocks left
+    (factor,) = graph.factors
+    assert factor.goal.type == "pile_in_zone" and factor.goal.objects == [piles[0].name]
+    assert factor.goal.fraction == RAVENS_PILE_FRACTION
+    assert graph.variable(factor.goal.zone).kind == "zone"
+    assert needs_spatula(graph)
+    assert graph.max_actions() == 20  # Ravens' max_steps
+    (goal,) = result.goals  # Ravens' queue scores the pile's blocks with the zone metric
+    assert goal.metric == "zone" and goal.objects == piles[0].instances
+    assert not any("spatula" in w for w in result.warnings)
+
+
+def test_gensim_make_piles_adds_small_blocks_that_become_a_pile(tmp_path) -> None:
+    from factask.compat.cliport import import_cliport
+
+    path = tmp_path / "mix.py"
+    path.write_text('''\
+"""Two piles into one zone."""
+import numpy as np
+from cliport.tasks.task import Task
+from cliport.utils import utils
+
+
+class MixPiles(Task):
+    def __init__(self):
+        super().__init__()
+        self.lang_template = "push the piles into the zone"
+        self.num_blocks = 10
+
+    def reset(self, env):
+        super().reset(env)
+        zone_size = (0.12, 0.12, 0)
+        zone_pose = self.get_random_pose(env, zone_size)
+        env.add_object('zone/zone.urdf', zone_pose, 'fixed')
+        for color in ("red", "blue"):
+            ids = self.make_piles(env, block_color=utils.COLORS[color])
+            self.add_goal(objs=ids, matches=np.ones((len(ids), 1)), targ_poses=[zone_pose],
+                          replace=True, rotations=False, metric='zone',
+                          params=[(zone_pose, zone_size)], step_max_reward=0.5)
+''')
+    graph = import_cliport(path, seed=0).graph
+    piles = sorted((v.color, v.count) for v in graph.variables if v.kind == "pile")
+    assert piles == [("blue", 10), ("red", 10)]
+    assert [f.goal.type for f in graph.factors] == ["pile_in_zone", "pile_in_zone"]

@@ -145,6 +145,8 @@ class PileInZone(RelationBase):
         surfaces.sort(key=lambda t: t[0])
         # The names SolveContext.accept gives the movers' starts and the plan's slots.
         own = {f"@slot{j}" for j in range(n)} | {f"@start:{o.name}" for o in movers}
+        # Other piles' slots too: two piles may go into one zone.
+        own |= {i for v in ctx.graph.variables if v.kind == PILE_KIND for i in v.instances}
         return make_plan([p for _, p in slots], [s for _, s in surfaces],
                          [hosts[i % len(hosts)] for i in range(n)],
                          [own | set(hosts)] * n, np.ones((n, n), dtype=bool),

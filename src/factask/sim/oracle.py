@@ -93,6 +93,7 @@ class Oracle:
         self.failure: str | None = None
         # Pile goals: the best progress seen (pushes that do not raise it count).
         self._pile_best: dict[str, float] = {}
+        self._pile_aims: dict[str, list[str]] = {}
 
     def _targets(self, fname: str, status: FactorStatus) -> dict[str, Pose]:
         """Target pose of every unplaced object of a factor: the free slot its status
@@ -186,18 +187,23 @@ class Oracle:
         """The next push for a pile goal (:mod:`factask.sim.push_oracle`); gives up
         when :data:`MAX_IDLE_PUSHES` pushes in a row did not raise its progress."""
         best = self._pile_best.get(fname, -1.0)
+        aimed = self._pile_aims.setdefault(fname, [])
         if fstatus.progress > best + 1e-6:
             self._pile_best[fname] = fstatus.progress
             self.attempts[(fname, "")] = 0
+            aimed.clear()
         self.attempts[(fname, "")] += 1
         if self.attempts[(fname, "")] > MAX_IDLE_PUSHES:
             self.failure = (f"factor {fname!r}: {MAX_IDLE_PUSHES} pushes did not raise its "
                             f"progress ({fstatus.detail})")
             return None
+        # Blocks aimed at since the progress last rose come last: aim elsewhere.
         action = plan_push(fname, goal, self.env.solved[fname], self.env.objects, poses,
-                           self.env.held_objects())
+                           self.env.held_objects(), avoid=set(aimed))
         if action is None:
             self.failure = f"factor {fname!r}: no block outside but not satisfied"
+            return None
+        aimed.append(action.obj)
         return action
 
     def act(self) -> dict[str, np.ndarray] | None:

@@ -4,14 +4,20 @@ Aimed at the remaining blocks, from outside the zone towards it: the block
 outside the zone farthest from the zone's centre is the aim (the blade then
 sweeps the blocks between it and the zone along); the blade comes down behind
 it, on the line through the block and the zone's centre, at the first of a few
-distances back where no block lies under the blade, and stops a little short of
-the centre, so what it pushes ends in the middle of the zone.
+distances back where no block lies under the blade, and stops once the aimed
+block is :data:`DEPTH` inside the zone's edge (never past the centre): pushing
+further would shove the blocks already inside out of the far side.
+
+A block counts as in when its footprint square is inside the zone shrunk by
+:data:`AIM_MARGIN` (a turned block's corners reach that far beyond its square:
+Ravens' zone metric looks at corners). Blocks the caller says to avoid (aimed at
+by pushes that did not help) are aimed at last.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,10 +32,11 @@ from factask.sim.push import BLADE_THICKNESS, BLADE_WIDTH
 #: Distances (m) behind the aimed block, beyond its half side and the blade's half
 #: thickness, tried for the blade's way down.
 BEHIND = (0.012, 0.025, 0.04, 0.06)
-#: The push stops this far (m) short of the zone's centre (the blocks in front of
-#: the blade end around the centre).
-STOP_SHORT = 0.02
-#: A block with at least this share inside counts as in (not aimed at).
+#: How deep (m) inside the zone's edge a push leaves the aimed block.
+DEPTH = 0.02
+#: The zone shrunk by this (m) is where a block counts as in for the oracle.
+AIM_MARGIN = 0.004
+#: A block with at least this share inside (the shrunk zone) counts as in.
 IN_SHARE = 0.999
 
 
@@ -70,9 +77,32 @@ def _zone_for(areas: list[Area], xy: np.ndarray) -> Area:
     return min(areas, key=lambda a: float(np.linalg.norm(a.center - xy)))
 
 
+def _shrunk(area: Area, by: float) -> Area:
+    """``area`` with every side moved in by ``by`` (at least a point)."""
+    return Area(area.center, area.yaw, np.maximum(area.half - by, 0.0), area.round)
+
+
+def entry_distance(area: Area, p: np.ndarray, u: np.ndarray, inset: float) -> float:
+    """How far from ``p`` along unit ``u`` a point is ``inset`` inside ``area``'s
+    edge, at most the distance to its centre (the ray aims at the centre)."""
+    to_centre = float(np.linalg.norm(area.center - p))
+    if area.round:
+        return max(0.0, min(to_centre, to_centre - (area.half[0] - inset)))
+    rot = yaw_rotation_2d(area.yaw)
+    q, v = (p - area.center) @ rot, u @ rot
+    half = np.maximum(area.half - inset, 0.0)
+    t_in = 0.0
+    for i in range(2):
+        if abs(v[i]) < 1e-9:
+            continue  # moving along this slab: the other axis decides
+        t1, t2 = (-half[i] - q[i]) / v[i], (half[i] - q[i]) / v[i]
+        t_in = max(t_in, min(t1, t2))
+    return float(min(max(t_in, 0.0), to_centre))
+
+
 def plan_push(factor: str, goal: PileInZone, solved: SolvedFactor,
               objects: Mapping[str, SceneObject], poses: Mapping[str, Pose],
-              held: set[str]) -> PushAction | None:
+              held: set[str], avoid: Collection[str] = ()) -> PushAction | None:
     """The next push for a ``pile_in_zone`` factor, or None when no block is outside.
 
     Args:
@@ -82,18 +112,21 @@ def plan_push(factor: str, goal: PileInZone, solved: SolvedFactor,
         objects: Scene objects by instance name.
         poses: Current poses of every instance.
         held: Instances held now (never aimed at).
+        avoid: Blocks to aim at only when no other is outside.
     """
     del goal  # the relation's threshold decides when to stop, not where to push
     areas = [placement_area(objects[r], poses[r]) for r in solved.regions]
     names = [n for n in solved.objects if n not in held]
     xy = np.array([poses[n].pos[:2] for n in names])
     side = block_side(objects[names[0]]) if names else 0.0
-    share = np.max([block_inside(a, xy, side) for a in areas], axis=0) if names else []
+    inner = [_shrunk(a, AIM_MARGIN) for a in areas]
+    share = np.max([block_inside(a, xy, side) for a in inner], axis=0) if names else []
     out = [i for i, s in enumerate(share) if s < IN_SHARE]
     if not out:
         return None
-    dist = [float(np.linalg.norm(xy[i] - _zone_for(areas, xy[i]).center)) for i in out]
-    aim = out[int(np.argmax(dist))]
+    # Farthest first; blocks to avoid after every other.
+    aim = max(out, key=lambda i: (names[i] not in avoid, float(np.linalg.norm(
+        xy[i] - _zone_for(areas, xy[i]).center))))
     p = xy[aim]
     zone = _zone_for(areas, p)
     d = zone.center - p
@@ -108,8 +141,10 @@ def plan_push(factor: str, goal: PileInZone, solved: SolvedFactor,
         if _blade_free(cand, yaw, xy, margin):
             start = cand
             break
-    end = zone.center - u * STOP_SHORT
-    if float(np.dot(end - start, u)) < 2 * side:  # the aimed block is past the centre
-        end = start + u * (base + 2 * side + STOP_SHORT)
+    # The blade's face stops where the aimed block is DEPTH inside the edge.
+    reach = entry_distance(zone, p, u, side / 2 + DEPTH)
+    end = p + u * (reach - base)
+    if float(np.dot(end - start, u)) < base + side:  # always push a little
+        end = start + u * (base + side + BEHIND[0])
     return PushAction(np.array([*start, TABLE_Z, yaw]), np.array([*end, TABLE_Z, yaw]),
                       names[aim], factor, f"push {names[aim]} towards {solved.regions[0]}")

@@ -12,6 +12,8 @@ Rules (documented in docs/compat.md):
   author's own target for each object as its ``poses`` when every object has one
   inside the zone (a packing plan); goals are read by
   :mod:`factask.compat.cliport.goals`;
+* a pushing task's zone goal over small blocks only -> one ``pile`` variable and
+  a ``PileInZone`` factor (:mod:`factask.compat.cliport.piles`);
 * weights = ``step_max_reward``, rescaled to sum to 1;
 * the goals keep Ravens' queue: each factor comes ``after`` the one before it; a
   goal whose objects a later goal moves again is a **milestone** (it counts once
@@ -36,6 +38,7 @@ from factask.compat.cliport.goals import (
     zone_poses,
 )
 from factask.compat.cliport.grippers import Spatula
+from factask.compat.cliport.piles import RAVENS_PILE_FRACTION, find_piles
 from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
@@ -48,7 +51,7 @@ from factask.model.names import slugify
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.relations import AtPose, InZone
+from factask.relations import AtPose, InZone, PileInZone
 from factask.scene.collision import centre_in_workspace
 
 #: An object whose bottom is this far above the table starts on something.
@@ -277,8 +280,11 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     goals = read_goals(task, session)
     if not goals:
         raise CliportImportError("reset added no goals (add_goal was never called)")
-    if getattr(task, "ee", None) is Spatula:
-        warn("the task asks for a spatula; factask uses its suction cup")
+    piles = {p.goal: p for p in find_piles(task, goals, names)}
+    in_piles = {o.obj_id for p in piles.values() for o in p.blocks}
+    if getattr(task, "ee", None) is Spatula and not piles:
+        warn("the task asks for a spatula but has no pile to push; factask uses its "
+             "suction cup")
 
     ravens = [RavensGoal(
         objects=[names[o.obj_id] for o in g.objs], symmetries=list(g.symmetries),
@@ -331,6 +337,11 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                      for j, (p, q) in enumerate(g.targets)]
             rel: Any = AtPose(objects=objs, poses=poses,
                               matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
+        elif g.index in piles:  # small blocks swept with a spatula: one pile
+            zone = _zone_variable(g, objects, names, extra, warn)
+            taken.add(zone)
+            rel = PileInZone(objects=[piles[g.index].name], zone=zone,
+                             fraction=RAVENS_PILE_FRACTION)
         else:
             zone = _zone_variable(g, objects, names, extra, warn)
             taken.add(zone)
@@ -366,6 +377,8 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     moved = {o.obj_id for g, _ in drafts for o in g.objs}
     variables = []
     for k, o in enumerate(objects):
+        if o.obj_id in in_piles:
+            continue
         name = names[o.obj_id]
         spec = kind_spec(o.kind)
         fixed = o.category == "fixed" or not spec.movable
@@ -381,6 +394,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             name=name, description=f"{o.urdf} (CLIPort object {o.obj_id})", kind=o.kind,
             size=o.size, color=o.color, fixed=fixed, symmetry_deg=sym_deg,
             initial=_placement(o, objects[:k] + objects[k + 1:], names, moved, warn)))
+    variables.extend(p.variable() for p in piles.values())
     variables.extend(extra)
 
     max_steps = int(getattr(task, "max_steps", 0) or 0)

@@ -1,8 +1,10 @@
 """Stand-in for ``cliport.tasks.grippers``: end-effector classes a task names.
 
-Tasks assign a class (``self.ee = Suction``); factask's robot is always a
-suction cup, so these are markers. A task that keeps ``Spatula`` gets a warning
-in the import report (see :mod:`factask.compat.cliport.convert`).
+Tasks assign a class (``self.ee = Suction``); these are markers. ``Spatula``
+with a zone goal over small blocks makes that goal a pile pushed with factask's
+spatula (:mod:`factask.compat.cliport.piles`: a task with a ``pile_in_zone`` goal
+gets a spatula); a ``Spatula`` task without piles gets a warning and the suction
+cup.
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ class Suction(Gripper):
 
 
 class Spatula(Gripper):
-    """Spatula for pushing piles (unsupported)."""
+    """Spatula for pushing piles (factask's spatula, :mod:`factask.sim.push`)."""
 
 
 def __getattr__(name: str) -> Any:

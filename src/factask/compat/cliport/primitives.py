@@ -2,7 +2,8 @@
 
 A task only *chooses* its primitive (``self.primitive = primitives.PickPlace()``);
 factask's own oracle does the motion, so these carry their settings and nothing
-else. Pushing (``primitives.push``, piles with a spatula) is not modelled.
+else. ``primitives.push`` marks a task that sweeps piles with a spatula
+(:mod:`factask.compat.cliport.piles`); factask's oracle pushes.
 """
 
 from __future__ import annotations
@@ -28,12 +29,12 @@ class PickPlace:
 
 
 def push(*args: Any, **kwargs: Any) -> Any:
-    """Spatula push (unsupported: factask has no pushing primitive).
+    """Spatula push (run by factask's oracle, :mod:`factask.sim.push`, not by task code).
 
     Raises:
         Unsupported: always.
     """
-    raise Unsupported("primitives.push (spatula pushing) is not supported")
+    raise Unsupported("primitives.push is run by factask's oracle, not by task code")
 
 
 def __getattr__(name: str) -> Any:

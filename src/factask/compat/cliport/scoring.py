@@ -175,7 +175,7 @@ def ravens_reward(result: Any, poses_sequence: Sequence[Mapping[str, Any]]) -> R
     Returns:
         The final reward, goals done and success, as Ravens would report them.
     """
-    sizes = {v.name: v.extents for v in result.graph.variables}
+    sizes = {inst: v.extents for v in result.graph.variables for inst in v.instances}
     queue = list(result.goals)
     progress, total, done, history = 0.0, 0.0, 0, []
     for snap in poses_sequence:
@@ -203,7 +203,7 @@ def yaw_deg_of(quat_xyzw: Any) -> float:
 
 
 #: The region relations Ravens would score with its zone metric.
-ZONE_RELATIONS = ("in_zone", "inside")
+ZONE_RELATIONS = ("in_zone", "inside", "pile_in_zone")
 
 
 @dataclass(frozen=True)

@@ -23,6 +23,7 @@ from factask.compat.cliport import cameras, primitives
 from factask.compat.cliport import utils as cutils
 from factask.compat.cliport.errors import Unsupported
 from factask.compat.cliport.grippers import Spatula, Suction
+from factask.compat.cliport.piles import make_piles
 from factask.compat.cliport.recorder import active_session
 from factask.compat.cliport.scoring import pose_match
 from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
@@ -302,8 +303,11 @@ class Task:
     def get_target_sample_surface_points(self, *args: Any, **kwargs: Any) -> Any:
         return self._unsupported("get_target_sample_surface_points (meshes)")
 
-    def make_piles(self, *args: Any, **kwargs: Any) -> Any:
-        return self._unsupported("make_piles (piles of small blocks are not modelled)")
+    def make_piles(self, env: Any, block_color: Any = None, *args: Any, **kwargs: Any) -> Any:
+        """GenSim's piles: ``num_blocks`` small blocks (one ``pile`` variable once
+        a pushing goal names them, :mod:`factask.compat.cliport.piles`)."""
+        self._factask_made_piles = True  # GenSim sweeps what make_piles adds
+        return make_piles(env, self.bounds, int(self.num_blocks), block_color)
 
     def make_ropes(self, *args: Any, **kwargs: Any) -> Any:
         return self._unsupported("make_ropes (ropes are deformable)")
