@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 # Importing the catalogue modules registers their builders.
 from factask.library import (  # noqa: F401
     catalog_arranging,
+    catalog_deformable,
     catalog_gensim_insertion,
     catalog_gensim_lines,
     catalog_gensim_matching,
