@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -269,3 +270,39 @@ class MixPiles(Task):
     piles = sorted((v.color, v.count) for v in graph.variables if v.kind == "pile")
     assert piles == [("blue", 10), ("red", 10)]
     assert [f.goal.type for f in graph.factors] == ["pile_in_zone", "pile_in_zone"]
+
+
+# ------------------------------------------------------------------ physics health
+#: Seeded episodes of the stability sweep (issue 15: 100; fewer for a quick look).
+STABILITY_EPISODES = int(os.environ.get("FACTASK_STABILITY_EPISODES", "100"))
+
+
+def _healthy(env) -> None:
+    """No NaN, no explosion: finite state, every block on the table, slow."""
+    assert env.physics_failure() is None
+    assert np.all(np.isfinite(env.data.qpos)) and np.all(np.isfinite(env.data.qvel))
+    for name in env.graph.variable("red_pile").instances:
+        p = env.object_poses()[name].pos
+        assert -0.05 < p[0] < 1.2 and -0.8 < p[1] < 0.8 and -0.01 < p[2] < 0.05, (name, p)
+    assert float(np.abs(env.data.qvel).max()) < 5.0
+
+
+@pytest.mark.slow
+def test_piles_stay_stable_over_many_seeded_episodes() -> None:
+    from factask.sim.env import FactaskEnv
+    from factask.sim.oracle import Oracle
+
+    env = FactaskEnv(_sweep(50))
+    for seed in range(STABILITY_EPISODES):
+        env.reset(seed=seed)
+        _healthy(env)
+        oracle = Oracle(env, seed=seed)
+        for _ in range(2):  # two pushes: the blade drives into the pile
+            action = oracle.act()
+            if action is None:
+                break
+            _, _, terminated, _, info = env.step(action)
+            assert info["action_ok"], (seed, info["action_failure"])
+            _healthy(env)
+            if terminated:
+                break
