@@ -132,10 +132,11 @@ def test_tasks_fit_the_workspace_and_the_oracle(graphs: dict[str, TaskGraph]) ->
     area = (WORKSPACE_X[1] - WORKSPACE_X[0]) * (WORKSPACE_Y[1] - WORKSPACE_Y[0])
     for name, g in graphs.items():
         # Piles and ropes are pushed or dragged as a whole, not carried one object per
-        # action: the ten-object budget counts the objects a suction oracle carries.
+        # action: the budget counts the objects a suction oracle carries (twelve: GenSim's
+        # largest rigid tasks sort twelve blocks).
         carried = sum(v.count for v in g.variables
                       if not v.is_fixed and v.kind not in ("pile", "rope"))
-        assert carried <= 10, name
+        assert carried <= 12, name
         footprint = 0.0
         for v in g.variables:
             sx, sy, sz = v.extents

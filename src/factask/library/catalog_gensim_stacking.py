@@ -7,6 +7,8 @@ Columns are ``stack_on_base``/``stack_column``; two-one pyramids are a row
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from factask.library.builders import (
     assemble,
     at,
@@ -213,11 +215,13 @@ def build_cylinder_structure() -> TaskGraph:
                                                         (0.04, 0.04, 0.04)), base=base))
 
 
-def _two_one_pyramid(color: str, zone: StateVariable) -> list[TaskGraph]:
-    """A pyramid of two blocks in a row on ``zone`` and one bridging them."""
+def _two_one_pyramid(color: str, zone: StateVariable,
+                     after: Sequence[TaskGraph] = ()) -> list[TaskGraph]:
+    """A pyramid of two blocks in a row on ``zone`` (a zone, pallet or container) and
+    one bridging them, begun after the fragments ``after``."""
     base = var(f"{color}_base_blocks", "block", color, BLOCK, count=2)
     top = var(f"{color}_top_block", "block", color, BLOCK)
-    return [use("align_along_line", objects=base, line=zone),
+    return [use("align_along_line", objects=base, line=zone, after=after),
             use("pyramid_layer", layer=top, below=base)]
 
 
@@ -329,3 +333,34 @@ def symmetric_block_bridge_construction() -> TaskGraph:
                     "then red, blue, red and blue blocks on top: a symmetric bridge of "
                     "alternating colours.",
                     row, layer, use("stack_on_base", layers=column, base=deck, after=[layer]))
+
+
+def _pyramids_on(kind: str, colors: tuple[str, ...], size: tuple[float, float, float],
+                 sequential: bool) -> tuple[list[TaskGraph], list[StateVariable]]:
+    """A two-one pyramid of each colour on the ``kind`` (container or pallet) of that
+    colour; ``sequential`` builds them colour after colour."""
+    fragments: list[TaskGraph] = []
+    hosts = [var(f"{c}_{kind}", kind, c, size) for c in colors]  # type: ignore[arg-type]
+    for c, host in zip(colors, hosts, strict=True):
+        fragments += _two_one_pyramid(c, host, after=fragments[-1:] if sequential else ())
+    return fragments, hosts
+
+
+@register("container-block-pyramid-assembly", family="structures")
+def container_block_pyramid_assembly() -> TaskGraph:
+    fragments, _ = _pyramids_on("container", ("red", "blue", "green", "yellow"),
+                                (0.13, 0.13, 0.05), sequential=True)
+    return assemble("container-block-pyramid-assembly",
+                    "Put the blocks of each colour into the container of that colour and stack "
+                    "them there as a pyramid, two at the base and one on top: red first, then "
+                    "blue, green and yellow.", fragments)
+
+
+@register("color-sequenced-pyramid-packing", family="structures")
+def color_sequenced_pyramid_packing() -> TaskGraph:
+    fragments, _ = _pyramids_on("pallet", ("red", "green", "blue", "yellow"),
+                                (0.13, 0.13, 0.02), sequential=False)
+    return assemble("color-sequenced-pyramid-packing",
+                    "Sort twelve cubes by colour onto four pallets and stack each colour on its "
+                    "pallet as a pyramid: two cubes at the base, one on top.", fragments)
+
