@@ -76,7 +76,7 @@ def align_cylinder_in_zone() -> TaskGraph:
 def align_balls_in_colored_zones() -> TaskGraph:
     colors = ("red", "blue", "green", "yellow", "orange", "purple")
     # The zones stand in a straight line, so the balls end up in one.
-    zones = [var(f"{c}_zone", "zone", c, (0.09, 0.09, 0.001), initial=at(0.62, 0.375 - 0.15 * k))
+    zones = [var(f"{c}_zone", "zone", c, (0.11, 0.11, 0.001), initial=at(0.58, 0.3 - 0.12 * k))
              for k, c in enumerate(colors)]
     return _match("align-balls-in-colored-zones",
                   "Pick up each of six balls and place it in the zone of the same colour; the "
