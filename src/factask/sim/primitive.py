@@ -31,7 +31,7 @@ import numpy as np
 
 from factask.geometry import Pose, wrap_angle
 from factask.sim.health import HealthWatch
-from factask.sim.suction import TIP_SITE, SuctionGripper, find_id
+from factask.sim.suction import REST_RADIUS, TIP_SITE, SuctionGripper, find_id
 
 #: Tool limits of the floating cup: speed (m/s), acceleration (m/s^2), yaw rate
 #: (rad/s) and yaw acceleration (rad/s^2) -- a UR arm's tool moves at up to 1 m/s.
@@ -67,6 +67,10 @@ REST_MAX_TIME = 0.3
 RELEASE_SPEED = 0.003
 #: ... or this when it cannot (a box set down moving at 1 cm/s stops at once) ...
 RELEASE_SPEED_FLAT = 0.01
+#: A round object's turning is weighed at this distance (m) before its release:
+#: every turn of a ball becomes rolling once it is let go, so it must barely turn
+#: (|angular velocity| below RELEASE_SPEED in rad/s); a box's at REST_RADIUS.
+ROUND_TURN_RADIUS = 1.0
 #: ... or this many seconds pass.
 RELEASE_MAX_TIME = 0.5
 #: Default cap on physics steps of one primitive (40 s at dt = 2 ms).
@@ -280,8 +284,10 @@ class SuctionRobot(ABC):
             raise PrimitiveAbort("object lost during transport")
         # Release only once everything is still: a ball let go while it still swings
         # on the cup rolls away (nothing slows a rolling ball on the table).
-        rolls = self.gripper.held_can_roll()
-        self._wait_for_rest(RELEASE_SPEED if rolls else RELEASE_SPEED_FLAT, RELEASE_MAX_TIME)
+        if self.gripper.held_can_roll():
+            self._wait_for_rest(RELEASE_SPEED, RELEASE_MAX_TIME, ROUND_TURN_RADIUS)
+        else:
+            self._wait_for_rest(RELEASE_SPEED_FLAT, RELEASE_MAX_TIME)
         self.suction_off()
         self._follow(self._path([(self._cmd_pos + RETREAT * up, self._cmd_yaw)]))
         self._wait_for_rest()
@@ -349,16 +355,19 @@ class SuctionRobot(ABC):
         """
         return self._cmd_yaw, self._cmd_yaw + wrap_angle(place.yaw - pick.yaw)
 
-    def _wait_for_rest(self, speed: float = REST_SPEED, max_time: float = REST_MAX_TIME) -> None:
+    def _wait_for_rest(self, speed: float = REST_SPEED, max_time: float = REST_MAX_TIME,
+                       turn_radius: float = REST_RADIUS) -> None:
         """Step, the controls held, until no free object moves faster than ``speed``
-        (at most ``max_time`` seconds; tested every REST_EVERY steps)."""
+        (at most ``max_time`` seconds; tested every REST_EVERY steps; turning
+        counts at ``turn_radius``, see
+        :meth:`~factask.sim.suction.SuctionGripper.objects_resting`)."""
         total = max(1, math.ceil(max_time / self.dt))
         done = 0
         while done < total:
             k = min(REST_EVERY, total - done)
             self._hold(k)
             done += k
-            if done < total and self.gripper.objects_resting(speed):
+            if done < total and self.gripper.objects_resting(speed, turn_radius):
                 return
 
     def _follow(self, samples: np.ndarray, stop: Callable[[], bool] | None = None) -> bool:

@@ -347,14 +347,22 @@ class SuctionGripper:
         mine = self.geom_root[self.object_geoms] == self._held
         return float(low[mine].min()) if mine.any() else None
 
-    def objects_resting(self, speed: float) -> bool:
+    def objects_resting(self, speed: float, turn_radius: float = REST_RADIUS) -> bool:
         """True when no free object moves faster than ``speed`` (m/s): neither its
-        centre nor its points :data:`REST_RADIUS` out, as it turns."""
+        centre nor its points ``turn_radius`` out, as it turns.
+
+        Args:
+            speed: Largest speed (m/s) that counts as resting.
+            turn_radius: Distance (m) from the centre at which turning is weighed.
+
+        Returns:
+            Whether every free object rests.
+        """
         if len(self.object_dofs) == 0:
             return True
         qvel = self.data.qvel
         return (float(np.abs(qvel[self._linear_dofs]).max()) < speed
-                and float(np.abs(qvel[self._angular_dofs]).max()) * REST_RADIUS < speed)
+                and float(np.abs(qvel[self._angular_dofs]).max()) * turn_radius < speed)
 
     def grasp(self) -> bool:
         """Switch suction on: weld the closest touching free object where it is.
