@@ -37,6 +37,7 @@ AssetKind = Literal[
     "fixture",
     "kit",
     "pile",
+    "rope",
 ]
 
 KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
@@ -105,6 +106,9 @@ _SPECS = [
     KindSpec("pile", "pile of small blocks pushed as one (Ravens small block: 1 cm cube); "
              "size = one block, count = number of blocks, spawned in a cluster",
              (0.01, 0.01, 0.01), movable=True),
+    KindSpec("rope", "rope of count segments linked in a chain (Ravens' bead chain); size = "
+             "one segment: (length along the rope, diameter, diameter)",
+             (0.014, 0.01, 0.01), movable=True),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.

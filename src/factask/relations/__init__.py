@@ -26,12 +26,13 @@ from factask.relations.in_zone import InZone
 from factask.relations.inside import Inside
 from factask.relations.on import On
 from factask.relations.pile_in_zone import PileInZone
+from factask.relations.rope import RopeAlong
 from factask.relations.row import Row
 from factask.relations.stack import Stack
 
 #: Every relation unit, in the order the schema and the prompts list them.
 _UNITS: tuple[type[RelationBase], ...] = (AtPose, InZone, On, Inside, Stack, Row, Circle,
-                                         Aligned, PileInZone)
+                                         Aligned, PileInZone, RopeAlong)
 
 #: The registry: relation kind (its ``type``) -> its class.
 RELATION_TYPES: dict[str, type[RelationBase]] = {cls.kind(): cls for cls in _UNITS}
@@ -52,5 +53,5 @@ ANCHOR_FIELDS: tuple[str, ...] = tuple(dict.fromkeys(
     field for cls in _UNITS for field in cls.anchor_fields))
 
 __all__ = ["ANCHOR_CAPABILITY", "ANCHOR_FIELDS", "RELATION_TYPES", "Aligned", "AtPose",
-           "Circle", "InZone", "Inside", "On", "PileInZone", "Relation", "RelationBase", "Row",
-           "Stack", "TargetPose"]
+           "Circle", "InZone", "Inside", "On", "PileInZone", "Relation", "RelationBase",
+           "RopeAlong", "Row", "Stack", "TargetPose"]

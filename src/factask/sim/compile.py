@@ -42,6 +42,7 @@ from factask.sim.parts import (
 from factask.sim.push import add_spatula, needs_spatula
 from factask.sim.robot import attach_robot
 from factask.sim.robots import ROBOT_NAMES
+from factask.sim.rope import add_rope_links
 
 #: Largest timestep (s) that keeps the contacts of small objects stable.
 MAX_TIMESTEP = 0.01
@@ -339,6 +340,7 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float
     add_table(spec)
     handles = [add_object(spec, plan) for plan in plans]
     markers = [add_object(spec, plan) for plan in marker_plans]
+    add_rope_links(spec, graph)  # a rope's segments, linked in a chain
     if robot is not None:
         attach_robot(spec, robot)
         if needs_spatula(graph):  # Ravens' ee = Spatula: tasks that push

@@ -41,6 +41,7 @@ from factask.sim.compile import (
     set_object_pose,
 )
 from factask.sim.health import physics_problem
+from factask.sim.low_carry import low_pick_and_place
 from factask.sim.push import push
 from factask.sim.reset import reset_layout
 from factask.sim.robot import SuctionRobot, make_robot
@@ -108,7 +109,9 @@ class FactaskEnv(gym.Env):
     yaw; the object turns with the tool by ``place yaw - pick yaw``. A task that
     pushes (a ``pile_in_zone`` goal: the robot has a spatula) also takes
     ``start`` and ``end`` (x, y, z, yaw; only x, y are used): a push along the
-    table (:mod:`factask.sim.push`).
+    table (:mod:`factask.sim.push`). A pick-and-place with ``lift`` (metres)
+    carries the object only that high (:mod:`factask.sim.low_carry`: a rope's
+    segment, Ravens' ``PickPlace(height=0.02)``).
 
     Raises:
         GraphValidationError, CompileError: the graph cannot be compiled.
@@ -294,6 +297,12 @@ class FactaskEnv(gym.Env):
         if pushing:  # a spatula's push (factask.sim.push)
             result = push(self.robot, pick, place, on_step=self.frame_callback,
                           max_steps=max_steps)
+        elif "lift" in action:  # a low carry (a rope's segment: factask.sim.low_carry)
+            lift = float(np.asarray(action["lift"], dtype=float).reshape(-1)[0])
+            if not np.isfinite(lift) or not 0.0 < lift <= WORKSPACE_Z[1]:
+                raise ActionError(f"lift must be in (0, {WORKSPACE_Z[1]}] m, got {lift}")
+            result = low_pick_and_place(self.robot, pick, place, lift,
+                                        on_step=self.frame_callback, max_steps=max_steps)
         else:
             result = self.robot.pick_and_place(pick, place, on_step=self.frame_callback,
                                                max_steps=max_steps)

@@ -36,10 +36,12 @@ import numpy as np
 from factask.geometry import Pose, tilt_deg, wrap_angle
 from factask.model.kinds import yaw_symmetry_deg
 from factask.relations.pile_in_zone import PileInZone
+from factask.relations.rope import RopeAlong, rope_slot_order
 from factask.relations.status import MAX_TILT_DEG, FactorStatus
 from factask.scene.collision import occupying, parking_spot, resting_on
 from factask.scene.objects import SPHERE_KINDS, SceneObject, top_z
 from factask.sim.env import FactaskEnv
+from factask.sim.low_carry import ROPE_LIFT, CarryAction
 from factask.sim.push_oracle import PushAction, plan_push
 
 #: Attempts at placing one object for one factor before the oracle gives up.
@@ -128,7 +130,7 @@ class Oracle:
         return self._action(self.env.objects[name], poses[name], spot, factor, why)
 
     # ------------------------------------------------------------------- act
-    def plan(self) -> OracleAction | PushAction | None:
+    def plan(self) -> OracleAction | PushAction | CarryAction | None:
         """The next action, or None when done or giving up (see :attr:`failure`)."""
         env = self.env
         status = env.status()
@@ -149,6 +151,8 @@ class Oracle:
             goal = env.graph.factor(fname).goal
             if isinstance(goal, PileInZone):  # blocks are pushed, never picked
                 return self._push(fname, goal, fstatus, poses)
+            if isinstance(goal, RopeAlong):  # segments in order along the run
+                return self._rope_segment(fname, fstatus, poses)
             for name in fstatus.placed:  # a success resets the object's retry budget
                 self.attempts.pop((fname, name), None)
             targets = self._targets(fname, fstatus)
@@ -205,6 +209,29 @@ class Oracle:
             return None
         aimed.append(action.obj)
         return action
+
+    def _rope_segment(self, fname: str, fstatus: FactorStatus,
+                      poses: dict[str, Pose]) -> CarryAction | None:
+        """Place the rope's next segment (:func:`rope_slot_order`: its two ends, then
+        the farthest from its place), carried low (:mod:`factask.sim.low_carry`) so the rope
+        slides after it. Its neighbours are no obstacles: they are the rope."""
+        for name in fstatus.placed:
+            self.attempts.pop((fname, name), None)
+        targets = self._targets(fname, fstatus)
+        if not targets:
+            self.failure = f"factor {fname!r}: no slot for the rope's segments"
+            return None
+        far = {n: float(np.linalg.norm(poses[n].pos[:2] - targets[n].pos[:2]))
+               for n in targets}
+        name = rope_slot_order(fstatus.targets, len(self.env.solved[fname].objects), far)
+        self.attempts[(fname, name)] += 1
+        if self.attempts[(fname, name)] > MAX_ATTEMPTS_PER_OBJECT:
+            self.failure = (f"factor {fname!r}: could not place {name!r} after "
+                            f"{MAX_ATTEMPTS_PER_OBJECT} attempts ({fstatus.detail})")
+            return None
+        a = self._action(self.env.objects[name], poses[name], targets[name], fname,
+                         f"place {name}")
+        return CarryAction(a.pick, a.place, ROPE_LIFT, a.obj, a.factor, a.purpose)
 
     def act(self) -> dict[str, np.ndarray] | None:
         """The next action for ``env.step``, or None (done, or gave up)."""

@@ -55,6 +55,8 @@ def layout_area(var: StateVariable) -> float:
     order (the larger first): a pile's whole cluster, else one object's footprint."""
     if is_pile(var):
         return (2 * pile_half_extent(var)) ** 2
+    if var.kind == "rope":  # laid out straight: its whole length
+        return var.count * var.extents[0] * var.extents[1]
     ex = var.extents
     return ex[0] * ex[1]
 

@@ -45,6 +45,7 @@ from factask.scene.objects import (
     resting_pose,
 )
 from factask.sim.pile import is_pile, layout_area, place_pile
+from factask.sim.rope import is_rope, place_rope
 
 #: Whole-layout restarts before :func:`sample_layout` gives up.
 MAX_LAYOUT_RESTARTS = 8
@@ -174,12 +175,12 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
     poses: dict[str, Pose] = {}
     for vname in _placement_priority(graph):
         var = graph.variable(vname)
-        if is_pile(var):
-            cluster = place_pile(var, objs, occ, rng, tries)
-            if cluster is None:
-                raise _Placement(var.instances[0], f"no free spot for the pile's cluster "
+        if is_pile(var) or is_rope(var):
+            group = (place_pile if is_pile(var) else place_rope)(var, objs, occ, rng, tries)
+            if group is None:
+                raise _Placement(var.instances[0], f"no free spot for the {var.kind} "
                                  f"in {tries} tries")
-            poses.update(cluster)
+            poses.update(group)
             continue
         for inst in var.instances:
             obj = objs[inst]
