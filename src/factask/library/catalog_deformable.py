@@ -1,4 +1,4 @@
-"""GenSim tasks with piles of small blocks swept by a spatula (issue 15).
+"""GenSim tasks with piles of small blocks swept by a spatula, and with ropes (issue 15).
 
 Each pile is one ``pile`` variable (its ``count`` small blocks start as one
 cluster); ``push_pile_into_zone`` puts a pile's blocks into a region by pushes
@@ -7,24 +7,41 @@ such a goal gets the spatula and the push action (:mod:`factask.sim.push`).
 Piles here are smaller than Ravens' 50 blocks where a task has several, so the
 scene stays within the graph model's object limit.
 
+A rope (kind ``rope``) is a chain of linked segments; ``lay_rope_along`` lays
+one straight along a line (``rope_along``, Ravens' 2 cm tolerance per segment).
+
 The templates of these tasks are defined here, beside their kinds, and added to
 the library's registry (:data:`factask.library.templates.TEMPLATES`) on import.
 """
 
 from __future__ import annotations
 
-from factask.library.builders import assemble, register, use, var
+from typing import Any
+
+from factask.library.builders import assemble, at, region, register, use, var
 from factask.library.templates import REGIONS, TEMPLATES
-from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
-from factask.relations import PileInZone
+from factask.model import (
+    AtFixedPose,
+    StateVariable,
+    SubtaskFactor,
+    SubtaskTemplate,
+    TaskGraph,
+    TemplateSlot,
+)
+from factask.model.tolerances import Tolerances
+from factask.model.world import WORKSPACE_Y
+from factask.relations import PileInZone, RopeAlong
 
 #: A Ravens small block: a 1 cm cube.
 SMALL_BLOCK = (0.01, 0.01, 0.01)
 #: Ravens' zone for piles (12 cm square) and separating-piles' larger one.
 ZONE = (0.12, 0.12, 0.001)
 BIG_ZONE = (0.15, 0.15, 0.001)
-#: A marked line from a pile to its zone.
-LINE = (0.30, 0.01, 0.001)
+#: Tasks with a pile per colour: the piles start in x PILE_X, within BAND of their
+#: band's middle; the zones lie at x ZONE_X.
+PILE_X = (0.27, 0.42)
+ZONE_X = 0.66
+BAND = 0.06
 
 _DEFORMABLE_TEMPLATES = [
     SubtaskTemplate(
@@ -45,19 +62,29 @@ for _t in _DEFORMABLE_TEMPLATES:
     TEMPLATES.setdefault(_t.name, _t)
 
 
-def _pile(color: str, count: int) -> StateVariable:
+def _pile(color: str, count: int, **extra: Any) -> StateVariable:
     return var(f"{color}_pile", "pile", color, SMALL_BLOCK, count=count,
-               description=f"a pile of {count} small {color} blocks")
+               description=f"a pile of {count} small {color} blocks", **extra)
 
 
-def _zone(color: str, size: tuple[float, float, float] = ZONE) -> StateVariable:
-    return var(f"{color}_zone", "zone", color, size, description=f"the {color} zone")
+def _zone(color: str, size: tuple[float, float, float] = ZONE, **extra: Any) -> StateVariable:
+    return var(f"{color}_zone", "zone", color, size, description=f"the {color} zone",
+               **extra)
 
 
 def _pile_per_zone(colors: tuple[str, ...], count: int) -> list[TaskGraph]:
-    """One pile of ``count`` blocks per colour, each pushed into the zone of its colour."""
-    return [use("push_pile_into_zone", prefix=c, objects=[_pile(c, count)], zone=_zone(c))
-            for c in colors]
+    """One pile of ``count`` blocks per colour, each pushed into the zone of its colour.
+
+    Each colour has its own band across the table: its pile starts near the robot,
+    its zone lies at the far side of the band, so no push crosses another zone."""
+    width = (WORKSPACE_Y[1] - WORKSPACE_Y[0] - 0.2) / len(colors)
+    out = []
+    for k, c in enumerate(colors):
+        y = WORKSPACE_Y[0] + 0.1 + (k + 0.5) * width
+        pile = _pile(c, count, initial=region(PILE_X, (y - BAND, y + BAND)))
+        zone = _zone(c, initial=at(ZONE_X, y))
+        out.append(use("push_pile_into_zone", prefix=c, objects=[pile], zone=zone))
+    return out
 
 
 @register("sweeping-piles")
@@ -99,13 +126,20 @@ def mix_piles() -> TaskGraph:
 @register("move-piles-along-line")
 def move_piles_along_line() -> TaskGraph:
     colors = ("red", "blue", "green")
-    lines = [var(f"{c}_line", "line", c, LINE, description=f"the {c} line to the {c} zone")
-             for c in colors]
+    fragments = _pile_per_zone(colors, 15)
+    lines = []
+    for frag, c in zip(fragments, colors, strict=True):
+        zone = frag.variable(f"{c}_zone")
+        assert isinstance(zone.initial, AtFixedPose)
+        # The line runs from the pile's side to the zone, along the band.
+        lines.append(var(f"{c}_line", "line", c, (0.22, 0.01, 0.001),
+                         description=f"the {c} line to the {c} zone",
+                         initial=at(ZONE_X - 0.17, zone.initial.y)))
     return assemble(
         "move-piles-along-line",
-        "Push three piles of small blocks (red, blue, green) into the zones of their "
-        "colours with the spatula.",
-        _pile_per_zone(colors, 15),
+        "Push three piles of small blocks (red, blue, green) along the lines of their "
+        "colours into the zones of their colours with the spatula.",
+        fragments,
         extra=lines,
     )
 
@@ -117,4 +151,61 @@ def sweep_and_sort_blocks() -> TaskGraph:
         "Sweep the piles of small red, blue, green and yellow blocks into the zones of "
         "their colours.",
         _pile_per_zone(("red", "blue", "green", "yellow"), 12),
+    )
+
+
+# ------------------------------------------------------------------------ ropes
+#: Ravens' rope: 20 beads, 1 cm thick, about 28 cm long.
+ROPE_SEGMENTS = 20
+ROPE_SEGMENT = (0.014, 0.01, 0.01)
+#: Ravens' rope tasks accept a bead within 2 cm of its target.
+ROPE_TOLERANCE = Tolerances(xy=0.02)
+
+
+def _rope(color: str, **extra: Any) -> StateVariable:
+    return var(f"{color}_rope", "rope", color, ROPE_SEGMENT, count=ROPE_SEGMENTS,
+               description=f"a {color} rope of {ROPE_SEGMENTS} linked segments", **extra)
+
+
+_ROPE_TEMPLATES = [
+    SubtaskTemplate(
+        name="lay_rope_along",
+        description="Lay the {rope} straight along the {line}.",
+        slots=[TemplateSlot(name="rope", description="the rope", kinds=["rope"],
+                            movable=True),
+               TemplateSlot(name="line", description="the line (or region) to lie along",
+                            kinds=REGIONS)],  # type: ignore[arg-type]
+        factors=[SubtaskFactor(
+            name="rope_along", description="lay the {rope} straight along the {line}",
+            goal=RopeAlong(objects=["rope"], along="line", tolerances=ROPE_TOLERANCE),
+        )],
+    ),
+]
+for _t in _ROPE_TEMPLATES:
+    TEMPLATES.setdefault(_t.name, _t)
+
+
+@register("align-rope-along-line")
+def align_rope_along_line() -> TaskGraph:
+    rope = _rope("red")
+    line = var("green_line", "line", "green", (0.30, 0.01, 0.001), description="the line")
+    return assemble(
+        "align-rope-along-line",
+        "Align the rope straight along the green line marked on the tabletop.",
+        use("lay_rope_along", rope=rope, line=line),
+    )
+
+
+@register("manipulating-two-ropes")
+def manipulating_two_ropes() -> TaskGraph:
+    fragments = []
+    for c, y in (("red", -0.22), ("blue", 0.22)):
+        rope = _rope(c, initial=region((0.3, 0.7), (y - 0.2, y + 0.2)))
+        line = var(f"{c}_line", "line", c, (0.30, 0.01, 0.001),
+                   description=f"the {c} line", initial=at(0.5, y))
+        fragments.append(use("lay_rope_along", prefix=c, rope=rope, line=line))
+    return assemble(
+        "manipulating-two-ropes",
+        "Lay the red and the blue rope each straight along the line of its colour.",
+        fragments,
     )
