@@ -14,7 +14,6 @@ from factask.library.builders import (
     colored,
     region,
     register,
-    start_on,
     use,
     var,
 )
@@ -175,36 +174,35 @@ def block_insertion_in_corner_pyramid() -> TaskGraph:
 #: shapes; factask's rigid pieces are ells, blocks, boxes and cylinders).
 SHAPES = (("ell", (0.08, 0.08, 0.03), (0.12, 0.12, 0.03)),
           ("block", (0.04, 0.04, 0.03), BLOCK_FIXTURE),
-          ("cylinder", (0.04, 0.04, 0.03), BLOCK_FIXTURE),
-          ("box", (0.05, 0.03, 0.03), (0.09, 0.07, 0.04)))
-KIT = (0.34, 0.30, 0.005)
+          ("cylinder", (0.04, 0.04, 0.03), BLOCK_FIXTURE))
+#: Where the silhouettes sit: side by side, together the kitting board.
+BOARD = ((0.60, 0.11), (0.62, -0.01), (0.62, -0.10))
 
 
-def _kit(colors: tuple[str, ...], n: int) -> tuple[list[StateVariable], list[StateVariable],
-                                                    StateVariable]:
-    """Pieces, their silhouettes (fixtures on the kit board) and the board."""
-    board = var("kit", "kit", "gray", KIT, initial=at(0.6, 0.0),
-                description="the kitting board with a silhouette per piece")
+def _kit(colors: tuple[str, ...]) -> tuple[list[StateVariable], list[StateVariable]]:
+    """Pieces and their silhouettes: fixtures side by side that make up the kitting
+    board (fixtures standing on a ``kit`` plate are not used: the layout sampler
+    can stack one start-on object on another, see docs/library.md)."""
     pieces, holes = [], []
-    for (kind, size, hole), color in zip(SHAPES[:n], colors, strict=True):
+    for (kind, size, hole), color, xy in zip(SHAPES, colors, BOARD, strict=True):
         pieces.append(var(f"{color}_{kind}", kind, color, size))  # type: ignore[arg-type]
-        holes.append(var(f"{kind}_silhouette", "fixture", "gray", hole,
-                         initial=start_on(board), description=f"the {kind}'s silhouette"))
-    return pieces, holes, board
+        holes.append(var(f"{kind}_silhouette", "fixture", "gray", hole, initial=at(*xy),
+                         description=f"the {kind}'s silhouette on the kitting board"))
+    return pieces, holes
 
 
 @register("assembling-kits", family="kitting")
 def assembling_kits() -> TaskGraph:
-    pieces, holes, board = _kit(("red", "blue", "green"), 3)
+    pieces, holes = _kit(("red", "blue", "green"))
     return _insert("assembling-kits",
                    "Pick up the different pieces and put each into its silhouette on the "
-                   "kitting board.", pieces, holes, extra=[board])
+                   "kitting board.", pieces, holes)
 
 
 @register("assembling-kits-seq", family="kitting")
 def assembling_kits_seq() -> TaskGraph:
-    pieces, holes, board = _kit(("red", "blue", "green"), 3)
+    pieces, holes = _kit(("red", "blue", "green"))
     return _insert("assembling-kits-seq",
                    "Place each piece in its silhouette on the kitting board in the order "
                    "given: the ell, then the block, then the cylinder.", pieces, holes,
-                   sequential=True, extra=[board])
+                   sequential=True)
