@@ -319,6 +319,22 @@ def colored_balls_sorting_in_corner() -> TaskGraph:
                   "align_to_corner", balls, _corners(FOUR), sequential=True)
 
 
+@register("color-cued-ball-corner-sorting", family="corners", tags=("barrier",))
+def color_cued_ball_corner_sorting() -> TaskGraph:
+    # The rectangular zone in the middle of the table, fenced by two low bars (GenSim's
+    # small blocks) that the balls must be carried around or over.
+    middle = var("middle_zone", "zone", "gray", (0.14, 0.14, 0.001), initial=at(0.52, 0.0),
+                 description="the fenced zone in the middle of the table")
+    fence = [var(f"fence_{k}", "box", "gray", (0.14, 0.02, 0.02), fixed=True,
+                 initial=at(0.52, y, 0.0), description="a low bar fencing the middle zone")
+             for k, y in enumerate((0.08, -0.08))]
+    return _match("color-cued-ball-corner-sorting",
+                  "Pick up each ball and place it precisely in the corner of the same colour, "
+                  "without touching the low bars that fence the zone in the middle.",
+                  "align_to_corner", colored("ball", FOUR, BALL), _corners(FOUR),
+                  extra=[middle, *fence])
+
+
 @register("color-matching-blocks-to-corner-and-zone", family="corners", tags=("milestones",))
 def color_matching_blocks_to_corner_and_zone() -> TaskGraph:
     blocks = colored("block", FOUR, BLOCK)
