@@ -42,7 +42,7 @@ from factask.sim.parts import (
 from factask.sim.push import add_spatula, needs_spatula
 from factask.sim.robot import attach_robot
 from factask.sim.robots import ROBOT_NAMES
-from factask.sim.rope import add_rope_links
+from factask.sim.rope import add_rope_links, add_rope_links_mjcf
 
 #: Largest timestep (s) that keeps the contacts of small objects stable.
 MAX_TIMESTEP = 0.01
@@ -310,6 +310,7 @@ def build_mjcf(graph: TaskGraph, timestep: float = 0.002) -> tuple[Any, list[Sce
         build_object(root.worldbody, plan.name, obj.kind, obj.size, obj.color,
                      hollow=hollows.get(obj.variable, "ell"), pos=plan.pos, visual_only=True,
                      alpha=MARKER_ALPHA, group=MARKER_GROUP)
+    add_rope_links_mjcf(root, graph)  # as build_spec links a rope's segments
     return root, objects
 
 

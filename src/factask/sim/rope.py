@@ -18,6 +18,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -129,5 +130,40 @@ def add_rope_links(spec: mujoco.MjSpec, graph: TaskGraph) -> int:
                               name1=link_site(a, "head"), name2=link_site(b, "tail"),
                               solref=list(LINK_SOLREF))
             spec.add_exclude(bodyname1=a, bodyname2=b)
+            links += 1
+    return links
+
+
+def add_rope_links_mjcf(root: Any, graph: TaskGraph) -> int:
+    """:func:`add_rope_links` for the MJCF export (a ``dm_control.mjcf`` root), so
+    both paths build the same model: sites, links, excluded contacts, and each
+    segment's free joint as a ``joint type="free"`` with the damping and armature
+    (``freejoint`` takes neither).
+
+    Args:
+        root: The MJCF root, with one body per object instance.
+        graph: Its task graph.
+
+    Returns:
+        The number of links added.
+    """
+    links = 0
+    for var in graph.variables:
+        if not is_rope(var):
+            continue
+        half = var.extents[0] / 2
+        insts = var.instances
+        for inst in insts:
+            body = root.find("body", inst)
+            body.freejoint.remove()
+            body.insert("joint", 0, name=f"{inst}:free", type="free",
+                        damping=ROPE_DAMPING, armature=ROPE_ARMATURE)
+            for end, x in (("head", half), ("tail", -half)):
+                body.add("site", name=link_site(inst, end), pos=[x, 0.0, 0.0],
+                         size=[0.001], group=4)
+        for a, b in itertools.pairwise(insts):
+            root.equality.add("connect", site1=link_site(a, "head"),
+                              site2=link_site(b, "tail"), solref=list(LINK_SOLREF))
+            root.contact.add("exclude", body1=a, body2=b)
             links += 1
     return links
