@@ -17,17 +17,18 @@ from factask.library.builders import (
     use,
     var,
 )
+from factask.library.conventions import (
+    BLOCK,
+    BLOCK_FIXTURE,
+    CORNER,
+    ELL,
+    ELL_FIXTURE,
+    FOUR,
+    NEAR,
+    THREE,
+)
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
-
-BLOCK = (0.04, 0.04, 0.04)
-ELL = (0.08, 0.08, 0.04)
-ELL_FIXTURE = (0.12, 0.12, 0.04)
-BLOCK_FIXTURE = (0.08, 0.08, 0.04)
-CORNER = (0.055, 0.055, 0.001)
-FOUR = ("red", "blue", "green", "yellow")
-THREE = ("red", "blue", "green")
-NEAR = region((0.27, 0.42), (-0.42, 0.42))
 
 
 def _row(n: int, x: float = 0.64, span: float = 0.7) -> list[tuple[float, float]]:

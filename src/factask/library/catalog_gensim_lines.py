@@ -18,14 +18,10 @@ from factask.library.builders import (
     use,
     var,
 )
+from factask.library.conventions import BALL, BLOCK, FIVE, FOUR, LINE
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
-BLOCK = (0.04, 0.04, 0.04)
-BALL = (0.04, 0.04, 0.04)
-LINE = (0.30, 0.01, 0.001)
-FOUR = ("red", "blue", "green", "yellow")
-FIVE = ("red", "blue", "green", "yellow", "orange")
 PALLET = (0.20, 0.20, 0.0375)
 #: A pallet with room for four slot frames side by side.
 WIDE_PALLET = (0.26, 0.26, 0.0375)

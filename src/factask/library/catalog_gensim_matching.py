@@ -20,23 +20,16 @@ from factask.library.builders import (
     use,
     var,
 )
+from factask.library.conventions import BALL, BLOCK, CORNER, CYLINDER, FOUR, NEAR, THREE, ZONE
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
-BLOCK = (0.04, 0.04, 0.04)
-BALL = (0.04, 0.04, 0.04)
-CYLINDER = (0.04, 0.04, 0.06)
 #: A squat cylinder wide enough to carry a block on its top.
 PEDESTAL = (0.05, 0.05, 0.04)
 #: A ball needs a wider top: released by the arm it may roll a centimetre or two.
 BALL_PEDESTAL = (0.08, 0.08, 0.04)
-ZONE = (0.12, 0.12, 0.001)
 STAND = (0.07, 0.07, 0.005)
 SMALL_PALLET = (0.12, 0.12, 0.02)
-CORNER = (0.055, 0.055, 0.001)
-FOUR = ("red", "blue", "green", "yellow")
-THREE = ("red", "blue", "green")
-NEAR = region((0.27, 0.42), (-0.42, 0.42))
 #: Four spots (top left, top right, bottom left, bottom right as seen from the robot).
 SQUARE = ((0.65, 0.22), (0.65, -0.22), (0.40, 0.22), (0.40, -0.22))
 ROW4 = ((0.64, 0.3), (0.64, 0.1), (0.64, -0.1), (0.64, -0.3))

@@ -16,13 +16,10 @@ from factask.library.builders import (
     var,
 )
 from factask.library.catalog_stacking import towers_of_hanoi
+from factask.library.conventions import BALL, BLOCK, BOWL
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
-BLOCK = (0.04, 0.04, 0.04)
-BALL = (0.04, 0.04, 0.04)
-BOWL = (0.12, 0.12, 0.05)
-ZONE = (0.12, 0.12, 0.001)
 BROWN_BOX = (0.22, 0.22, 0.06)
 
 

@@ -13,31 +13,23 @@ from factask.library.builders import (
     at,
     barrier,
     colored,
-    region,
     register,
     start_inside,
     start_on,
     use,
     var,
 )
+from factask.library.conventions import BALL, BLOCK, BOWL, CYLINDER, ELL, FOUR, NEAR, THREE
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
-BLOCK = (0.04, 0.04, 0.04)
-BALL = (0.04, 0.04, 0.04)
-CYLINDER = (0.04, 0.04, 0.06)
-BOWL = (0.12, 0.12, 0.05)
 #: A bowl an ell fits in (its 8 cm bounding box needs more than a 12 cm bowl's inside).
 WIDE_BOWL = (0.16, 0.16, 0.05)
 CONTAINER = (0.12, 0.12, 0.05)
 BIG_CONTAINER = (0.20, 0.20, 0.06)
-ELL = (0.08, 0.08, 0.04)
-FOUR = ("red", "blue", "green", "yellow")
-THREE = ("red", "blue", "green")
 
 #: Where a row of receptacles beyond a barrier stands (x) and their y, left to right.
 FAR_X = 0.64
-NEAR = region((0.27, 0.42), (-0.42, 0.42))
 
 
 def _far_row(n: int) -> list[tuple[float, float]]:

@@ -20,17 +20,14 @@ from factask.library.builders import (
     use,
     var,
 )
+from factask.library.conventions import BLOCK, CORNER, FIVE
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
-BLOCK = (0.04, 0.04, 0.04)
 PALLET = (0.30, 0.25, 0.0375)
 STAND = (0.15, 0.05, 0.005)
-ZONE = (0.12, 0.12, 0.001)
 #: A zone shaped for a base row of two blocks.
 PAIR_ZONE = (0.12, 0.06, 0.001)
-CORNER = (0.055, 0.055, 0.001)
-FIVE = ("red", "blue", "green", "yellow", "orange")
 
 
 def _pallet(**extra: object) -> StateVariable:
