@@ -76,3 +76,5 @@ def test_oracle_completes_task(name: str, robot: str) -> None:
         r = run_episode(graph, seed, robot=robot)
         assert r.success, (f"{name} with {robot}, seed {seed}: reward {r.reward:.3f}, "
                            f"failure {r.failure}, {r.details}")
+        assert r.failure is None and r.steps <= graph.max_actions()
+        assert all(p == pytest.approx(1.0) for p in r.factors.values()), r.factors
