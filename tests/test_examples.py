@@ -28,6 +28,7 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "07_milestones_and_ravens_scoring.py": ("07_block_tour.py", "07_scores.json"),
     "08_collect_dataset.py": ("08_cameras.png", "08_summary.json",
                               "08_dataset/meta/info.json"),
+    "09_piles_and_ropes.py": ("09_piles_and_ropes.png", "09_results.json"),
 }
 SIGNATURES = {".png": b"\x89PNG\r\n\x1a\n", ".gif": b"GIF8"}
 
