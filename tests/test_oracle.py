@@ -2,13 +2,11 @@
 (factask.sim.episode): library sweeps, failure reasons, re-planning, and the
 research's success definitions.
 
-Default runs sweep the whole library with the floating cup (two seeds per task);
-the same sweep with the arm is under ``@pytest.mark.slow``.
+The sweep of every library task with both robots is in
+``tests/test_library_tasks.py`` (slow).
 """
 
 from __future__ import annotations
-
-from typing import Any
 
 import numpy as np
 import pytest
@@ -29,48 +27,10 @@ from factask.sim.episode import (
 )
 from factask.sim.oracle import MAX_ATTEMPTS_PER_OBJECT, Oracle
 
-SEEDS = (0, 1)
-
-
-def _describe(name: str, seed: int, r: EpisodeResult) -> str:
-    return (f"{name} seed {seed}: reward {r.reward:.3f} after {r.steps} action(s); "
-            f"failure: {r.failure}; details: {r.details}")
-
-
-def _library_params() -> list[Any]:
-    """One param per library task."""
-    return [pytest.param(name, id=name) for name in task_names()]
-
 
 # ------------------------------------------------------------ library sweeps
 def test_library_is_large_enough() -> None:
     assert len(task_names()) >= 30
-
-
-@pytest.mark.parametrize("name", _library_params())
-def test_oracle_completes_library_task_floating(name: str) -> None:
-    """The oracle solves every library task with the floating cup, seeds 0 and 1."""
-    graph = get_task(name)
-    env = FactaskEnv(graph, robot="floating")
-    try:
-        for seed in SEEDS:
-            r = run_episode(graph, seed, env=env)
-            assert r.success, _describe(name, seed, r)
-            assert r.failure is None
-            assert r.reward >= SUCCESS_REWARD
-            assert r.steps <= graph.max_actions()
-            assert all(p == pytest.approx(1.0) for p in r.factors.values()), r.factors
-    finally:
-        env.close()
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("name", _library_params())
-def test_oracle_completes_library_task_arm(name: str) -> None:
-    """The oracle solves every library task with the arm (seed 0)."""
-    graph = get_task(name)
-    r = run_episode(graph, 0, robot="arm")
-    assert r.success, _describe(name, 0, r)
 
 
 # ------------------------------------------------------------ failure reasons
