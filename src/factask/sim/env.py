@@ -340,11 +340,13 @@ class FactaskEnv(gym.Env):
             return None
         return self.render_rgb()
 
-    def render_rgb(self, camera: str | None = None, markers: bool = True) -> np.ndarray:
+    def render_rgb(self, camera: str | mujoco.MjvCamera | None = None,
+                   markers: bool = True) -> np.ndarray:
         """RGB image (height, width, 3) uint8, whatever the render mode.
 
         Args:
-            camera: Camera name (default: the env's).
+            camera: Camera name, or a free camera such as
+                :func:`factask.sim.render.framed_camera` gives (default: the env's).
             markers: Draw the translucent goal markers.
         """
         if self._renderer is None:

@@ -84,7 +84,8 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
         graph: The task.
         seed: Reset seed.
         robot: A name of the robot registry (:mod:`factask.sim.robots`).
-        video: Write a GIF/MP4 of the episode here (front camera).
+        video: Write a GIF/MP4 of the episode here (the front view, framed from the
+            scene's bounds after the reset: :func:`factask.sim.render.framed_camera`).
         on_action: Called after each action with (action index, planned action, info).
         env: Reuse this :class:`~factask.sim.env.FactaskEnv` (must be of ``graph``).
 
@@ -108,16 +109,20 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
         except FactaskError as exc:
             return EpisodeResult(seed, 0.0, False, 0, failure=f"reset: {exc}")
         if video is not None:
-            from factask.sim.render import VideoRecorder
+            from factask.sim.render import VideoRecorder, framed_camera
 
+            # Framed once, after the reset: the robot (an arm's base too) and every
+            # object stay whole, and the view holds still through the episode.
+            width, height = env.render_size
+            view = framed_camera(env.model, env.data, "front", aspect=width / height)
             recorder = VideoRecorder(video)
-            recorder.append(env.render_rgb())
+            recorder.append(env.render_rgb(camera=view))
             counter = {"n": 0}
 
             def frame() -> None:
                 counter["n"] += 1
                 if counter["n"] % 6 == 0:  # one frame every 60 physics steps (0.12 s)
-                    recorder.append(env.render_rgb())
+                    recorder.append(env.render_rgb(camera=view))
 
             env.frame_callback = frame
         oracle = Oracle(env, seed=seed)
@@ -148,7 +153,7 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
     finally:
         if recorder is not None:
             env.frame_callback = None
-            recorder.append(env.render_rgb())
+            recorder.append(env.render_rgb(camera=view))
             recorder.close()
         if own_env:
             env.close()
