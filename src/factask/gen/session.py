@@ -19,9 +19,10 @@ from factask.gen.llm import LLMClient, LLMConfig, ResponseCache, import_litellm
 from factask.gen.llm_errors import LLMAuthError, fix_for, provider_of
 from factask.gen.local import LocalLlamaServer, check_local_model
 
-#: The slowest generation speed planned for on a busy 2-core CPU (under 2 tokens/s with a
-#: grammar); a request's timeout leaves room for its whole answer at that speed.
-LOCAL_SECONDS_PER_TOKEN = 0.6
+#: The slowest generation speed planned for on a busy 2-core CPU: measured 0.2-3 s
+#: per token with a grammar at load average 5-7; a request's timeout leaves room
+#: for its whole answer at this speed.
+LOCAL_SECONDS_PER_TOKEN = 1.5
 #: Prompt tokens worth sending to the local model: its prompt processing on a CPU
 #: dominates a call, and a 135M model gains little from a long prompt.
 LOCAL_PROMPT_BUDGET = 3000

@@ -30,6 +30,7 @@ import mujoco
 import numpy as np
 
 from factask.geometry import Pose, wrap_angle
+from factask.model.errors import FactaskError
 from factask.sim.health import HealthWatch
 from factask.sim.suction import REST_RADIUS, TIP_SITE, SuctionGripper, find_id
 
@@ -102,9 +103,10 @@ class PrimitiveResult:
     grasped_body: int | None
 
 
-class PrimitiveAbort(Exception):
+class PrimitiveAbort(FactaskError):
     """Ends a primitive early with a reason (caught in
-    :meth:`SuctionRobot.pick_and_place`; never leaves the robot modules)."""
+    :meth:`SuctionRobot.pick_and_place` and the other primitives; never leaves
+    the robot modules)."""
 
     def __init__(self, reason: str) -> None:
         super().__init__(reason)
