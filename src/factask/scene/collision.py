@@ -86,7 +86,7 @@ class _Body:
 
 def _body(obj: SceneObject, pose: Pose, clearance: float) -> _Body:
     z = float(pose.pos[2])
-    return _Body(obj, pose, footprint_points(obj, pose), footprint_corners(obj, pose,
+    return _Body(obj, pose, footprint_points(obj, pose, covering=True), footprint_corners(obj, pose,
                  clearance / 2), z - obj.half[2], z + obj.half[2])
 
 
@@ -196,7 +196,14 @@ class Occupancy:
 
 
 def _receptacle_pair(rec: _Body, other: _Body) -> bool:
-    """Collision of a receptacle with another body (which may sit inside it)."""
+    """Collision of a receptacle with another body (which may sit inside it).
+
+    Only floored receptacles (containers, bowls) admit other bodies inside: a
+    fixture's frame is walled up around a hollow shaped for one piece (an ell's
+    hollow leaves most of its inner square solid), so a body meant for it is placed
+    with the fixture ignored and any other body inside its frame collides."""
+    if floor_thickness(rec.obj) == 0.0:
+        return True
     area = placement_area(rec.obj, rec.pose)
     if bool(area.contains(other.raw).all()):
         floor_top = rec.z0 + floor_thickness(rec.obj)
@@ -236,7 +243,8 @@ def first_free(occ: Occupancy, obj: SceneObject, poses: list[Pose],
     for start in range(0, len(poses), _CHUNK):  # chunks: most objects fit early
         idx = [i for i in range(start, min(start + _CHUNK, len(poses))) if ok[i]]
         if within is not None:
-            idx = [i for i in idx if bool(within.contains(footprint_points(obj, poses[i])).all())]
+            idx = [i for i in idx
+                   if bool(within.contains(footprint_points(obj, poses[i], covering=True)).all())]
         if not idx:
             continue
         free = occ.free_mask(obj, [poses[i] for i in idx], ignore)

@@ -210,14 +210,21 @@ def footprint_radius(obj: SceneObject) -> float:
     return float(np.linalg.norm(obj.half_xy))
 
 
-def footprint_points(obj: SceneObject, pose: Pose, per_axis: int = 3) -> np.ndarray:
+def footprint_points(obj: SceneObject, pose: Pose, per_axis: int = 3,
+                     covering: bool = False) -> np.ndarray:
     """XY sample points (k, 2) of the object's shape on its top and bottom faces,
     projected onto the table (so a tilted object is honest; a ball is sampled
     upright whatever its rotation). A box gives a ``per_axis`` grid per face, a
-    round kind its centre and :data:`ROUND_SAMPLES` points on its rim."""
+    round kind its centre and :data:`ROUND_SAMPLES` points on its rim.
+
+    With ``covering``, a round kind's rim points span a polygon around the rim
+    rather than inside it (a polygon of points on the rim cuts its bulges, up to
+    1.5 mm on a 4 cm ball), so "all points inside a convex area" proves the whole
+    disk is: what layout sampling needs; checks keep the rim itself."""
     if obj.is_round:
         ang = np.linspace(0.0, 2 * math.pi, ROUND_SAMPLES, endpoint=False)
-        disk = np.concatenate([[[0.0, 0.0]], np.stack([np.cos(ang), np.sin(ang)], 1)])
+        rim = 1.0 / math.cos(math.pi / ROUND_SAMPLES) if covering else 1.0
+        disk = np.concatenate([[[0.0, 0.0]], rim * np.stack([np.cos(ang), np.sin(ang)], 1)])
         grid = np.array([[x, y, c] for x, y in disk for c in (-1.0, 1.0)])
     else:
         t = np.linspace(-1.0, 1.0, per_axis)
