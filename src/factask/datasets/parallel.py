@@ -1,4 +1,4 @@
-"""Run independent jobs in this process, on a spawn-started process pool, or on Ray.
+"""Run independent jobs in this process, in it and a spawn-started process pool, or on Ray.
 
 Collection shards and policy-evaluation tasks share this: each job is a top-level
 function and its arguments (picklable), results come back in job order, and a
@@ -7,8 +7,9 @@ callback sees each job as it completes.
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from multiprocessing import get_context
 from typing import Any
 
@@ -27,7 +28,7 @@ def run_jobs(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], workers: i
     Args:
         fn: A top-level function (workers import it by name).
         jobs: Argument tuples.
-        workers: Processes; 1 (or a single job) runs here, in order.
+        workers: Processes, this one included; 1 (or a single job) runs here, in order.
         ray_address: Run on Ray instead: "auto" (a running cluster, or the instance
             this process already started), "local" (start one here) or an address.
         on_done: Called here with (job index, result) as each job completes.
@@ -51,12 +52,37 @@ def run_jobs(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], workers: i
         for i, job in enumerate(jobs):
             done(i, fn(*job))
     else:
-        # spawn: a forked child would inherit the parent's GL and MuJoCo state.
-        with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
-            futures = {pool.submit(fn, *job): i for i, job in enumerate(jobs)}
-            for fut in as_completed(futures):
-                done(futures[fut], fut.result())
+        _run_pool(fn, jobs, workers, done)
     return results
+
+
+def _run_pool(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], workers: int,
+              done: Callable[[int, Any], None]) -> None:
+    """This process and ``workers - 1`` spawned children share the jobs.
+
+    A spawned child pays seconds of start-up (it imports MuJoCo and factask) before
+    its first job; this process is warm, so it works from the start instead of
+    waiting. Each child keeps one job queued behind the running one so that it never
+    idles while this process is busy with a job of its own.
+    """
+    pending = deque(range(len(jobs)))
+    in_flight: dict[Future[Any], int] = {}
+    depth = 2 * (workers - 1)
+    # spawn: a forked child would inherit the parent's GL and MuJoCo state.
+    with ProcessPoolExecutor(max_workers=workers - 1, mp_context=get_context("spawn")) as pool:
+        while pending or in_flight:
+            while pending and len(in_flight) < depth:
+                i = pending.popleft()
+                in_flight[pool.submit(fn, *jobs[i])] = i
+            finished = [f for f in in_flight if f.done()]
+            if not finished and pending:
+                i = pending.pop()  # from the back: the children keep the front
+                done(i, fn(*jobs[i]))
+                continue
+            if not finished:
+                finished = list(wait(in_flight, return_when=FIRST_COMPLETED).done)
+            for fut in finished:
+                done(in_flight.pop(fut), fut.result())
 
 
 def _run_ray(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], address: str,
