@@ -64,7 +64,7 @@ def structure_height(graph: TaskGraph) -> float:
                 support.setdefault(obj, []).append(g.support)  # type: ignore[attr-defined]
         elif kind == "row" and getattr(g, "on", None):
             for obj in g.objects:
-                support.setdefault(obj, []).append(g.on)  # type: ignore[attr-defined]
+                support.setdefault(obj, []).extend(g.anchor_names("on"))
     stacked = {name for f in graph.factors if f.goal.type == "stack" for name in f.goal.objects}
 
     @cache

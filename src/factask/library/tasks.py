@@ -17,6 +17,7 @@ from factask.library import (  # noqa: F401
     catalog_arranging,
     catalog_deformable,
     catalog_gensim_insertion,
+    catalog_gensim_layers,
     catalog_gensim_lines,
     catalog_gensim_matching,
     catalog_gensim_packing,

@@ -61,6 +61,11 @@ def _objects(description: str = "the objects to move", kinds: list[str] | None =
     return _slot(name, description, kinds or PICKABLE, many=True, movable=True)
 
 
+#: The layer a pyramid or wall layer rests on: a row made of one variable's instances,
+#: or of several variables (a layer of mixed colours).
+_BELOW = _slot("below", "the layer underneath, a row: one variable or several (mixed "
+               "colours)", STACKABLE, many=True)
+
 _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="place_in_zone",
@@ -148,11 +153,11 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="pyramid_layer",
         description="Lay the {layer} as a row on the {below}, each bridging two neighbours.",
         slots=[_objects("the layer's objects (one fewer than below)", STACKABLE, "layer"),
-               _slot("below", "the layer underneath: one variable, a row", STACKABLE)],
+               _BELOW],
         factors=[SubtaskFactor(
             name="pyramid_layer",
             description="lay the {layer} on the {below}, each bridging two neighbours",
-            goal=Row(objects=["layer"], on="below"),
+            goal=Row(objects=["layer"], on=["below"]),
             initial_setup="the {below} stand side by side in a row",
         )],
     ),
@@ -160,11 +165,11 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="layer_on_row",
         description="Lay the {layer} on the {below}, one on each (a wall or pallet layer).",
         slots=[_objects("the layer's objects (as many as below)", STACKABLE, "layer"),
-               _slot("below", "the layer underneath: one variable, a row", STACKABLE)],
+               _BELOW],
         factors=[SubtaskFactor(
             name="layer_on",
             description="lay the {layer} on the {below}, one on each",
-            goal=Row(objects=["layer"], on="below"),
+            goal=Row(objects=["layer"], on=["below"]),
             initial_setup="the {below} stand side by side in a row",
         )],
     ),

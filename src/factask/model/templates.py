@@ -27,8 +27,8 @@ from factask.model.names import Name, TaskName
 from factask.model.variables import StateVariable
 from factask.relations import ANCHOR_FIELDS
 
-#: Fields of relations (their anchors) and of start placements that hold one
-#: variable name.
+#: Fields of relations (their anchors) and of start placements that hold a
+#: variable name (or, for a list anchor such as ``row``'s ``on``, a list of names).
 _NAME_FIELDS = tuple(dict.fromkeys((*ANCHOR_FIELDS, "support", "container")))
 
 
@@ -39,7 +39,8 @@ def _rename_value(value: Any, mapping: Mapping[str, str]) -> Any:
         for k, v in value.items():
             if k in _NAME_FIELDS and isinstance(v, str):
                 out[k] = mapping.get(v, v)
-            elif k in ("objects", "scope", "after", "slots_used") and isinstance(v, list):
+            elif k in (*_NAME_FIELDS, "objects", "scope", "after", "slots_used") and \
+                    isinstance(v, list):  # a list anchor (row's ``on``) or a list of names
                 out[k] = [mapping.get(x, x) if isinstance(x, str) else x for x in v]
             elif k == "name" and isinstance(v, str):
                 out[k] = mapping.get(v, v)
@@ -295,6 +296,9 @@ class SubtaskTemplate(BaseModel):
             for field in _NAME_FIELDS:
                 if isinstance(goal.get(field), str):
                     goal[field] = one(goal[field])
+                elif isinstance(goal.get(field), list):  # a list anchor: every bound variable
+                    names = expand(goal[field])
+                    goal[field] = names[0] if len(names) == 1 else names
             data = f.model_dump(mode="python", exclude_none=True)
             data.update(
                 name=local[f.name],

@@ -59,10 +59,24 @@ class RelationBase(BaseModel, abc.ABC):
         """The relation's kind: the value of its ``type`` field."""
         return str(cls.model_fields["type"].default)
 
+    def anchor_names(self, field: str) -> list[str]:
+        """The variables anchor field ``field`` names: none, one, or (a field that
+        takes a list, such as ``row``'s ``on``) several.
+
+        Args:
+            field: One of :attr:`anchor_fields`.
+
+        Returns:
+            The names, in the order given.
+        """
+        value = getattr(self, field)
+        if not value:
+            return []
+        return [value] if isinstance(value, str) else list(value)
+
     def anchors(self) -> list[str]:
         """Variables the goal is relative to (never moved by this goal)."""
-        names = (getattr(self, f) for f in self.anchor_fields)
-        return [n for n in names if n]
+        return list(dict.fromkeys(n for f in self.anchor_fields for n in self.anchor_names(f)))
 
     def variable_names(self) -> list[str]:
         """Every variable the relation mentions: objects first, then anchors."""
@@ -80,16 +94,17 @@ class RelationBase(BaseModel, abc.ABC):
         """
         out = []
         for fname, caps in self.anchor_fields.items():
-            name = getattr(self, fname)
-            if not caps or name is None or name not in variables:
-                continue
-            v = variables[name]
-            spec = kind_spec(v.kind)
-            if not any(getattr(spec, c) for c in caps):
-                out.append(Problem(factor, f"goal.{fname}",
-                                   f"{name!r} is a {v.kind}, which cannot serve as {fname} of "
-                                   f"'{self.kind()}' (needs a kind that is {' or '.join(caps)})",
-                                   "choose another variable or relation"))
+            for name in self.anchor_names(fname):
+                if not caps or name not in variables:
+                    continue
+                v = variables[name]
+                spec = kind_spec(v.kind)
+                if not any(getattr(spec, c) for c in caps):
+                    out.append(Problem(factor, f"goal.{fname}",
+                                       f"{name!r} is a {v.kind}, which cannot serve as {fname} "
+                                       f"of '{self.kind()}' (needs a kind that is "
+                                       f"{' or '.join(caps)})",
+                                       "choose another variable or relation"))
         return out
 
     @classmethod

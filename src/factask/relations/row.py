@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Annotated, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field
 
 from factask.geometry import wrap_angle
+from factask.model.errors import Problem
 from factask.model.names import Name
 from factask.model.world import TABLE_Z, WORKSPACE_DIAGONAL
 from factask.relations.base import RelationBase
@@ -33,6 +34,9 @@ from factask.scene.objects import (
     yaw_rotation_2d,
 )
 
+if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
+    from factask.model.variables import StateVariable
+
 #: Extra gap in a row with no explicit spacing: widest object + this (metres).
 ROW_GAP = 0.01
 
@@ -40,9 +44,10 @@ ROW_GAP = 0.01
 class Row(RelationBase):
     """Place the objects side by side in a straight row, centre-to-centre
     ``spacing`` metres apart (default: widest object + 1 cm). ``along``: lie on
-    that line/zone variable. ``on``: rest on top of the row of variable ``on``
-    (same count: one on each; one fewer: each bridging two neighbours, as in a
-    pyramid)."""
+    that line/zone variable. ``on``: rest on top of the row below, made of the
+    instances of variable ``on`` or of a list of variables (a layer of mixed
+    colours): same count: one on each; one fewer: each bridging two neighbours,
+    as in a pyramid; fewer still: centred on the row below."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {
         "along": ("region",), "on": ("support",)}
@@ -50,8 +55,15 @@ class Row(RelationBase):
     type: Literal["row"] = "row"
     spacing: Annotated[float, Field(gt=0, le=0.5, allow_inf_nan=False)] | None = None
     along: Name | None = None
-    on: Name | None = None
+    on: Name | Annotated[list[Name], Field(min_length=1, max_length=16)] | None = None
     ordered: bool = True
+
+    def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
+        out = super().problems(factor, variables)
+        below = self.anchor_names("on")
+        for name in dict.fromkeys(n for n in below if below.count(n) > 1):
+            out.append(Problem(factor, "goal.on", f"{name!r} listed twice", "list it once"))
+        return out
 
     @classmethod
     def example(cls) -> tuple[list[dict[str, Any]], Row]:
@@ -72,7 +84,7 @@ class Row(RelationBase):
                              [set(hosts)] * n, matches)
 
         if self.on:
-            below = ctx.inst(self.on)
+            below = [i for v in self.anchor_names("on") for i in ctx.inst(v)]
             bobjs = [ctx.objs[b] for b in below]
             bposes = [ctx.current[b] for b in below]
             centres = np.array([p.pos[:2] for p in bposes])
@@ -89,12 +101,14 @@ class Row(RelationBase):
                           [names[k], names[k + 1]]) for k in range(n)]
             else:
                 plan = line(centres.mean(axis=0), yaw, max(tops), names)
-                areas = [placement_area(bobjs[i], bposes[i]) for i in range(len(below))]
-                for o, slot in zip(movers, plan.slots, strict=True):
-                    if not any(bool(a.contains(slot.pos[:2]).all()) for a in areas):
+                areas = {b: placement_area(ctx.objs[b], ctx.current[b]) for b in names}
+                for j, (o, slot) in enumerate(zip(movers, plan.slots, strict=True)):
+                    under = [b for b, a in areas.items() if bool(a.contains(slot.pos[:2]).all())]
+                    if not under:
                         raise Infeasible(f"a row of {n} on the {len(below)} object(s) of "
                                          f"{self.on!r} leaves {o.name} unsupported (use as "
-                                         "many objects as below, or one fewer)", retry=False)
+                                         "many objects as below, or fewer)", retry=False)
+                    plan.supports[j] = under[0]
                 return plan
             slots = [resting_pose(o, *c, s, yaw) for o, (c, s, _) in zip(movers, spots,
                                                                           strict=True)]

@@ -1,0 +1,100 @@
+"""GenSim pyramids and bridges whose layers mix colours.
+
+A layer is a ``pyramid_layer`` (or ``layer_on_row``) on the row below, and that row
+may be made of several variables (``row``'s ``on`` takes a list): a base of two
+green blocks and a blue one carries the red layer of ``create-pyramid-blocks-and-
+container``. The base rows lie along their zone, pallet or container
+(``align_along_line``), listed from one end to the other.
+"""
+
+from __future__ import annotations
+
+from factask.library.builders import assemble, register, use, var
+from factask.library.conventions import BLOCK
+from factask.model import StateVariable, TaskGraph
+
+#: A pallet a row of five blocks fits along (GenSim's bridge pallet).
+LONG_PALLET = (0.30, 0.15, 0.02)
+#: A zone a three-block base row (14 cm end to end) fits inside.
+PYRAMID_ZONE = (0.16, 0.16, 0.001)
+#: A container a three-block base row fits in, walls included.
+PYRAMID_CONTAINER = (0.20, 0.20, 0.05)
+
+
+def _blocks(layer: str, colors: tuple[str, ...]) -> list[StateVariable]:
+    """One block per colour of a layer, named ``<layer>_<colour>``, listed in order."""
+    return [var(f"{layer}_{c}", "block", c, BLOCK, description=f"the {c} block of the "
+                f"{layer} layer") for c in colors]
+
+
+def _pyramid(base: list[StateVariable], host: StateVariable,
+             layers: list[list[StateVariable]], template: str = "pyramid_layer"
+             ) -> list[TaskGraph]:
+    """A base row along ``host``, then each of ``layers`` on the one below it (with
+    ``template``: ``pyramid_layer`` bridges neighbours, ``layer_on_row`` one on each)."""
+    fragments = [use("align_along_line", objects=base, line=host)]
+    below = base
+    for layer in layers:
+        fragments.append(use(template, layer=layer, below=below))
+        below = layer
+    return fragments
+
+
+@register("rainbow-pyramid-in-zone", family="structures")
+def rainbow_pyramid_in_zone() -> TaskGraph:
+    # GenSim's code builds it from six blocks in rainbow order (its description names
+    # five of the colours): red, orange, yellow at the base, green and blue, purple.
+    zone = var("zone", "zone", "gray", PYRAMID_ZONE, description="the marked zone")
+    return assemble("rainbow-pyramid-in-zone",
+                    "Build a pyramid in the marked zone from six blocks in rainbow order: red, "
+                    "orange and yellow at the base, green and blue on them, purple on top.",
+                    _pyramid(_blocks("base", ("red", "orange", "yellow")), zone,
+                             [_blocks("middle", ("green", "blue")), _blocks("top", ("purple",))]))
+
+
+@register("create-pyramid-blocks-and-container", family="structures")
+def create_pyramid_blocks_and_container() -> TaskGraph:
+    box = var("container", "container", "brown", PYRAMID_CONTAINER,
+              description="the container the pyramid stands in")
+    greens = var("green_blocks", "block", "green", BLOCK, count=2,
+                 description="the two green blocks of the first layer")
+    blue = var("blue_base_block", "block", "blue", BLOCK,
+               description="the blue block of the first layer")
+    reds = var("red_blocks", "block", "red", BLOCK, count=2, description="the two red blocks")
+    top = var("blue_top_block", "block", "blue", BLOCK, description="the blue block on top")
+    return assemble("create-pyramid-blocks-and-container",
+                    "Build a pyramid of six blocks inside the container: the two green blocks "
+                    "and a blue one in the first layer, the two red blocks on them, the other "
+                    "blue block on top.",
+                    _pyramid([greens, blue], box, [[reds], [top]]))
+
+
+@register("pyramid-blocks-assemble", family="structures")
+def pyramid_blocks_assemble() -> TaskGraph:
+    # 5-3-1: the middle layer stands one on each of the inner three bottom blocks, the
+    # top block on the middle one.
+    pallet = var("pallet", "pallet", "brown", LONG_PALLET, description="the pallet")
+    middle = _blocks("middle", ("yellow", "red", "blue"))
+    return assemble("pyramid-blocks-assemble",
+                    "Build a pyramid of nine blocks on the pallet: red, blue, green, yellow and "
+                    "orange at the bottom from left to right, yellow, red and blue in the "
+                    "middle, and a green block on top.",
+                    _pyramid(_blocks("bottom", ("red", "blue", "green", "yellow", "orange")),
+                             pallet, [middle], template="layer_on_row"),
+                    use("place_on_top", objects=_blocks("top", ("green",)), support=middle[1]))
+
+
+@register("color-coordinated-block-bridge", family="structures")
+def color_coordinated_block_bridge() -> TaskGraph:
+    # Red at the edges, blue in the middle, a green block on each red and blue pair,
+    # the sequence repeated along the pallet: GenSim's nine blocks.
+    pallet = var("pallet", "pallet", "brown", LONG_PALLET, description="the pallet")
+    base = [var(f"{c}_block_{k}", "block", c, BLOCK, description=f"{c} block {k} of the base")
+            for c, k in (("red", 1), ("blue", 1), ("red", 2), ("blue", 2), ("red", 3))]
+    greens = var("green_blocks", "block", "green", BLOCK, count=4,
+                 description="four green blocks, each on a red and a blue block")
+    return assemble("color-coordinated-block-bridge",
+                    "Build a bridge along the pallet: red, blue, red, blue and red blocks in a "
+                    "row (red at the edges, blue between), and a green block on each red and "
+                    "blue pair.",
+                    _pyramid(base, pallet, [[greens]]))
