@@ -194,30 +194,40 @@ def add_table(spec: mujoco.MjSpec) -> mujoco.MjsGeom:
     return table
 
 
-def add_object(spec: mujoco.MjSpec, plan: ObjectPlan) -> BodyHandles:
+def add_object(spec: mujoco.MjSpec, plan: ObjectPlan,
+               classes: tuple[mujoco.MjsDefault, mujoco.MjsDefault] | None = None) -> BodyHandles:
     """Add one object body (see :func:`factask.sim.parts.plan_object`) to the world.
 
     Args:
         spec: The scene's spec (made by :func:`new_spec`: it holds the classes).
         plan: The object's plan.
+        classes: The spec's (object, marker) default classes (:func:`default_classes`),
+            looked up when not given.
 
     Returns:
         Handles of the body, its geoms and its free joint.
     """
-    body = spec.worldbody.add_body(name=plan.name, pos=list(plan.pos), mocap=plan.mocap)
+    obj_cls, marker_cls = classes if classes is not None else default_classes(spec)
+    body = spec.worldbody.add_body(name=plan.name, pos=plan.pos, mocap=plan.mocap)
     if plan.quat is not None:
-        body.quat = list(plan.quat)
+        body.quat = plan.quat
     joint = None if plan.mocap else body.add_freejoint(name=plan.joint_name)
-    cls = spec.find_default(OBJECT_CLASS if plan.collides else MARKER_CLASS)
+    cls = obj_cls if plan.collides else marker_cls
     geoms = []
+    # Sizes are zero-padded by MuJoCo and tuples are taken as they are: no conversions.
     for g in plan.geoms:
-        geom = body.add_geom(cls, name=g.name, type=GEOM_TYPES[g.type], size=size3(g.size),
-                             pos=list(g.pos), rgba=list(g.rgba), group=g.group)
+        geom = body.add_geom(cls, name=g.name, type=GEOM_TYPES[g.type], size=g.size,
+                             pos=g.pos, rgba=g.rgba, group=g.group)
         if g.quat is not None:
-            geom.quat = list(g.quat)
+            geom.quat = g.quat
         if plan.collides and g.type == "sphere":
             geom.condim = ROLLING_CONDIM
         if g.mass is not None:
             geom.mass = g.mass
         geoms.append(geom)
     return BodyHandles(body, tuple(geoms), joint)
+
+
+def default_classes(spec: mujoco.MjSpec) -> tuple[mujoco.MjsDefault, mujoco.MjsDefault]:
+    """The (object, marker) default classes of a spec made by :func:`new_spec`."""
+    return spec.find_default(OBJECT_CLASS), spec.find_default(MARKER_CLASS)

@@ -29,7 +29,7 @@ from factask.model.errors import SubjectError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.scene.objects import SceneObject, scene_objects
-from factask.sim.build import BodyHandles, add_object, add_table, new_spec
+from factask.sim.build import BodyHandles, add_object, add_table, default_classes, new_spec
 from factask.sim.parts import (
     GEOM_SEPARATOR,
     MARKER_GROUP,
@@ -339,8 +339,9 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float
     objects, plans, marker_plans = _scene_plans(graph)
     spec = new_spec(graph.name, timestep, GRAVITY, IMPRATIO)
     add_table(spec)
-    handles = [add_object(spec, plan) for plan in plans]
-    markers = [add_object(spec, plan) for plan in marker_plans]
+    classes = default_classes(spec)
+    handles = [add_object(spec, plan, classes) for plan in plans]
+    markers = [add_object(spec, plan, classes) for plan in marker_plans]
     add_rope_links(spec, graph)  # a rope's segments, linked in a chain
     if robot is not None:
         attach_robot(spec, robot)
@@ -376,24 +377,30 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
                            f"MuJoCo rejected the scene: {exc}") from None
     handles: dict[str, ObjectHandle] = {}
     geom_object = np.full(model.ngeom, -1, dtype=np.int64)
-    for index, (obj, h) in enumerate(zip(objects, bodies, strict=True)):
-        body = h.body.id
-        geoms = tuple(g.id for g in h.geoms)
+    # Ids from the spec's elements; the model's address arrays read once, not per object.
+    body_ids = [h.body.id for h in bodies]
+    geom_ids = [tuple(g.id for g in h.geoms) for h in bodies]
+    joint_ids = [-1 if h.joint is None else h.joint.id for h in bodies]
+    mocap_ids = model.body_mocapid[body_ids].tolist()
+    jnt = np.asarray(joint_ids, dtype=np.int64)
+    qpos_adrs = np.where(jnt >= 0, model.jnt_qposadr[jnt], -1).tolist()
+    dof_adrs = np.where(jnt >= 0, model.jnt_dofadr[jnt], -1).tolist()
+    for index, obj in enumerate(objects):
+        geoms = geom_ids[index]
         geom_object[list(geoms)] = index
-        mocap = int(model.body_mocapid[body])
-        qpos_adr = qvel_adr = None
-        if h.joint is not None:
-            qpos_adr = int(model.jnt_qposadr[h.joint.id])
-            qvel_adr = int(model.jnt_dofadr[h.joint.id])
+        mocap, qpos_adr, dof_adr = mocap_ids[index], qpos_adrs[index], dof_adrs[index]
         handles[obj.name] = ObjectHandle(
-            name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size, body_id=body,
-            geom_ids=geoms, qpos_adr=qpos_adr, qvel_adr=qvel_adr,
+            name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size,
+            body_id=body_ids[index], geom_ids=geoms,
+            qpos_adr=qpos_adr if qpos_adr >= 0 else None,
+            qvel_adr=dof_adr if dof_adr >= 0 else None,
             mocap_id=mocap if mocap >= 0 else None,
         )
+    marker_mocaps = model.body_mocapid[[h.body.id for h in marker_bodies]].tolist()
     markers: dict[tuple[str, int], int] = {}
     marker_objects: dict[tuple[str, int], str] = {}
-    for (factor, slot, inst), h in zip(_marker_slots(graph), marker_bodies, strict=True):
-        markers[(factor, slot)] = int(model.body_mocapid[h.body.id])
+    for (factor, slot, inst), mocap in zip(_marker_slots(graph), marker_mocaps, strict=True):
+        markers[(factor, slot)] = mocap
         marker_objects[(factor, slot)] = inst
     return CompiledScene(graph=graph, spec=spec, model=model, objects=handles, markers=markers,
                          marker_objects=marker_objects, robot=robot, geom_object=geom_object)

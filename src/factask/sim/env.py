@@ -78,6 +78,17 @@ class ActionRecord:
     total_reward: float
 
 
+@dataclass(frozen=True)
+class _StateKey:
+    """The state a status was checked in (see :meth:`FactaskEnv._state_key`)."""
+
+    time: float
+    qpos: np.ndarray
+    mocap_pos: np.ndarray
+    mocap_quat: np.ndarray
+    held: int | None
+
+
 def _pose4(value: Any, what: str) -> Pose:
     try:
         arr = np.asarray(value, dtype=float).reshape(-1)
@@ -157,9 +168,12 @@ class FactaskEnv(gym.Env):
         self.actions_taken = 0
         self.failure: str | None = None
         self._status: TaskStatus | None = None
-        # The state ``_status`` was checked in (qpos, time): an unchanged state needs
-        # no second check before the next action.
-        self._status_state: tuple[np.ndarray, float] | None = None
+        # The state ``_status`` was checked in (:meth:`_state_key`; None: not a check,
+        # a physics failure's zero status): an unchanged state needs no second check
+        # (the oracle plans on it, the next action's baseline is its reward).
+        self._status_state: _StateKey | None = None
+        # info["targets"] of the current reset (the solved targets do not move).
+        self._targets_info: dict[str, dict[str, Any]] = {}
         # Factors reached so far (milestones latch on it); updated after each action.
         self._reached: frozenset[str] = frozenset()
         #: Called every few physics steps during actions (e.g. to record video).
@@ -179,7 +193,14 @@ class FactaskEnv(gym.Env):
         return {name} if name else set()
 
     def status(self) -> TaskStatus:
-        """Check every factor now (milestones reached at earlier actions stay latched)."""
+        """Check every factor now (milestones reached at earlier actions stay latched).
+
+        The status of the last ``reset``/``step`` is returned as it is while the
+        state it was checked in is unchanged (same time, positions, mocap poses and
+        held object): the checks depend on nothing else.
+        """
+        if self._status is not None and self._unchanged():
+            return self._status
         return check_task(self.graph, self.solved, self.object_poses(), self.held_objects(),
                           self.objects, self._reached)
 
@@ -209,13 +230,9 @@ class FactaskEnv(gym.Env):
             "language_goal": self.graph.description,
             "actions": self.actions_taken,
             "failure": self.failure,
-            "targets": {
-                name: {
-                    "objects": list(s.objects),
-                    "targets": {o: p.to_list() for o, p in s.targets(self.objects).items()},
-                }
-                for name, s in self.solved.items()
-            },
+            "targets": {name: {"objects": list(t["objects"]),
+                               "targets": {o: list(p) for o, p in t["targets"].items()}}
+                        for name, t in self._targets_info.items()},
         }
 
     def physics_failure(self) -> str | None:
@@ -237,6 +254,10 @@ class FactaskEnv(gym.Env):
         rng = np.random.default_rng(self.np_random.integers(0, 2**63 - 1))
         layout, solved = reset_layout(self.graph, rng)
         self.initial_layout, self.solved = layout, solved
+        self._targets_info = {
+            name: {"objects": list(s.objects),
+                   "targets": {o: p.to_list() for o, p in s.targets(self.objects).items()}}
+            for name, s in solved.items()}
         mujoco.mj_resetData(self.model, self.data)
         for name, handle in self.scene.objects.items():
             set_object_pose(self.model, self.data, handle, layout[name])
@@ -251,8 +272,9 @@ class FactaskEnv(gym.Env):
         self.actions_taken = 0
         self.failure = self.physics_failure()
         self._reached = frozenset()
+        self._status = None
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
-        self._keep_status(status)
+        self._keep_status(status, checked=self.failure is None)
         return self._obs(), self._info(status)
 
     def _settle(self) -> None:
@@ -292,7 +314,7 @@ class FactaskEnv(gym.Env):
             return self._obs(), 0.0, True, False, self._info(self._status)
         # The reward is what *this action* changed: measure the baseline now, so
         # changes made from outside between steps are not credited to the action.
-        prev = self._reward_now()
+        prev = self.status().reward  # the kept status when nothing moved since
         max_steps = int(self.graph.limits.max_sim_seconds_per_action / self.model.opt.timestep)
         if pushing:  # a spatula's push (factask.sim.push)
             result = push(self.robot, pick, place, on_step=self.frame_callback,
@@ -309,7 +331,7 @@ class FactaskEnv(gym.Env):
         self.actions_taken += 1
         self.failure = self.physics_failure()
         status = self.status() if self.failure is None else TaskStatus(0.0, False, {})
-        self._keep_status(status)
+        self._keep_status(status, checked=self.failure is None)
         self.history.append(ActionRecord(self.actions_taken, result.ok, result.reason,
                                        result.sim_steps, status.reward))
         info = self._info(status)
@@ -319,19 +341,26 @@ class FactaskEnv(gym.Env):
         truncated = not terminated and self.actions_taken >= self.graph.max_actions()
         return self._obs(), status.reward - prev, terminated, truncated, info
 
-    def _keep_status(self, status: TaskStatus) -> None:
-        """Remember ``status`` as the current one, with the state it was checked in."""
+    def _keep_status(self, status: TaskStatus, checked: bool = True) -> None:
+        """Remember ``status`` as the current one, with the state it was checked in
+        (``checked`` False: a stand-in, never returned by :meth:`status`)."""
         self._status, self._reached = status, status.reached
-        self._status_state = (self.data.qpos.copy(), float(self.data.time))
+        self._status_state = self._state_key() if checked else None
 
-    def _reward_now(self) -> float:
-        """Total reward of the current state: the kept status's when nothing moved
-        since it was checked (the usual case between two actions), else re-checked."""
-        kept = self._status_state
-        if (self._status is not None and kept is not None and kept[1] == self.data.time
-                and np.array_equal(kept[0], self.data.qpos)):
-            return self._status.reward
-        return self.status().reward
+    def _state_key(self) -> _StateKey:
+        """What the checks read: time, positions, mocap poses (fixed objects) and
+        the held object."""
+        d = self.data
+        return _StateKey(float(d.time), d.qpos.copy(), d.mocap_pos.copy(), d.mocap_quat.copy(),
+                         self.robot.grasped())
+
+    def _unchanged(self) -> bool:
+        """True when the state is the one the kept status was checked in."""
+        kept, d = self._status_state, self.data
+        return (kept is not None and kept.time == d.time and kept.held == self.robot.grasped()
+                and np.array_equal(kept.qpos, d.qpos)
+                and np.array_equal(kept.mocap_pos, d.mocap_pos)
+                and np.array_equal(kept.mocap_quat, d.mocap_quat))
 
     # ------------------------------------------------------------- rendering
     def render(self) -> np.ndarray | None:

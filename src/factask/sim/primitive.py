@@ -43,6 +43,11 @@ YAW_ACCEL = 40.0
 #: Speed of guarded moves (descents until contact), m/s: 0.4 mm per 2 ms step,
 #: so first contact is detected at sub-millimetre penetration.
 GUARDED_SPEED = 0.2
+#: A guarded descent tests contacts only once the command has come within this
+#: distance (m) of the clearance below (a servo's overshoot, objects settling) ...
+GUARD_SLACK = 0.002
+#: ... counting what lies within this distance (m) sideways of the moving part.
+GUARD_MARGIN = 0.01
 #: The guarded part of a descent starts this far above the target (m) ...
 APPROACH_HEIGHT = 0.01
 #: ... and the pick descent may go this far below the pick pose looking for contact (m).
@@ -267,8 +272,7 @@ class SuctionRobot(ABC):
         up = np.array([0.0, 0.0, 1.0])
         # Transfer to just above the pick, then a guarded descent to the first contact.
         self._transfer(pick.pos + APPROACH_HEIGHT * up, pick_yaw)
-        if self._follow(self._line(pick.pos - PICK_OVERSHOOT * up, pick_yaw, GUARDED_SPEED),
-                        stop=self.gripper.cup_in_contact):
+        if self._descend(pick.pos - PICK_OVERSHOOT * up, pick_yaw, held=False):
             self._hold_here()
         if not self.suction_on():
             self._transfer(self._cmd_pos + APPROACH_HEIGHT * up, self._cmd_yaw)
@@ -277,9 +281,7 @@ class SuctionRobot(ABC):
         assert grasped is not None
         # Carry to just above the place pose, then a guarded descent until it rests.
         self._transfer(place.pos + APPROACH_HEIGHT * up, place_yaw)
-        if not self.gripper.held_in_contact() and self._follow(
-                self._line(place.pos, place_yaw, GUARDED_SPEED),
-                stop=self.gripper.held_in_contact):
+        if not self.gripper.held_in_contact() and self._descend(place.pos, place_yaw, held=True):
             self._hold_here()
         self._settle()
         if self.gripper.held is None:
@@ -314,6 +316,32 @@ class SuctionRobot(ABC):
         points.append((np.asarray(goal, dtype=float), yaw))
         self._follow(self._path(points))
         self._settle()
+
+    def _descend(self, goal: np.ndarray, yaw: float, held: bool) -> bool:
+        """Guarded straight move down to (goal, yaw) at GUARDED_SPEED until the cup
+        (``held`` False) or the held object touches something; True when it did.
+
+        Contacts are tested after every step only once contact is possible: the
+        steps before the command has come down by the clearance below
+        (:meth:`~factask.sim.suction.SuctionGripper.clearance`, less GUARD_SLACK
+        and any lag of the tip behind its command) are played as one motion.
+        """
+        start = self._cmd_pos.copy()
+        rows = self._line(goal, yaw, GUARDED_SPEED)
+        stop = self.gripper.held_in_contact if held else self.gripper.cup_in_contact
+        free = 0
+        drop = float(start[2] - goal[2])
+        if (self._on_step is None and drop > 0.0
+                and float(np.abs(goal[:2] - start[:2]).max()) < 1e-6):
+            lag = max(0.0, float(self.data.site_xpos[self.tip_site, 2] - start[2]))
+            room = (self.gripper.clearance(held, GUARD_MARGIN) - lag - GUARD_SLACK
+                    - self.gripper.contact_reach)
+            n = len(rows)
+            # After row i (0-based) the command is drop * (i + 1) / n lower.
+            free = min(n, max(0, math.ceil(room * n / drop) - 1))
+        if free:
+            self._follow(rows[:free])
+        return self._follow(rows[free:], stop=stop)
 
     def _travel_heights(self, start: np.ndarray, goal: np.ndarray) -> tuple[float, float]:
         """Tip heights above ``start`` and above ``goal`` of the move over.

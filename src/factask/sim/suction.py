@@ -181,6 +181,17 @@ class SuctionGripper:
         self.object_geoms = np.flatnonzero(collides & not_robot & (self.geom_root != 0))
         self._aabb_c = model.geom_aabb[self.object_geoms, :3].copy()
         self._aabb_h = model.geom_aabb[self.object_geoms, 3:].copy()
+        #: Colliding geoms that are not the robot's (objects and the static world): what
+        #: a guarded move can touch (:meth:`clearance`).
+        self.solid_geoms = np.flatnonzero(collides & not_robot)
+        self._solid_root = self.geom_root[self.solid_geoms]
+        self._solid_c = model.geom_aabb[self.solid_geoms, :3].copy()
+        self._solid_h = model.geom_aabb[self.solid_geoms, 3:].copy()
+        self._solid_plane = model.geom_type[self.solid_geoms] == int(mujoco.mjtGeom.mjGEOM_PLANE)
+        self._cup_c = model.geom_aabb[self.cup_geom, :3].copy()
+        self._cup_h = model.geom_aabb[self.cup_geom, 3:].copy()
+        #: Contacts are generated this far apart at most (m; the largest geom margin).
+        self.contact_reach = float(model.geom_margin.max(initial=0.0))
         free = [j for j in range(model.njnt)
                 if int(model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_FREE)
                 and int(model.body_rootid[model.jnt_bodyid[j]]) not in self.robot_bodies]
@@ -317,6 +328,50 @@ class SuctionGripper:
         tc = (centre[keep, :2] - a) @ ab / length2
         return (np.clip(tc - reach, 0.0, 1.0), np.clip(tc + reach, 0.0, 1.0),
                 centre[keep, 2] + half[keep, 2])
+
+    def clearance(self, held: bool, margin: float) -> float:
+        """Vertical gap (m) under the cup (``held`` False) or under the held object:
+        from its lowest point down to the highest top of the other solids (objects,
+        the table, fixtures) whose world-aligned boxes come within ``margin`` of its
+        own sideways. Nothing closer than this below it can touch it while it moves
+        straight down by less (a guarded descent need not test contacts before).
+
+        Args:
+            held: Measure under the held object (else under the cup geom).
+            margin: Sideways distance (m) within which a solid counts as below.
+
+        Returns:
+            The gap (negative when something is already level with it; -inf when
+            ``held`` and nothing is held, or a plane is not level).
+        """
+        d = self.data
+        ids = self.solid_geoms
+        rot = d.geom_xmat[ids].reshape(-1, 3, 3)
+        centre = d.geom_xpos[ids] + np.einsum("nij,nj->ni", rot, self._solid_c)
+        half = np.einsum("nij,nj->ni", np.abs(rot), self._solid_h)
+        if self._solid_plane.any():  # an infinite plane: its height, everywhere
+            if (rot[self._solid_plane, 2, 2] < 1.0 - 1e-9).any():
+                return -math.inf
+            centre[self._solid_plane, 2] = d.geom_xpos[ids[self._solid_plane], 2]
+            half[self._solid_plane] = (math.inf, math.inf, 0.0)
+        if held:
+            mine = self._solid_root == (-1 if self._held is None else self._held)
+            if not mine.any():
+                return -math.inf
+            lo = (centre[mine] - half[mine]).min(axis=0)
+            hi = (centre[mine] + half[mine]).max(axis=0)
+        else:
+            mine = np.zeros(len(ids), dtype=bool)
+            cup_rot = d.geom_xmat[self.cup_geom].reshape(3, 3)
+            c = d.geom_xpos[self.cup_geom] + cup_rot @ self._cup_c
+            h = np.abs(cup_rot) @ self._cup_h
+            lo, hi = c - h, c + h
+        near = (~mine & (centre[:, 0] + half[:, 0] >= lo[0] - margin)
+                & (centre[:, 0] - half[:, 0] <= hi[0] + margin)
+                & (centre[:, 1] + half[:, 1] >= lo[1] - margin)
+                & (centre[:, 1] - half[:, 1] <= hi[1] + margin))
+        top = (centre[near, 2] + half[near, 2]).max(initial=-math.inf)
+        return float(lo[2] - top)
 
     def held_footprint(self) -> float:
         """Largest horizontal distance (m) from the tip axis to the held object's box
