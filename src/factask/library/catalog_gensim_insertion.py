@@ -18,6 +18,7 @@ from factask.library.builders import (
     var,
 )
 from factask.library.conventions import (
+    BALL,
     BLOCK,
     BLOCK_FIXTURE,
     CORNER,
@@ -26,6 +27,7 @@ from factask.library.conventions import (
     FOUR,
     NEAR,
     THREE,
+    TUBE,
 )
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
@@ -207,3 +209,27 @@ def assembling_kits_seq() -> TaskGraph:
                    "Place each piece in its silhouette on the kitting board in the order "
                    "given: the ell, then the block, then the cylinder.", pieces, holes,
                    sequential=True)
+
+
+def _tubes(colors: tuple[str, ...]) -> list[StateVariable]:
+    """One open tube (a bowl taller than wide) per colour, named ``<colour>_cylinder``
+    as GenSim calls them."""
+    return [var(f"{c}_cylinder", "bowl", c, TUBE,
+                description=f"the {c} cylinder, open on top (a tube)") for c in colors]
+
+
+@register("insert-color-blocks-into-cylinders", family="insertion")
+def insert_color_blocks_into_cylinders() -> TaskGraph:
+    pairs = list(zip(colored("block", FOUR, BLOCK), _tubes(FOUR), strict=True))
+    return assemble("insert-color-blocks-into-cylinders",
+                    "Insert each block into the open cylinder of its colour: red first, then "
+                    "blue, green and yellow.",
+                    match_pairs("put_in_container", pairs, sequential=True))
+
+
+@register("color-coordinated-sphere-cylinder-matching", family="insertion")
+def color_coordinated_sphere_cylinder_matching() -> TaskGraph:
+    pairs = list(zip(colored("ball", FOUR, BALL, suffix="sphere"), _tubes(FOUR), strict=True))
+    return assemble("color-coordinated-sphere-cylinder-matching",
+                    "Drop each sphere into the open cylinder of its colour.",
+                    match_pairs("put_in_container", pairs))

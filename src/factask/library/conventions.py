@@ -14,6 +14,11 @@ BALL = (0.04, 0.04, 0.04)
 #: An upright cylinder: 4 cm across, 6 cm high.
 CYLINDER = (0.04, 0.04, 0.06)
 BOWL = (0.12, 0.12, 0.05)
+#: GenSim's "cylinder with an opening on top" that things are inserted into: an open
+#: tube, which is what a ``bowl`` is (straight round walls on a floor) when it is
+#: taller than wide: 9 cm across (7 cm inside: a 4 cm block fits turned any way),
+#: 8 cm tall.
+TUBE = (0.09, 0.09, 0.08)
 ZONE = (0.12, 0.12, 0.001)
 CORNER = (0.055, 0.055, 0.001)
 LINE = (0.30, 0.01, 0.001)
