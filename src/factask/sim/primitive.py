@@ -352,10 +352,13 @@ class SuctionRobot(ABC):
         end is at the highest need (as a level move would be); the other is as low
         as the needs allow, whichever of the two choices climbs and descends less.
         """
-        t_lo, t_hi, top = self.gripper.corridor_obstacles(
-            start, goal, self.gripper.held_footprint() + CUP_CLEARANCE)
-        bottom = self.gripper.held_bottom()
-        hang = 0.0 if bottom is None else max(0.0, float(self.ee_pose().pos[2]) - bottom)
+        grip = self.gripper
+        boxes = grip.object_boxes()  # once for the three queries: nothing moves meanwhile
+        t_lo, t_hi, top = grip.corridor_obstacles(
+            start, goal, grip.held_footprint(boxes) + CUP_CLEARANCE, boxes)
+        bottom = grip.held_bottom(boxes)
+        tip_z = float(self.data.site_xpos[self.tip_site, 2])
+        hang = 0.0 if bottom is None else max(0.0, tip_z - bottom)
         need = top + hang + CLEARANCE
         z0, z1 = float(start[2]), float(goal[2])
         high = max(float(need.max(initial=0.0)), MIN_TRAVEL_HEIGHT, z1)

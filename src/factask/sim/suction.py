@@ -258,19 +258,16 @@ class SuctionGripper:
         other = np.where(mine[:, 0], roots[:, 1], roots[:, 0])[one]
         return bool((~self._robot_body[other]).any())
 
-    def _object_boxes(self) -> tuple[np.ndarray, np.ndarray]:
-        """Centres and half extents (n, 3) of every object geom's world-aligned box."""
+    def object_boxes(self) -> tuple[np.ndarray, np.ndarray]:
+        """Centres and half extents (n, 3) of every object geom's world-aligned box
+        (``object_geoms`` order): computed once, they can be passed to the queries
+        below that take ``boxes``."""
         d = self.data
         ids = self.object_geoms
         rot = d.geom_xmat[ids].reshape(-1, 3, 3)
         centre = d.geom_xpos[ids] + np.einsum("nij,nj->ni", rot, self._aabb_c)
         half = np.einsum("nij,nj->ni", np.abs(rot), self._aabb_h)
         return centre, half
-
-    def _object_z_extents(self) -> tuple[np.ndarray, np.ndarray]:
-        """Lowest and highest z of every object geom's box (world frame)."""
-        centre, half = self._object_boxes()
-        return centre[:, 2] - half[:, 2], centre[:, 2] + half[:, 2]
 
     def obstacle_top(self, start: np.ndarray | None = None, goal: np.ndarray | None = None,
                      margin: float = 0.0) -> float:
@@ -288,7 +285,7 @@ class SuctionGripper:
         if start is not None and goal is not None:
             top = self.corridor_obstacles(start, goal, margin)[2]
         else:
-            centre, half = self._object_boxes()
+            centre, half = self.object_boxes()
             top = (centre[:, 2] + half[:, 2])[self._not_held()]
         return float(top.max()) if len(top) else 0.0
 
@@ -298,8 +295,9 @@ class SuctionGripper:
             return np.ones(len(self.object_geoms), dtype=bool)
         return self.geom_root[self.object_geoms] != self._held
 
-    def corridor_obstacles(self, start: np.ndarray, goal: np.ndarray,
-                           margin: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def corridor_obstacles(self, start: np.ndarray, goal: np.ndarray, margin: float,
+                           boxes: tuple[np.ndarray, np.ndarray] | None = None,
+                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The object geoms (not the held object's) within ``margin`` of the straight
         line from ``start`` to ``goal`` (x, y): where along it and how high.
 
@@ -307,6 +305,7 @@ class SuctionGripper:
             start: Start of the line (its x, y count).
             goal: End of the line.
             margin: Half width (m) of the corridor beyond each geom's box.
+            boxes: :meth:`object_boxes` of the current state (computed if None).
 
         Returns:
             ``(t_lo, t_hi, top)``, one entry per geom in the corridor: the part
@@ -315,7 +314,7 @@ class SuctionGripper:
         """
         if len(self.object_geoms) == 0:
             return np.zeros(0), np.zeros(0), np.zeros(0)
-        centre, half = self._object_boxes()
+        centre, half = boxes if boxes is not None else self.object_boxes()
         a, b = np.asarray(start[:2], float), np.asarray(goal[:2], float)
         ab = b - a
         length2 = max(float(ab @ ab), 1e-12)
@@ -373,12 +372,12 @@ class SuctionGripper:
         top = (centre[near, 2] + half[near, 2]).max(initial=-math.inf)
         return float(lo[2] - top)
 
-    def held_footprint(self) -> float:
+    def held_footprint(self, boxes: tuple[np.ndarray, np.ndarray] | None = None) -> float:
         """Largest horizontal distance (m) from the tip axis to the held object's box
-        (0 when nothing is held)."""
+        (0 when nothing is held; ``boxes``: :meth:`object_boxes`, computed if None)."""
         if self._held is None:
             return 0.0
-        centre, half = self._object_boxes()
+        centre, half = boxes if boxes is not None else self.object_boxes()
         mine = self.geom_root[self.object_geoms] == self._held
         if not mine.any():
             return 0.0
@@ -394,11 +393,13 @@ class SuctionGripper:
         mine = self.object_geoms[self.geom_root[self.object_geoms] == self._held]
         return bool(np.isin(self.model.geom_type[mine], _ROUND_GEOMS).any())
 
-    def held_bottom(self) -> float | None:
-        """Lowest point (m) of the held object, or None when nothing is held."""
+    def held_bottom(self, boxes: tuple[np.ndarray, np.ndarray] | None = None) -> float | None:
+        """Lowest point (m) of the held object, or None when nothing is held
+        (``boxes``: :meth:`object_boxes`, computed if None)."""
         if self._held is None:
             return None
-        low, _ = self._object_z_extents()
+        centre, half = boxes if boxes is not None else self.object_boxes()
+        low = centre[:, 2] - half[:, 2]
         mine = self.geom_root[self.object_geoms] == self._held
         return float(low[mine].min()) if mine.any() else None
 
