@@ -138,14 +138,16 @@ class Occupancy:
             self._cache = (names, grown, z0, z1)
         return self._cache
 
-    def free_mask(self, obj: SceneObject, poses: list[Pose],
-                  ignore: Iterable[str] = ()) -> np.ndarray:
+    def free_mask(self, obj: SceneObject, poses: list[Pose], ignore: Iterable[str] = (),
+                  solid_fixtures: bool = False) -> np.ndarray:
         """Bool (k,): which candidate poses of ``obj`` collide with no body.
 
         Args:
             obj: The object to place.
             poses: Candidate poses.
             ignore: Body names not to test against (e.g. the support it rests on).
+            solid_fixtures: Nothing may lie inside a fixture's frame (a start on the
+                table); otherwise a body inside it meets nothing (a goal's slot).
         """
         k = len(poses)
         if k == 0:
@@ -165,20 +167,22 @@ class Occupancy:
         hit = xy & zover
         # Receptacle pairs: an object inside the inner area only meets the floor.
         for ki, pi in zip(*np.nonzero(hit), strict=True):
-            if not self._pair_collides(obj, poses[ki], self._bodies[names[pi]]):
+            if not self._pair_collides(obj, poses[ki], self._bodies[names[pi]],
+                                       solid_fixtures):
                 hit[ki, pi] = False
         return ~hit.any(axis=1)
 
-    def _pair_collides(self, obj: SceneObject, pose: Pose, other: _Body) -> bool:
+    def _pair_collides(self, obj: SceneObject, pose: Pose, other: _Body,
+                       solid_fixtures: bool = False) -> bool:
         mine = _body(obj, pose, self.clearance)
         if obj.is_round and other.obj.is_round:  # disks: exact, boxes are too coarse
             gap = float(np.linalg.norm(pose.pos[:2] - other.pose.pos[:2]))
             if gap >= footprint_radius(obj) + footprint_radius(other.obj) + self.clearance:
                 return False
         if other.obj.is_receptacle:
-            return _receptacle_pair(other, mine)
+            return _receptacle_pair(other, mine, solid_fixtures)
         if obj.is_receptacle:
-            return _receptacle_pair(mine, other)
+            return _receptacle_pair(mine, other, solid_fixtures)
         return True
 
     def blockers(self, obj: SceneObject, pose: Pose, ignore: Iterable[str] = ()) -> list[str]:
@@ -195,14 +199,14 @@ class Occupancy:
         return out
 
 
-def _receptacle_pair(rec: _Body, other: _Body) -> bool:
+def _receptacle_pair(rec: _Body, other: _Body, solid_fixtures: bool = False) -> bool:
     """Collision of a receptacle with another body (which may sit inside it).
 
-    Only floored receptacles (containers, bowls) admit other bodies inside: a
-    fixture's frame is walled up around a hollow shaped for one piece (an ell's
-    hollow leaves most of its inner square solid), so a body meant for it is placed
-    with the fixture ignored and any other body inside its frame collides."""
-    if floor_thickness(rec.obj) == 0.0:
+    With ``solid_fixtures``, a fixture (a floorless frame) admits nothing: its frame
+    is walled up around a hollow shaped for one piece (an ell's hollow leaves most
+    of its inner square solid), which only a goal puts there, never a start on the
+    table."""
+    if solid_fixtures and floor_thickness(rec.obj) == 0.0:
         return True
     area = placement_area(rec.obj, rec.pose)
     if bool(area.contains(other.raw).all()):
@@ -233,8 +237,10 @@ def random_yaws(rng: np.random.Generator, k: int) -> np.ndarray:
 
 
 def first_free(occ: Occupancy, obj: SceneObject, poses: list[Pose],
-               ignore: Iterable[str] = (), within: Area | None = None) -> Pose | None:
-    """The first candidate inside the workspace (and ``within``) that is free."""
+               ignore: Iterable[str] = (), within: Area | None = None,
+               solid_fixtures: bool = False) -> Pose | None:
+    """The first candidate inside the workspace (and ``within``) that is free
+    (``solid_fixtures``: see :meth:`Occupancy.free_mask`)."""
     if not poses:
         return None
     corners = footprint_corners_batch(obj, np.array([p.pos[:2] for p in poses]),
@@ -247,7 +253,7 @@ def first_free(occ: Occupancy, obj: SceneObject, poses: list[Pose],
                    if bool(within.contains(footprint_points(obj, poses[i], covering=True)).all())]
         if not idx:
             continue
-        free = occ.free_mask(obj, [poses[i] for i in idx], ignore)
+        free = occ.free_mask(obj, [poses[i] for i in idx], ignore, solid_fixtures)
         hits = np.flatnonzero(free)
         if len(hits):
             return poses[idx[int(hits[0])]]

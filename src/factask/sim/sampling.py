@@ -111,7 +111,7 @@ def _first_free_on_table(occ: Occupancy, obj: SceneObject, placement: object,
     for stop in (*(b for b in _CANDIDATE_BATCHES if b < k), k):
         batch = [resting_pose(obj, x, y, TABLE_Z, a)
                  for (x, y), a in zip(xy[start:stop], yaw[start:stop], strict=True)]
-        pose = first_free(occ, obj, batch)
+        pose = first_free(occ, obj, batch, solid_fixtures=True)
         if pose is not None:
             return pose
         start = stop
