@@ -569,6 +569,21 @@ def test_batch_timeout_in_reset_keeps_loaded():
     assert rec["error"].startswith("timed out") and "reset" in rec["error"]
 
 
+def test_batch_time_limit_starts_when_the_worker_is_ready(monkeypatch):
+    """A worker slow to start (a busy machine importing MuJoCo) does not eat the task
+    file's time: 4 s of start-up, then a file that finishes well within 3 s."""
+    from factask.compat.cliport import batch
+
+    script = ("import sys, time\n"
+              "time.sleep(4)\n"
+              "from factask.compat.cliport import worker\n"
+              "worker.main(sys.argv[1:])\n")
+    monkeypatch.setattr(batch, "_worker_command",
+                        lambda path, *a, **k: [sys.executable, "-c", script, str(path)])
+    rec = run_one(BAD / "no_task.py", timeout=3)
+    assert "no Task subclass defined" in rec["error"], rec["error"]
+
+
 def test_batch_cli_prints_errors_that_look_like_markup(tmp_path):
     folder = tmp_path / "tasks"
     folder.mkdir()

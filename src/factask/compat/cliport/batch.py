@@ -14,12 +14,20 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import IO, Any
 
 #: Default time limit per file, seconds (a reset alone takes 2-4 s in PyBullet).
 DEFAULT_TIMEOUT_S = 120.0
+#: Seconds a worker may take to start (import factask and MuJoCo) before the time
+#: limit for the task file itself begins.
+STARTUP_TIMEOUT_S = 300.0
+
+#: The line a worker prints once it has started (its imports are done).
+READY_LINE = '{"worker": "ready"}'
+
 #: Characters of a crashed child's stderr kept in its error message.
 STDERR_TAIL = 600
 
@@ -91,7 +99,8 @@ def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
 
     Args:
         path: The task file.
-        timeout: Seconds the child may take (it and its children are killed after).
+        timeout: Seconds the task file may take in the child, counted from the
+            worker's start (it and its children are killed after).
         seed: Import seed.
         episodes: Oracle episodes per file (0: none).
         graph_out: Where the child writes the graph JSON, if given.
@@ -104,25 +113,63 @@ def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
     proc = subprocess.Popen(_worker_command(p, seed, episodes, graph_out, ravens),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
+    child = _ChildOutput(proc)
+    # The limit is for the task file: it starts once the worker has imported factask
+    # and MuJoCo (seconds on a busy machine, and no business of the file's).
+    started = child.ready.wait(STARTUP_TIMEOUT_S)
     timed_out = False
     try:
-        out, err = proc.communicate(timeout=timeout)
+        proc.wait(timeout=timeout if started else 0)
     except subprocess.TimeoutExpired:
         timed_out = True
         _kill_group(proc)
-        out, err = proc.communicate()  # what the child printed before the kill
+        proc.wait()
+    out, err = child.collect()  # what the child printed, up to its exit or the kill
     rec, stage = _last_record(out)
     if rec is not None and stage == "done":
         return rec
     rec = rec if rec is not None else _failed(p, "")
     when = _NEXT_STEP.get(stage, f"after stage {stage!r}")
-    if timed_out:
+    if timed_out and not started:
+        rec["error"] = (f"the worker did not start within {STARTUP_TIMEOUT_S:g} s "
+                        "(importing factask and MuJoCo); is the machine overloaded?")
+    elif timed_out:
         rec["error"] = f"timed out after {timeout:g} s (wall clock) {when}"
     else:
         tail = err.strip()[-STDERR_TAIL:]
         rec["error"] = (f"child process exited with code {proc.returncode} {when} "
                         "without a result" + (f": {tail}" if tail else ""))
     return rec
+
+
+class _ChildOutput:
+    """Reads a child's stdout and stderr on threads (so neither pipe fills up) and
+    signals ``ready`` when the worker's ready line arrives or stdout closes."""
+
+    def __init__(self, proc: subprocess.Popen[str]) -> None:
+        self.ready = threading.Event()
+        self._out: list[str] = []
+        self._err: list[str] = []
+        self._threads = [threading.Thread(target=self._read_out, args=(proc.stdout,), daemon=True),
+                         threading.Thread(target=self._read_err, args=(proc.stderr,), daemon=True)]
+        for t in self._threads:
+            t.start()
+
+    def _read_out(self, stream: IO[str]) -> None:
+        for line in stream:
+            self._out.append(line)
+            if line.strip() == READY_LINE:
+                self.ready.set()
+        self.ready.set()  # the child exited (or closed stdout): nothing more to wait for
+
+    def _read_err(self, stream: IO[str]) -> None:
+        self._err.append(stream.read())
+
+    def collect(self) -> tuple[str, str]:
+        """Everything printed, once the child has exited."""
+        for t in self._threads:
+            t.join()
+        return "".join(self._out), "".join(self._err)
 
 
 def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT_S,

@@ -14,7 +14,9 @@ with ``--ravens`` also ``ravens_success_rate`` and per episode ``ravens``
 ``error`` (null on success). One JSON line is printed (and flushed) after each
 stage, with a ``stage`` key (``loaded``, ``imported``, ``compiled``), and the
 final one with ``"stage": "done"``: a parent that kills a hanging child keeps
-the stages it already reported.
+the stages it already reported. Before any of them, once its own imports are
+done, it prints :data:`~factask.compat.cliport.batch.READY_LINE`: the parent's
+time limit covers the task file, not the worker's start-up.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from factask.compat.cliport.batch import READY_LINE
 from factask.compat.cliport.errors import CliportImportError
 from factask.compat.cliport.loader import import_cliport
 from factask.compat.cliport.scoring import scored_episode
@@ -145,6 +148,8 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     out = sys.stdout
     sys.stdout = sys.stderr  # user code's prints must not mix with the records
+    out.write(READY_LINE + "\n")  # imports done: the parent's time limit starts now
+    out.flush()
 
     def emit(rec: dict[str, Any]) -> None:
         out.write("\n" + json.dumps({**rec, "stage": stage_of(rec)}) + "\n")
