@@ -256,14 +256,16 @@ def graph_schema(task_name: str) -> Schema:
 
 
 # ------------------------------------------------------------------- subtasks
-def subtask_plan(variable_names: Sequence[str]) -> Schema:
-    """Approach 1, step 2: subtasks, each naming a subset of the declared variables."""
+def subtask_plan(variable_names: Sequence[str],
+                 max_subtasks: int = STEP_MAX_SUBTASKS) -> Schema:
+    """Approach 1, step 2: subtasks, each naming a subset of the declared variables
+    (at most ``max_subtasks``)."""
     return obj({"subtasks": array(obj({
         "name": name(),
         "description": text(),
         "variables": array(name(variable_names), 1, len(variable_names)),
         "initial_setup": text(),
-    }), 1, STEP_MAX_SUBTASKS)})
+    }), 1, max_subtasks)})
 
 
 def goal_answer(scope: Mapping[str, str]) -> Schema:

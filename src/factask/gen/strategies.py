@@ -19,10 +19,12 @@ the step refers to them) and runs as a conversation (:class:`~factask.gen.steps.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from typing import Any
 
 from pydantic import ValidationError
 
+from factask.gen import grounded
 from factask.gen import step_schemas as ss
 from factask.gen.conversation import PromptLevel
 from factask.gen.fragments import (
@@ -36,7 +38,7 @@ from factask.gen.fragments import (
 )
 from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
 from factask.gen.memory import SubtaskMemory
-from factask.gen.mentions import grounding_feedback, mentions_text
+from factask.gen.mentions import grounding_feedback, mentions, mentions_text
 from factask.gen.prompts import render
 from factask.gen.results import APPROACHES, GenerationResult
 from factask.gen.schemas import (
@@ -115,12 +117,20 @@ class Generator(StepRunner):
         max_repairs: Repairs per step after the first answer.
         on_step: Called with every :class:`AttemptRecord` as it happens.
         n_examples: In-context examples per prompt (per source).
+        grounded: Fix the objects the proposal names in the step schemas and ask
+            one-shot for a compact answer (:mod:`factask.gen.grounded`); None:
+            for the packaged local models only (a tiny model on a CPU), whose
+            ``config.is_local`` is true.
     """
 
     def __init__(self, client: LLMClient, verifier: Verifier | None = None,
                  memory: SubtaskMemory | None = None, max_repairs: int = 3,
-                 on_step: StepCallback | None = None, n_examples: int = 2) -> None:
+                 on_step: StepCallback | None = None, n_examples: int = 2,
+                 grounded: bool | None = None) -> None:
         super().__init__(client, verifier, memory, max_repairs, on_step, n_examples)
+        if grounded is None:
+            grounded = bool(getattr(getattr(client, "config", None), "is_local", False))
+        self.grounded = grounded
 
     # ------------------------------------------------------------------ API
     def generate(self, proposal: str, approach: str = "variables-first",
@@ -171,10 +181,14 @@ class Generator(StepRunner):
         return result
 
     # ---------------------------------------------------------- whole graphs
-    def _evaluate_graph(self, task: str, desc: str,
-                        schema: dict[str, Any]) -> Any:
+    def _evaluate_graph(self, task: str, desc: str, schema: dict[str, Any],
+                        expand: Callable[[dict[str, Any]], dict[str, Any]] | None = None
+                        ) -> Any:
         def evaluate(text: str) -> Evaluation:
-            data = normalise_weights(read_strict(text, schema, {"name": task}))
+            if expand is not None:  # a compact answer: its decisions -> the whole graph
+                data = expand(read_strict(text, schema))
+            else:
+                data = normalise_weights(read_strict(text, schema, {"name": task}))
             # The task's name is ours, not the model's to choose.
             graph = self.verifier.syntax({**data, "name": task,
                                           "description": data.get("description") or desc})
@@ -232,16 +246,28 @@ class Generator(StepRunner):
     # ------------------------------------------------------------- one-shot
     def _one_shot(self, task: str, desc: str) -> None:
         query = f"{task} {desc}"
-        schema = ss.graph_schema(task)
+        found = mentions(f"{desc} {task}")
+        # The objects the proposal names come from its words; the model writes the
+        # decisions (factask.gen.grounded).
+        compact = self.grounded and grounded.applies(found)
+        schema = grounded.compact_graph_schema(found) if compact else ss.graph_schema(task)
 
         def prompt(lv: PromptLevel) -> str:
+            if compact:
+                k = min(lv.examples, self.n_examples)
+                return render("one_shot_grounded", task_name=task, task_description=desc,
+                              mentions=mentions_text(f"{desc} {task}"),
+                              examples=grounded.compact_examples(query, k, task),
+                              schema=self.schema_for_prompt(schema, lv))
             return render("one_shot", task_name=task, task_description=desc,
                           mentions=mentions_text(f"{desc} {task}"),
                           examples=self.examples(query, ("tasks", "memory"), lv.examples),
                           schema=self.schema_for_prompt(schema, lv))
 
+        expand = (lambda data: grounded.expand_graph(data, found, task, desc)) if compact \
+            else None
         out = self.ask("one_shot", prompt, schema, "task_graph",
-                       self._evaluate_graph(task, desc, schema))
+                       self._evaluate_graph(task, desc, schema, expand))
         self.finish(out.value, out.level, None if out.ok else f"one_shot: {out.feedback}")
         if out.ok and out.value is not None:
             for f in out.value.factors:
@@ -303,7 +329,9 @@ class Generator(StepRunner):
         self._verify_assembled(task, desc, graph, problem)
 
     def _ask_variables(self, task: str, desc: str, query: str) -> list[StateVariable]:
-        schema = ss.variables_answer()
+        found = mentions(f"{desc} {task}")
+        use = self.grounded and grounded.applies(found)
+        schema = grounded.variables_answer(found) if use else ss.variables_answer()
 
         def prompt(lv: PromptLevel) -> str:
             return render("variables", task_name=task, task_description=desc,
@@ -330,7 +358,8 @@ class Generator(StepRunner):
     def _ask_plan(self, task: str, desc: str, query: str,
                   variables: list[StateVariable]) -> SubtaskPlan:
         names = [v.name for v in variables]
-        schema = ss.subtask_plan(names)
+        schema = ss.subtask_plan(names, grounded.plan_bound(variables) if self.grounded
+                                 else ss.STEP_MAX_SUBTASKS)
 
         def prompt(lv: PromptLevel) -> str:
             return render("subtask_plan", task_name=task, task_description=desc,

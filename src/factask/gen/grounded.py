@@ -1,0 +1,332 @@
+"""Step schemas grounded in the objects the proposal names.
+
+A grammar-constrained tiny model writes whatever the grammar leaves open, and
+left open it loops (the same variable until the token cap) or copies the
+examples' objects. When the proposal names objects (:func:`factask.gen.mentions.mentions`:
+"the yellow cylinder", "three red blocks"), what it names is not the model's to
+choose, so the schemas here fix it:
+
+* the **variables** the proposal names come first, each with its name, kind,
+  colour and count as constants and its size ``null`` (the kind's default: the
+  proposal gives none); the model writes their descriptions and initial
+  placements (``table``, or ``on`` / ``inside`` a named variable whose kind can
+  carry it) and may add at most :data:`MAX_EXTRA` objects of its own (an
+  ``anyOf`` of tuples, one per number of extra objects: llama.cpp's grammar
+  takes ``prefixItems`` but not ``prefixItems`` followed by ``items``);
+* a **whole graph** (one-shot) has exactly the named objects, and at most one
+  factor per movable one (a goal moves something), its goal's names an enum of
+  them; ``after`` is empty when there can be only one factor;
+* a **subtask plan** has at most one subtask per movable variable.
+
+The answer stays data checked against the schema, by pydantic and by the
+ladder; a proposal that names no movable object gets the ungrounded schemas of
+:mod:`factask.gen.step_schemas`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from pydantic import ValidationError
+
+from factask.gen import step_schemas as ss
+from factask.gen.examples import library_task_examples, render_examples
+from factask.gen.mentions import Mention
+from factask.model.factors import SubtaskFactor
+from factask.model.graph import TaskGraph
+from factask.model.kinds import ASSET_KINDS, kind_spec
+from factask.model.names import slugify
+from factask.model.order import in_listed_order
+from factask.model.palette import COLOR_NAMES
+from factask.model.variables import StateVariable
+from factask.relations import RELATION_TYPES
+
+Schema = ss.Schema
+
+#: Most objects a model may add to those the proposal names.
+MAX_EXTRA = 2
+#: Longest description in a grounded answer (a tiny model pads free text).
+GROUNDED_TEXT = 60
+
+
+def _placement(own: str, kinds: dict[str, str]) -> Schema:
+    """``table``, or ``on`` a support / ``inside`` a receptacle among ``kinds``
+    (only ``table`` for a kind that stays fixed: a zone, a bowl)."""
+    if own and not kind_spec(kinds[own]).movable:
+        return ss.obj({"type": {"const": "table"}})
+    supports = [n for n, k in kinds.items() if n != own and kind_spec(k).support]
+    receptacles = [n for n, k in kinds.items() if n != own and kind_spec(k).receptacle]
+    options: list[Schema] = [ss.obj({"type": {"const": "table"}})]
+    if supports:
+        options.append(ss.obj({"type": {"const": "on"}, "support": ss.name(supports)}))
+    if receptacles:
+        options.append(ss.obj({"type": {"const": "inside"},
+                               "container": ss.name(receptacles)}))
+    return options[0] if len(options) == 1 else {"anyOf": options}
+
+
+def mention_variable(mention: Mention, kinds: dict[str, str]) -> Schema:
+    """One named object as a variable: name, kind, colour, count and size fixed.
+
+    Args:
+        mention: The object the proposal names.
+        kinds: Every named object's name -> kind (where it may start).
+
+    Returns:
+        The variable's schema (the model writes ``description`` and ``initial``).
+    """
+    color: Schema = {"const": mention.color} if mention.color else \
+        {"type": "string", "enum": list(COLOR_NAMES)}
+    return ss.obj({
+        "name": {"const": mention.name},
+        "description": ss.text(GROUNDED_TEXT),
+        "kind": {"const": mention.kind},
+        "size": {"type": "null"},
+        "color": color,
+        "count": {"const": mention.count},
+        "initial": _placement(mention.name, kinds),
+    })
+
+
+def _extra_variable(kinds: dict[str, str]) -> Schema:
+    """An object the model adds: free name, kind, colour; size null; count 1..4."""
+    return ss.obj({
+        "name": ss.name(),
+        "description": ss.text(GROUNDED_TEXT),
+        "kind": {"type": "string", "enum": list(ASSET_KINDS)},
+        "size": {"type": "null"},
+        "color": {"type": "string", "enum": list(COLOR_NAMES)},
+        "count": {"type": "integer", "enum": [1, 2, 3, 4]},
+        "initial": _placement("", kinds) if kinds else ss.placement_schema([]),
+    })
+
+
+def movable(found: Sequence[Mention]) -> list[Mention]:
+    """The named objects the robot can move."""
+    return [m for m in found if kind_spec(m.kind).movable]
+
+
+def applies(found: Sequence[Mention]) -> bool:
+    """Whether grounding applies: the proposal names at least one movable object."""
+    return bool(movable(found))
+
+
+def grounded_variables(found: Sequence[Mention], extra: int = MAX_EXTRA) -> Schema:
+    """The variables array: the named objects first, then at most ``extra`` others.
+
+    Args:
+        found: The proposal's mentions (non-empty).
+        extra: Most objects the model may add.
+
+    Returns:
+        An array schema (an ``anyOf`` of tuples when ``extra`` > 0).
+    """
+    kinds = {m.name: m.kind for m in found}
+    fixed = [mention_variable(m, kinds) for m in found]
+    room = max(0, min(extra, ss.STEP_MAX_VARIABLES - len(fixed)))
+    tuples: list[Schema] = []
+    for k in range(room + 1):
+        items = fixed + [_extra_variable(kinds)] * k
+        tuples.append({"type": "array", "prefixItems": items, "items": False,
+                       "minItems": len(items), "maxItems": len(items)})
+    return tuples[0] if len(tuples) == 1 else {"anyOf": tuples}
+
+
+def variables_answer(found: Sequence[Mention], extra: int = MAX_EXTRA) -> Schema:
+    """Approach 1, step 1, grounded: ``{"variables": [...]}``."""
+    return ss.obj({"variables": grounded_variables(found, extra)})
+
+
+def graph_schema(task_name: str, found: Sequence[Mention]) -> Schema:
+    """A whole graph over exactly the named objects (one-shot).
+
+    Args:
+        task_name: The task's name (a constant).
+        found: The proposal's mentions (with a movable one: :func:`applies`).
+
+    Returns:
+        The graph's schema: at most one factor per movable named object.
+    """
+    kinds = {m.name: m.kind for m in found}
+    most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
+    factor = ss.factor_schema(None, kinds)
+    factor["properties"]["description"] = ss.text(GROUNDED_TEXT)
+    factor["properties"]["initial_setup"] = ss.text(GROUNDED_TEXT)
+    factor["properties"]["after"] = ss.array(ss.name(), 0, most - 1)
+    return ss.obj({
+        "name": {"const": task_name},
+        "description": ss.text(GROUNDED_TEXT),
+        "variables": grounded_variables(found, extra=0),
+        "factors": ss.array(factor, 1, most),
+    })
+
+
+#: Relation types a grounded goal leaves out: their fields are coordinates, which
+#: the library computes (the system prompt says so) and a tiny model invents.
+COORDINATE_RELATIONS = frozenset(["at_pose"])
+
+
+#: Relation types that move only variables of these kinds (the others never move them).
+OBJECT_KINDS: dict[str, frozenset[str]] = {"pile_in_zone": frozenset(["pile"]),
+                                           "rope_along": frozenset(["rope"])}
+_SPECIAL_KINDS = frozenset().union(*OBJECT_KINDS.values())
+
+
+def _without(field: Schema, name: str) -> Schema | None:
+    """An anchor field's schema without ``name`` (None: nothing left, not nullable)."""
+    if "enum" in field:
+        kept = [n for n in field["enum"] if n != name]
+        return {**field, "enum": kept} if kept else None
+    if "anyOf" not in field:
+        return field  # null only
+    options = [o for o in (_without(o, name) if "enum" in o else o
+                           for o in field.get("anyOf", [])) if o is not None]
+    if not options:
+        return None
+    return options[0] if len(options) == 1 else {"anyOf": options}
+
+
+def relation_over(relation: str, kinds: dict[str, str]) -> Schema | None:
+    """One relation's goal over the named objects, or None if none can fill it.
+
+    ``objects`` lists only the variables the relation can move (piles for
+    ``pile_in_zone``, ropes for ``rope_along``, any other movable kind for the
+    rest); with a single such variable, no anchor field may name it (an object
+    on itself).
+    """
+    wanted = OBJECT_KINDS.get(relation)
+    movers = [n for n, k in kinds.items() if kind_spec(k).movable
+              and (k in wanted if wanted else k not in _SPECIAL_KINDS)]
+    schema = ss.relation_schema(relation, kinds) if movers else None
+    if schema is None:
+        return None
+    props = schema["properties"]
+    props["objects"] = ss.array(ss.name(movers), 1, len(movers))
+    if len(movers) == 1:
+        for field in RELATION_TYPES[relation].anchor_fields:
+            if field in props:
+                narrowed = _without(props[field], movers[0])
+                if narrowed is None:
+                    return None
+                props[field] = narrowed
+    return schema
+
+
+def _goal(kinds: dict[str, str]) -> Schema:
+    options = [s for r in RELATION_TYPES if r not in COORDINATE_RELATIONS
+               and (s := relation_over(r, kinds)) is not None]
+    return options[0] if len(options) == 1 else {"anyOf": options}
+
+
+def compact_graph_schema(found: Sequence[Mention]) -> Schema:
+    """A whole graph's *decisions* only (one-shot with a grounded proposal).
+
+    The named objects' kinds, colours, counts, sizes and descriptions come from
+    the proposal (:func:`expand_graph`); the model writes where each starts and
+    the factors' names and goals -- about 70 tokens instead of 300, which on a
+    CPU with a grammar is minutes.
+
+    Args:
+        found: The proposal's mentions (with a movable one: :func:`applies`).
+
+    Returns:
+        ``{"variables": [{name, initial}, ...], "factors": [{name, goal}, ...]}``
+        with the variables a tuple of the named objects and at most one factor
+        per movable one.
+    """
+    kinds = {m.name: m.kind for m in found}
+    most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
+    items = [ss.obj({"name": {"const": m.name}, "initial": _placement(m.name, kinds)})
+             for m in found]
+    return ss.obj({
+        "variables": {"type": "array", "prefixItems": items, "items": False,
+                      "minItems": len(items), "maxItems": len(items)},
+        "factors": ss.array(ss.obj({"goal": _goal(kinds)}), 1, most),
+    })
+
+
+def factor_names(goals: Sequence[dict[str, Any]]) -> list[str]:
+    """A name per goal, from its relation and first object (``in_zone_red_block``),
+    numbered where two would be the same."""
+    out: list[str] = []
+    for goal in goals:
+        objects = goal.get("objects") or ["objects"]
+        base = slugify(f"{goal.get('type', 'goal')} {objects[0]}", "_", 48, "goal")
+        name, i = base, 2
+        while name in out:
+            name, i = f"{base}_{i}", i + 1
+        out.append(name)
+    return out
+
+
+def expand_graph(data: dict[str, Any], found: Sequence[Mention], task: str,
+                 description: str) -> dict[str, Any]:
+    """The whole graph of a :func:`compact_graph_schema` answer.
+
+    Args:
+        data: The answer (checked against the compact schema).
+        found: The proposal's mentions the schema was built from.
+        task: The task's name.
+        description: The task's description.
+
+    Returns:
+        A task graph's data: the named objects as variables (size null: the
+        kind's default), the factors with equal weights, listed in the order
+        they are done (a later factor moving an object an earlier one moved goes
+        after it, the earlier one a milestone: :func:`factask.model.order.in_listed_order`).
+    """
+    initial = {v["name"]: v["initial"] for v in data.get("variables", [])}
+    variables = [{"name": m.name, "description": m.describe(), "kind": m.kind, "size": None,
+                  "color": m.color or "gray", "count": m.count,
+                  "initial": initial.get(m.name, {"type": "table"})} for m in found]
+    answered = list(data.get("factors", []))
+    names = factor_names([f["goal"] for f in answered])
+    factors = [{"name": n, "description": f"{n.replace('_', ' ')}: {description}"[:200],
+                "goal": f["goal"], "weight": 1.0 / len(answered)}
+               for n, f in zip(names, answered, strict=True)]
+    try:
+        ordered = in_listed_order([SubtaskFactor.model_validate(f) for f in factors])
+        factors = [f.model_dump(mode="json", exclude_none=True) for f in ordered]
+    except ValidationError:
+        pass  # the syntax check reports it, naming the node and field
+    return {"name": task, "description": description, "variables": variables,
+            "factors": factors}
+
+
+def compact_example(graph: TaskGraph) -> dict[str, Any]:
+    """A task graph written as a :func:`compact_graph_schema` answer (an example)."""
+    def goal(f: SubtaskFactor) -> dict[str, Any]:
+        data = f.goal.model_dump(mode="json", exclude_none=True)
+        return {k: v for k, v in data.items() if k not in ss.OMITTED_RELATION_FIELDS}
+    return {"variables": [{"name": v.name,
+                           "initial": v.initial.model_dump(mode="json", exclude_none=True)
+                           if v.initial is not None else {"type": "table"}}
+                          for v in graph.variables],
+            "factors": [{"goal": goal(f)} for f in graph.factors]}
+
+
+def compact_examples(query: str, k: int, exclude: str | None = None) -> str:
+    """The ``k`` library tasks most like ``query``, as compact answers (never the
+    task itself, :func:`factask.gen.examples.library_task_examples`)."""
+    if k <= 0:
+        return "(none)"
+    found = library_task_examples(query, k, exclude=exclude)
+    for example in found:
+        try:
+            example.payload = compact_example(TaskGraph.model_validate(example.payload))
+        except ValidationError:
+            continue
+    return render_examples(found)
+
+
+def plan_bound(variables: Sequence[StateVariable]) -> int:
+    """Most subtasks of a plan over ``variables``: one per movable variable (1..8)."""
+    n = sum(1 for v in variables if kind_spec(v.kind).movable)
+    return max(1, min(n, ss.STEP_MAX_SUBTASKS))
+
+
+__all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "MAX_EXTRA", "OBJECT_KINDS", "applies",
+           "compact_example", "compact_examples", "compact_graph_schema", "expand_graph",
+           "factor_names", "graph_schema", "grounded_variables", "mention_variable",
+           "movable", "plan_bound", "relation_over", "variables_answer"]

@@ -1,0 +1,169 @@
+"""Step schemas grounded in the objects a proposal names (factask.gen.grounded)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from factask.gen import grounded
+from factask.gen.mentions import mentions
+from factask.gen.step_schemas import schema_problems
+from factask.model.graph import TaskGraph
+from factask.model.palette import COLOR_NAMES
+
+PROPOSAL = "put the yellow cylinder in the blue zone"
+
+
+def _var(name: str, kind: str, color: str, count: int = 1,
+         initial: dict | None = None) -> dict:
+    return {"name": name, "description": "an object", "kind": kind, "size": None,
+            "color": color, "count": count, "initial": initial or {"type": "table"}}
+
+
+GOOD = {
+    "name": "t", "description": "the task",
+    "variables": [_var("yellow_cylinder", "cylinder", "yellow"),
+                  _var("blue_zone", "zone", "blue")],
+    "factors": [{"name": "place", "description": "d", "initial_setup": "",
+                 "goal": {"type": "in_zone", "objects": ["yellow_cylinder"],
+                          "zone": "blue_zone"},
+                 "weight": 1.0, "after": [], "milestone": False}],
+}
+
+
+def test_a_graph_over_exactly_the_named_objects_validates_and_builds() -> None:
+    schema = grounded.graph_schema("t", mentions(PROPOSAL))
+    assert schema_problems(GOOD, schema) == []
+    TaskGraph.model_validate(GOOD).ensure_valid()
+
+
+@pytest.mark.parametrize("change", [
+    lambda g: g["variables"][0].update(color="blue"),          # another object
+    lambda g: g["variables"].pop(),                            # one missing
+    lambda g: g["variables"].append(_var("red_block", "block", "red")),  # one added
+    lambda g: g["variables"][0].update(size=[0.1, 0.1, 0.1]),  # size: the kind's default
+    lambda g: g["factors"][0]["goal"].update(zone="yellow_cylinder"),  # not a region
+    lambda g: g["factors"].append(dict(g["factors"][0], name="again")),  # 1 movable: 1 factor
+    lambda g: g["factors"][0].update(after=["place"]),          # one factor: no order
+])
+def test_the_grounded_graph_schema_refuses(change) -> None:
+    data = json.loads(json.dumps(GOOD))
+    change(data)
+    assert schema_problems(data, grounded.graph_schema("t", mentions(PROPOSAL)))
+
+
+def test_variables_may_add_at_most_max_extra_objects() -> None:
+    schema = grounded.variables_answer(mentions(PROPOSAL))
+    base = [_var("yellow_cylinder", "cylinder", "yellow"), _var("blue_zone", "zone", "blue")]
+    extra = _var("green_bowl", "bowl", "green")
+    for k in range(grounded.MAX_EXTRA + 1):
+        assert schema_problems({"variables": base + [extra] * k}, schema) == []
+    assert schema_problems({"variables": base + [extra] * (grounded.MAX_EXTRA + 1)}, schema)
+    assert schema_problems({"variables": base[::-1]}, schema)  # named objects first, in order
+
+
+def test_initial_placement_only_on_a_kind_that_can_carry_it() -> None:
+    found = mentions("put the red block on the blue pallet")
+    schema = grounded.variables_answer(found, extra=0)
+    on_pallet = _var("red_block", "block", "red", initial={"type": "on", "support": "blue_pallet"})
+    pallet = _var("blue_pallet", "pallet", "blue")
+    assert schema_problems({"variables": [on_pallet, pallet]}, schema) == []
+    on_itself = dict(pallet, initial={"type": "on", "support": "blue_pallet"})
+    assert schema_problems({"variables": [_var("red_block", "block", "red"), on_itself]},
+                           schema)
+
+
+def test_grounding_needs_a_movable_named_object() -> None:
+    assert not grounded.applies(mentions("the green zone"))
+    assert not grounded.applies(mentions("build something nice"))
+    assert grounded.applies(mentions("place three blocks in a row"))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(sorted(COLOR_NAMES)),
+                          st.sampled_from(["block", "cylinder", "ball", "zone", "bowl"])),
+                min_size=1, max_size=4))
+def test_grounded_schemas_turn_into_a_llama_cpp_grammar(pairs) -> None:
+    llama_grammar = pytest.importorskip("llama_cpp.llama_grammar")
+    proposal = " and ".join(f"the {c} {k}" for c, k in pairs)
+    found = mentions(proposal)
+    for schema in (grounded.variables_answer(found), grounded.graph_schema("t", found)):
+        assert "root" in llama_grammar.json_schema_to_gbnf(json.dumps(schema))
+
+
+COMPACT = {"variables": [{"name": "yellow_cylinder", "initial": {"type": "table"}},
+                         {"name": "blue_zone", "initial": {"type": "table"}}],
+           "factors": [{"goal": {"type": "in_zone",
+                                                  "objects": ["yellow_cylinder"],
+                                                  "zone": "blue_zone"}}]}
+
+
+def test_a_compact_answer_expands_into_a_valid_graph_of_the_named_objects() -> None:
+    found = mentions(PROPOSAL)
+    assert schema_problems(COMPACT, grounded.compact_graph_schema(found)) == []
+    data = grounded.expand_graph(COMPACT, found, "t", PROPOSAL)
+    graph = TaskGraph.model_validate(data).ensure_valid()
+    assert {(v.name, v.kind, v.color) for v in graph.variables} == {
+        ("yellow_cylinder", "cylinder", "yellow"), ("blue_zone", "zone", "blue")}
+    assert graph.factors[0].weight == 1.0
+
+
+@pytest.mark.parametrize("goal", [
+    {"type": "on", "objects": ["yellow_cylinder"], "support": "yellow_cylinder"},  # on itself
+    {"type": "in_zone", "objects": ["blue_zone"], "zone": "blue_zone"},            # fixed kind
+    {"type": "at_pose", "objects": ["yellow_cylinder"], "poses": [], "frame": None,
+     "check_yaw": False},                                                          # coordinates
+    {"type": "pile_in_zone", "objects": ["yellow_cylinder"], "zone": "blue_zone",
+     "fraction": 0.5},                                                             # not a pile
+])
+def test_the_compact_schema_refuses_goals_that_cannot_be_meant(goal) -> None:
+    data = json.loads(json.dumps(COMPACT))
+    data["factors"][0]["goal"] = goal
+    assert schema_problems(data, grounded.compact_graph_schema(mentions(PROPOSAL)))
+
+
+def test_a_fixed_object_starts_on_the_table() -> None:
+    data = json.loads(json.dumps(COMPACT))
+    data["variables"][1]["initial"] = {"type": "on", "support": "yellow_cylinder"}
+    assert schema_problems(data, grounded.compact_graph_schema(mentions(PROPOSAL)))
+
+
+def test_later_factors_moving_the_same_object_go_after_the_earlier_ones() -> None:
+    found = mentions("put the red block in the green zone, then on the blue block")
+    answer = {"variables": [{"name": m.name, "initial": {"type": "table"}} for m in found],
+              "factors": [{"goal": {"type": "in_zone", "objects": ["red_block"],
+                                    "zone": "green_zone"}},
+                          {"goal": {"type": "on", "objects": ["red_block"],
+                                    "support": "blue_block"}}]}
+    assert schema_problems(answer, grounded.compact_graph_schema(found)) == []
+    graph = TaskGraph.model_validate(grounded.expand_graph(answer, found, "t", "x"))
+    graph.ensure_valid()
+    first, second = graph.factors
+    assert (first.name, second.name) == ("in_zone_red_block", "on_red_block")
+    assert second.after == [first.name] and first.milestone
+
+
+def test_compact_examples_are_library_tasks_written_as_compact_answers() -> None:
+    text = grounded.compact_examples("cylinder zone", 1)
+    payload = json.loads(text.split("```json\n", 1)[1].split("\n```", 1)[0])
+    assert set(payload) == {"variables", "factors"}
+    assert all(set(v) == {"name", "initial"} for v in payload["variables"])
+
+
+def test_one_shot_grounded_through_the_pipeline_reaches_completion() -> None:
+    from factask.gen import Generator, LLMClient, LLMConfig, Verifier
+    from factask.gen.loopback import LoopbackServer, ScriptedResponder
+
+    responder = ScriptedResponder({"one_shot": [json.dumps(COMPACT)]})
+    with LoopbackServer(responder) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=0, timeout=30))
+        result = Generator(client, Verifier(episodes=1), max_repairs=0,
+                           grounded=True).generate(PROPOSAL, "one-shot")
+    assert result.level_reached == "completion", result.failure
+    assert result.graph is not None and result.graph.factors[0].name == "in_zone_yellow_cylinder"
+    assert "one_shot_grounded" not in json.dumps(result.to_dict())  # the step keeps its name
+    assert result.steps[0].step == "one_shot"
