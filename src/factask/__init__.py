@@ -97,6 +97,12 @@ def _cliport() -> ModuleType:
     return module
 
 
+def _batch() -> ModuleType:
+    import factask.batch.env as module
+
+    return module
+
+
 #: Lazily re-exported names: public name -> the loader of the module defining it.
 _LAZY: dict[str, Callable[[], ModuleType]] = {
     # task library
@@ -135,6 +141,8 @@ _LAZY: dict[str, Callable[[], ModuleType]] = {
     "run_benchmark": _benchmark,
     # CLIPort / GenSim task code
     "import_cliport": _cliport,
+    # many worlds at once on MuJoCo Warp (the gpu extra)
+    "make_batch": _batch,
 }
 
 __all__ = [*_model_all, *_LAZY, "__version__"]

@@ -1,0 +1,344 @@
+"""The batched env: one compiled task, many worlds, stepped together on MuJoCo Warp.
+
+:class:`BatchEnv` compiles a task graph once (the single env's
+:func:`~factask.sim.compile.compile_graph`), puts the model on a Warp device and
+keeps ``num_envs`` worlds of it (``mujoco_warp.put_data(..., nworld=num_envs)``).
+
+* **Reset** of chosen worlds: a world reset with seed *s* runs the single env's
+  reset for seed *s* on the CPU (layout sampling, target solving, goal markers,
+  robot home, settling: :meth:`factask.sim.env.FactaskEnv.reset`) and copies the
+  resulting MuJoCo state into that world (``mujoco_warp.set_state`` on the chosen
+  worlds only, after ``mujoco_warp.reset_data`` on them: every tree awake). So the
+  world starts from the single env's seed-*s* state (in Warp's float32). Layouts
+  are sampled in Python, one world after another: resets cost what the single
+  env's cost.
+* **Step**: a low-level command for every world — the floating cup's pose
+  (x, y, z, yaw) per world, or an arm's actuator controls — then physics steps of
+  all worlds at once. The step (command write + ``mujoco_warp.step``) is captured
+  once as a graph (Warp captures on CUDA and on its CPU device) and replayed.
+* **Status**: every factor's progress, the reward and success per world from the
+  batched checks (:mod:`factask.batch.status`), milestones latched per world.
+
+Not yet here: the suction grasp per world, the pick-and-place primitive batched,
+auto-reset, a gymnasium ``VectorEnv``, the oracle in lockstep (docs/batch.md).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from factask.batch.device import load_backend, resolve_device
+from factask.batch.scene import BatchScene
+from factask.batch.status import BatchTaskStatus, check_task_batch
+from factask.batch.targets import BatchTargets
+from factask.geometry import Pose
+from factask.model.errors import InvalidValueError
+from factask.model.graph import TaskGraph
+from factask.relations.solving import SolvedFactor
+from factask.sim.env import FactaskEnv, ResetNeededError
+from factask.sim.floating_cup import FloatingSuctionRobot
+
+#: The MuJoCo state a reset copies into a world (everything that integrates).
+STATE_SIG = int(mujoco.mjtState.mjSTATE_INTEGRATION)
+#: Seeds drawn for worlds reset without one are below this.
+_SEED_RANGE = 2**31 - 1
+
+
+def default_capacity(model: mujoco.MjModel) -> tuple[int, int]:
+    """Per-world contact and constraint-row capacities (``nconmax``, ``njmax``) for a
+    factask scene: eight contacts per free body and a margin, six rows per contact."""
+    free = int(np.sum(model.jnt_type == mujoco.mjtJoint.mjJNT_FREE))
+    nconmax = max(64, 8 * (free + 2))
+    return nconmax, 6 * nconmax
+
+
+class BatchEnv:
+    """``num_envs`` worlds of one task on a Warp device.
+
+    Args:
+        graph: The task (validated and compiled here).
+        num_envs: Number of worlds (at least 1).
+        robot: A robot of the registry (``"floating"``, ``"ur10e"`` / ``"arm"``, ...).
+        device: ``"cpu"``, ``"cuda"``, ``"cuda:N"`` or None (a GPU if there is one).
+        nconmax: Contacts per world (default: :func:`default_capacity`).
+        njmax: Constraint rows per world (default: :func:`default_capacity`).
+        capture: Capture the step as a graph and replay it (much faster; off only
+            to debug).
+
+    Raises:
+        BatchBackendMissing: the ``gpu`` extra is not installed.
+        DeviceUnavailableError: ``device`` asks for a GPU this machine lacks.
+        InvalidValueError: ``num_envs`` < 1 or a bad device name.
+        GraphValidationError, CompileError: the graph cannot be compiled.
+    """
+
+    def __init__(self, graph: TaskGraph, num_envs: int, robot: str = "floating",
+                 device: str | None = None, nconmax: int | None = None,
+                 njmax: int | None = None, capture: bool = True) -> None:
+        if int(num_envs) < 1:
+            raise InvalidValueError(f"num_envs must be at least 1, got {num_envs}")
+        self.device = resolve_device(device)
+        self._wp, self._mjw = load_backend()
+        from factask.batch import kernels  # imports Warp: only once the backend is there
+
+        self._kernels = kernels
+        self.num_envs = int(num_envs)
+        self.graph = graph
+        #: The single env that resets worlds (its reset is the batch's reset).
+        self.cpu_env = FactaskEnv(graph, robot=robot)
+        self.model = self.cpu_env.model
+        self.object_names: list[str] = list(self.cpu_env.object_names)
+        self.objects = self.cpu_env.objects
+        self.factor_names: list[str] = graph.factor_names()
+        handles = [self.cpu_env.scene.objects[n] for n in self.object_names]
+        self._free = [(k, h.qpos_adr) for k, h in enumerate(handles) if h.mocap_id is None]
+        self._fixed = [(k, h.mocap_id) for k, h in enumerate(handles) if h.mocap_id is not None]
+        self._tip_site = self.cpu_env.robot.tip_site
+        robot_ctl = self.cpu_env.robot
+        self._cup_mocap: int | None = (robot_ctl.mocap if isinstance(
+            robot_ctl, FloatingSuctionRobot) else None)
+        self.command_dim = 4 if self._cup_mocap is not None else int(self.model.nu)
+        default_con, default_j = default_capacity(self.model)
+        self.nconmax = int(nconmax or default_con)
+        self.njmax = int(njmax or default_j)
+        wp, mjw = self._wp, self._mjw
+        with wp.ScopedDevice(self.device):
+            self.wp_model = mjw.put_model(self.model)
+            self.wp_data = mjw.put_data(self.model, self.cpu_env.data, nworld=self.num_envs,
+                                        nconmax=self.nconmax, njmax=self.njmax)
+            self._command = wp.zeros((self.num_envs, max(self.command_dim, 1)), dtype=float)
+            self._mask = wp.zeros(self.num_envs, dtype=bool)
+            self._state = wp.zeros((self.num_envs, mujoco.mj_stateSize(self.model, STATE_SIG)),
+                                   dtype=float)
+        self._capture = capture
+        self._graph: Any = None
+        self.seeds = np.full(self.num_envs, -1, dtype=np.int64)
+        self.solved: list[dict[str, SolvedFactor]] = [{} for _ in range(self.num_envs)]
+        self.initial_layouts: list[dict[str, Pose]] = [{} for _ in range(self.num_envs)]
+        self._targets: dict[str, BatchTargets] = {}
+        self._reached = np.zeros((self.num_envs, len(self.factor_names)), dtype=bool)
+        self._seed_rng = np.random.default_rng()
+        self._was_reset = np.zeros(self.num_envs, dtype=bool)
+
+    # ------------------------------------------------------------------ reset
+    def _worlds(self, worlds: Sequence[int] | np.ndarray | None) -> np.ndarray:
+        if worlds is None:
+            return np.arange(self.num_envs)
+        idx = np.asarray(worlds)
+        if idx.dtype == bool:
+            if idx.shape != (self.num_envs,):
+                raise InvalidValueError(f"a world mask must have {self.num_envs} entries, "
+                                        f"got {idx.shape}")
+            return np.flatnonzero(idx)
+        idx = idx.astype(int).reshape(-1)
+        if idx.size and (idx.min() < 0 or idx.max() >= self.num_envs):
+            raise InvalidValueError(f"worlds must be in 0 .. {self.num_envs - 1}, got {worlds}")
+        return idx
+
+    def reset(self, seed: int | Sequence[int] | None = None,
+              worlds: Sequence[int] | np.ndarray | None = None) -> dict[str, np.ndarray]:
+        """Reset chosen worlds (default all), each from the single env's layout for its seed.
+
+        Args:
+            seed: An int: the chosen worlds get ``seed, seed + 1, ...`` in order (as
+                gymnasium's vector envs seed); a sequence: one seed per chosen world;
+                None: fresh random seeds.
+            worlds: World indices or a boolean mask (default: every world).
+
+        Returns:
+            The observation of every world (see :meth:`observe`).
+
+        Raises:
+            InvalidValueError: bad world indices, or not one seed per chosen world.
+            LayoutError: a layout cannot be found for a seed.
+        """
+        idx = self._worlds(worlds)
+        if seed is None:
+            seeds = self._seed_rng.integers(0, _SEED_RANGE, size=idx.size)
+        elif np.ndim(seed) == 0:
+            seeds = int(seed) + np.arange(idx.size)
+        else:
+            seeds = np.asarray(seed, dtype=np.int64).reshape(-1)
+            if seeds.size != idx.size:
+                raise InvalidValueError(f"{seeds.size} seed(s) for {idx.size} world(s)")
+        if idx.size == 0:
+            return self.observe()
+        state = np.zeros(self._state.shape, dtype=np.float32)
+        mask = np.zeros(self.num_envs, dtype=bool)
+        m, d = self.model, self.cpu_env.data
+        row = np.empty(mujoco.mj_stateSize(m, STATE_SIG))
+        for w, s in zip(idx, seeds, strict=True):
+            self.cpu_env.reset(seed=int(s))
+            mujoco.mj_getState(m, d, row, STATE_SIG)
+            state[w] = row
+            mask[w] = True
+            self.seeds[w] = int(s)
+            self.solved[w] = dict(self.cpu_env.solved)
+            self.initial_layouts[w] = dict(self.cpu_env.initial_layout)
+            self._reached[w] = False
+        self._was_reset |= mask
+        wp, mjw = self._wp, self._mjw
+        with wp.ScopedDevice(self.device):
+            self._mask.assign(mask)
+            self._state.assign(state)
+            mjw.reset_data(self.wp_model, self.wp_data, reset=self._mask)
+            mjw.set_state(self.wp_model, self.wp_data, self._state, STATE_SIG, self._mask)
+            mjw.kinematics(self.wp_model, self.wp_data)
+        if self._was_reset.all():
+            self._targets = {f: BatchTargets.stack([self.solved[w][f]
+                                                    for w in range(self.num_envs)])
+                             for f in self.factor_names}
+        return self.observe()
+
+    # ------------------------------------------------------------------- step
+    def _record_step(self) -> None:
+        wp, mjw = self._wp, self._mjw
+        cmd, data = self._command, self.wp_data
+        if self._cup_mocap is not None:
+            wp.launch(self._kernels.set_mocap_xyzyaw, dim=self.num_envs,
+                      inputs=[cmd, self._cup_mocap, data.mocap_pos, data.mocap_quat])
+        elif self.command_dim:
+            wp.launch(self._kernels.set_ctrl, dim=(self.num_envs, self.command_dim),
+                      inputs=[cmd, data.ctrl])
+        mjw.step(self.wp_model, data)
+
+    def step(self, command: np.ndarray, substeps: int = 1) -> None:
+        """Hold a low-level command in every world for ``substeps`` physics steps.
+
+        Args:
+            command: (num_envs, command_dim): for the floating cup its mocap pose
+                (x, y, z, yaw) — the suction tip's position and the tool yaw; for an
+                arm its actuator controls (``model.nu`` of them).
+            substeps: Physics steps (``model.opt.timestep`` each).
+
+        Raises:
+            InvalidValueError: wrong shape, non-finite numbers, or substeps < 1.
+            ResetNeededError: a world was never reset.
+        """
+        if not self._was_reset.all():
+            raise ResetNeededError(f"reset every world before step(); never reset: "
+                                   f"{np.flatnonzero(~self._was_reset).tolist()}")
+        cmd = np.asarray(command, dtype=float)
+        if cmd.shape != (self.num_envs, self.command_dim) or not np.isfinite(cmd).all():
+            raise InvalidValueError(f"command must be {self.num_envs} x {self.command_dim} "
+                                    f"finite numbers, got shape {cmd.shape}")
+        if int(substeps) < 1:
+            raise InvalidValueError(f"substeps must be at least 1, got {substeps}")
+        wp = self._wp
+        with wp.ScopedDevice(self.device):
+            if self.command_dim:
+                self._command.assign(cmd.astype(np.float32))
+            if not self._capture:
+                for _ in range(int(substeps)):
+                    self._record_step()
+                return
+            if self._graph is None:
+                # Capturing records without running: run the first step directly.
+                self._record_step()
+                substeps -= 1
+                with wp.ScopedCapture() as cap:
+                    self._record_step()
+                self._graph = cap.graph
+            for _ in range(int(substeps)):
+                wp.capture_launch(self._graph)
+
+    def home_command(self) -> np.ndarray:
+        """A command that holds the robot where it is after a reset (num_envs, dim)."""
+        if self._cup_mocap is not None:
+            home = self.wp_data.mocap_pos.numpy()[:, self._cup_mocap]
+            quat = self.wp_data.mocap_quat.numpy()[:, self._cup_mocap]
+            yaw = 2 * np.arctan2(quat[:, 3], quat[:, 0])
+            return np.concatenate([home, yaw[:, None]], axis=1).astype(float)
+        return self.wp_data.ctrl.numpy()[:, :self.command_dim].astype(float)
+
+    # ---------------------------------------------------------- observation
+    def object_poses(self) -> np.ndarray:
+        """Every object's pose in every world (num_envs, n, 7): position + quaternion
+        (w, x, y, z), in :attr:`object_names` order (fixed objects included)."""
+        out = np.zeros((self.num_envs, len(self.object_names), 7))
+        if self._free:
+            qpos = self.wp_data.qpos.numpy()
+            for k, adr in self._free:
+                out[:, k] = qpos[:, adr:adr + 7]
+        if self._fixed:
+            mpos, mquat = self.wp_data.mocap_pos.numpy(), self.wp_data.mocap_quat.numpy()
+            for k, mid in self._fixed:
+                out[:, k, :3] = mpos[:, mid]
+                out[:, k, 3:] = mquat[:, mid]
+        return out
+
+    def observe(self) -> dict[str, np.ndarray]:
+        """The state-mode observation of every world, the single env's keys batched:
+        ``object_poses`` (num_envs, n, 7), ``ee_pose`` (num_envs, 7) (the suction tip,
+        as of the last physics step's kinematics), ``suction`` (num_envs, 1)."""
+        xpos = self.wp_data.site_xpos.numpy()[:, self._tip_site]
+        xmat = self.wp_data.site_xmat.numpy()[:, self._tip_site].reshape(-1, 9)
+        quat = np.zeros((self.num_envs, 4))
+        for w in range(self.num_envs):
+            mujoco.mju_mat2Quat(quat[w], xmat[w].astype(float))
+        active = self.wp_data.eq_active.numpy()
+        weld = self.cpu_env.robot.gripper.weld
+        return {"object_poses": self.object_poses(),
+                "ee_pose": np.concatenate([xpos, quat], axis=1).astype(float),
+                "suction": active[:, weld:weld + 1].astype(float)}
+
+    def scene(self) -> BatchScene:
+        """Every world's poses as the batched checks read them (nothing held yet: the
+        suction grasp per world is not batched)."""
+        poses = self.object_poses()
+        return BatchScene(self.objects, tuple(self.object_names), poses[..., :3],
+                          poses[..., 3:], np.zeros(poses.shape[:2], dtype=bool))
+
+    def status(self, latch: bool = True) -> BatchTaskStatus:
+        """Every factor's status, the reward and success in every world, now.
+
+        Args:
+            latch: Keep the milestones reached now for the next call (as the single
+                env does after each action).
+
+        Raises:
+            ResetNeededError: a world was never reset.
+        """
+        if not self._was_reset.all():
+            raise ResetNeededError("reset every world before status()")
+        st = check_task_batch(self.graph, self._targets, self.scene(), self._reached)
+        if latch:
+            self._reached = st.reached.copy()
+        return st
+
+    def close(self) -> None:
+        """Release the single env (and its renderer)."""
+        self.cpu_env.close()
+
+
+def make_batch(task: TaskGraph | str, num_envs: int, device: str | None = None,
+               robot: str = "floating", **kwargs: Any) -> BatchEnv:
+    """A batched env of ``task``: ``num_envs`` worlds on a Warp device.
+
+    Args:
+        task: A task graph, or a library task's name.
+        num_envs: Number of worlds.
+        device: ``"cpu"``, ``"cuda"``, ``"cuda:N"`` or None (a GPU if there is one).
+        robot: A robot of the registry.
+        **kwargs: Passed to :class:`BatchEnv` (``nconmax``, ``njmax``, ``capture``).
+
+    Returns:
+        The :class:`BatchEnv` (reset it before stepping).
+
+    Raises:
+        BatchBackendMissing: the ``gpu`` extra is not installed.
+        DeviceUnavailableError: ``device`` asks for a GPU this machine lacks.
+        KeyError: an unknown library task name (the library's own error).
+    """
+    if isinstance(task, str):
+        from factask.library import get_task
+
+        task = get_task(task)
+    return BatchEnv(task, num_envs, robot=robot, device=device, **kwargs)
+
+
+__all__ = ["STATE_SIG", "BatchEnv", "default_capacity", "make_batch"]

@@ -1,0 +1,33 @@
+"""Warp kernels of the batched env: writing each world's low-level command.
+
+Imported only once the backend is known to be installed
+(:func:`factask.batch.device.load_backend`): it imports Warp at module import.
+Quaternions in MuJoCo Warp's arrays keep MuJoCo's order (w, x, y, z).
+"""
+
+from __future__ import annotations
+
+import warp as wp
+
+
+@wp.kernel
+def set_mocap_xyzyaw(cmd: wp.array2d(dtype=float), mocap: int,
+                     mocap_pos: wp.array2d(dtype=wp.vec3),
+                     mocap_quat: wp.array2d(dtype=wp.quat)):  # pragma: no cover - device code
+    """World w's mocap body ``mocap`` to (x, y, z) = cmd[w, 0:3], yawed by cmd[w, 3]."""
+    w = wp.tid()
+    half = cmd[w, 3] * 0.5
+    mocap_pos[w, mocap] = wp.vec3(cmd[w, 0], cmd[w, 1], cmd[w, 2])
+    # Element 0 is w (MuJoCo's order), whatever Warp's own quaternion convention.
+    mocap_quat[w, mocap] = wp.quat(wp.cos(half), 0.0, 0.0, wp.sin(half))
+
+
+@wp.kernel
+def set_ctrl(cmd: wp.array2d(dtype=float),
+             ctrl: wp.array2d(dtype=float)):  # pragma: no cover - device code
+    """World w's actuator controls to cmd[w, :]."""
+    w, k = wp.tid()
+    ctrl[w, k] = cmd[w, k]
+
+
+__all__ = ["set_ctrl", "set_mocap_xyzyaw"]

@@ -1,0 +1,193 @@
+"""The batched env (factask.batch) on Warp's CPU device: typed errors for a missing
+extra or GPU, seeded resets equal to the single env's, reset of chosen worlds,
+stepping every world, status per world.
+
+Kernel compilation happens once per machine (Warp caches it in the user's cache
+folder); the tests share one small batch and run in one xdist group so one worker
+compiles. A few worlds only: the CPU device is for correctness, not speed.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import sys
+
+import mujoco
+import numpy as np
+import pytest
+
+from factask.batch import (
+    BatchBackendMissing,
+    DeviceUnavailableError,
+    make_batch,
+    resolve_device,
+)
+from factask.batch.device import load_backend
+from factask.batch.env import BatchEnv
+from factask.library import get_task
+from factask.model import TaskGraph
+from factask.model.errors import InvalidValueError
+from factask.sim.env import FactaskEnv, ResetNeededError
+
+pytestmark = pytest.mark.xdist_group("warp")
+if importlib.util.find_spec("mujoco_warp") is None or importlib.util.find_spec("warp") is None:
+    pytest.skip("the gpu extra is not installed (make test installs it)",
+                allow_module_level=True)
+
+SEEDS = [4, 9, 4]
+
+
+def small_task() -> TaskGraph:
+    """A small library task (a block, a bowl, the floating cup): few bodies, so the CPU
+    device steps it quickly."""
+    return get_task("put-block-in-bowl")
+
+
+@pytest.fixture(scope="module")
+def batch() -> BatchEnv:
+    env = make_batch(small_task(), len(SEEDS), device="cpu")
+    env.reset(seed=SEEDS)
+    yield env
+    env.close()
+
+
+def test_a_missing_extra_is_a_typed_error(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "mujoco_warp", None)  # import fails as if not installed
+    with pytest.raises(BatchBackendMissing, match=r"factask\[gpu\]") as info:
+        make_batch(small_task(), 2, device="cpu")
+    assert isinstance(info.value, ImportError)
+
+
+def test_asking_for_a_gpu_that_is_not_there_is_a_typed_error() -> None:
+    wp, _ = load_backend()
+    if wp.get_cuda_device_count() > 0:
+        count = wp.get_cuda_device_count()
+        with pytest.raises(DeviceUnavailableError):
+            resolve_device(f"cuda:{count}")
+        return
+    for name in ("cuda", "cuda:0", "CUDA:1"):
+        with pytest.raises(DeviceUnavailableError, match="no CUDA GPU") as info:
+            resolve_device(name)
+        assert isinstance(info.value, RuntimeError)
+    with pytest.raises(DeviceUnavailableError):
+        make_batch(small_task(), 2, device="cuda")
+    assert resolve_device(None) == "cpu"
+    for bad in ("tpu", "cuda:x"):
+        with pytest.raises(InvalidValueError):
+            resolve_device(bad)
+
+
+def test_a_world_reset_with_seed_s_starts_from_the_single_envs_seed_s_state(
+        batch: BatchEnv) -> None:
+    obs = batch.observe()
+    single = FactaskEnv(small_task())
+    for w, seed in enumerate(SEEDS):
+        single_obs, _ = single.reset(seed=seed)
+        assert batch.seeds[w] == seed
+        assert set(batch.initial_layouts[w]) == set(single.initial_layout)
+        for name, pose in single.initial_layout.items():
+            got = batch.initial_layouts[w][name]
+            assert np.array_equal(got.pos, pose.pos) and np.array_equal(got.quat, pose.quat)
+        for name, s in single.solved.items():
+            assert all(np.array_equal(a.pos, b.pos) for a, b in
+                       zip(batch.solved[w][name].slots, s.slots, strict=True))
+        # The settled state itself, in Warp's float32.
+        assert np.allclose(obs["object_poses"][w], single_obs["object_poses"], atol=1e-6)
+        assert np.allclose(obs["ee_pose"][w], single_obs["ee_pose"], atol=1e-6)
+        qpos = batch.wp_data.qpos.numpy()[w]
+        assert np.allclose(qpos, single.data.qpos.astype(np.float32), atol=1e-6)
+    single.close()
+    # One seed, one state: worlds 0 and 2 are the same world.
+    assert np.array_equal(obs["object_poses"][0], obs["object_poses"][2])
+
+
+def test_the_batch_status_is_the_single_envs_status(batch: BatchEnv) -> None:
+    status = batch.status(latch=False)
+    single = FactaskEnv(small_task())
+    for w, seed in enumerate(SEEDS):
+        _, info = single.reset(seed=seed)
+        assert math.isclose(float(status.reward[w]), info["total_reward"], abs_tol=1e-9)
+        assert bool(status.success[w]) == info["success"]
+        for k, name in enumerate(status.factor_names):
+            assert math.isclose(float(status.progress[w, k]), info["factors"][name],
+                                abs_tol=1e-9)
+    single.close()
+
+
+def _cpu_rollout(seed: int, commands: np.ndarray) -> np.ndarray:
+    """The single env from seed ``seed``, its cup moved along ``commands`` (one mocap
+    pose per physics step), as the batch steps it: object poses after."""
+    env = FactaskEnv(small_task())
+    env.reset(seed=seed)
+    m, d = env.model, env.data
+    cup = env.robot.mocap  # type: ignore[attr-defined]
+    for x, y, z, yaw in commands:
+        d.mocap_pos[cup] = (x, y, z)
+        d.mocap_quat[cup] = (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+        mujoco.mj_step(m, d)
+    out = env._obs()["object_poses"]
+    env.close()
+    return out
+
+
+def test_stepping_moves_every_world_as_cpu_mujoco_does(batch: BatchEnv) -> None:
+    batch.reset(seed=SEEDS)
+    home = batch.home_command()
+    assert home.shape == (len(SEEDS), 4)
+    # Each world's cup goes its own way: down towards the table, sideways, turning.
+    target = home + np.array([[0.2, 0.05, -0.3, 0.3], [0.25, -0.1, -0.35, -0.5],
+                              [0.1, 0.0, -0.2, 0.0]])
+    steps = 40
+    path = home[:, None, :] + (target - home)[:, None, :] * np.linspace(0, 1, steps)[None, :,
+                                                                                       None]
+    for k in range(steps):
+        batch.step(path[:, k], substeps=1)
+    ee = batch.observe()["ee_pose"]
+    cup_pos = batch.wp_data.mocap_pos.numpy()[:, batch._cup_mocap]
+    assert np.allclose(cup_pos, target[:, :3], atol=1e-6)
+    # The tip follows the mocap cup (the last step's kinematics saw the last command).
+    assert np.allclose(ee[:, :3], path[:, -1, :3], atol=1e-6)
+    poses = batch.object_poses()
+    for w, seed in enumerate(SEEDS):
+        want = _cpu_rollout(seed, path[w])
+        assert np.allclose(poses[w], want, atol=1e-4), np.abs(poses[w] - want).max()
+
+
+def test_resetting_chosen_worlds_leaves_the_others_alone(batch: BatchEnv) -> None:
+    batch.reset(seed=SEEDS)
+    batch.step(batch.home_command(), substeps=5)
+    before = batch.wp_data.qpos.numpy().copy()
+    times = batch.wp_data.time.numpy().copy()
+    batch.reset(seed=[11], worlds=[1])
+    after = batch.wp_data.qpos.numpy()
+    assert np.array_equal(after[[0, 2]], before[[0, 2]])
+    assert np.array_equal(batch.wp_data.time.numpy()[[0, 2]], times[[0, 2]])
+    single = FactaskEnv(small_task())
+    single_obs, _ = single.reset(seed=11)
+    assert np.allclose(batch.observe()["object_poses"][1], single_obs["object_poses"],
+                       atol=1e-6)
+    assert batch.seeds.tolist() == [SEEDS[0], 11, SEEDS[2]]
+    single.close()
+    # A boolean mask works as well as indices; one seed, one state.
+    batch.reset(seed=[4, 4], worlds=np.array([True, False, True]))
+    poses = batch.observe()["object_poses"]
+    assert np.array_equal(poses[0], poses[2])
+    assert batch.seeds.tolist() == [4, 11, 4]
+
+
+def test_bad_commands_and_steps_before_reset_are_refused(batch: BatchEnv) -> None:
+    with pytest.raises(InvalidValueError):
+        batch.step(np.zeros((len(SEEDS), 3)))
+    with pytest.raises(InvalidValueError):
+        batch.step(np.full((len(SEEDS), 4), np.nan))
+    with pytest.raises(InvalidValueError):
+        batch.reset(seed=[1, 2], worlds=[0])
+    with pytest.raises(InvalidValueError):
+        batch.reset(seed=1, worlds=[7])
+    fresh = make_batch(small_task(), 2, device="cpu")
+    with pytest.raises(ResetNeededError):
+        fresh.step(np.zeros((2, 4)))
+    with pytest.raises(ResetNeededError):
+        fresh.status()
+    fresh.close()
