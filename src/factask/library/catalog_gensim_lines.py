@@ -18,7 +18,7 @@ from factask.library.builders import (
     use,
     var,
 )
-from factask.library.conventions import BALL, BLOCK, FIVE, FOUR, LINE
+from factask.library.conventions import BALL, BLOCK, FIVE, FOUR, LINE, NEAR
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
@@ -168,3 +168,28 @@ def align_cylinders_box() -> TaskGraph:
                     "green in the middle, blue on the right.",
                     use("align_along_line", objects=colored("cylinder", ("red", "green", "blue"),
                                                             (0.04, 0.04, 0.06)), line=box))
+
+
+#: A corner marker whose arm a row of four blocks fits along (19 cm from the vertex).
+LONG_CORNER = (0.22, 0.22, 0.001)
+
+
+@register("color-coded-blocks-on-corner", family="corners")
+def color_coded_blocks_on_corner() -> TaskGraph:
+    corner = var("corner", "corner", "gray", LONG_CORNER, description="the corner structure")
+    return assemble("color-coded-blocks-on-corner",
+                    "Line up the red, blue, green and yellow blocks in a straight row along "
+                    "the corner, red at the corner's vertex and yellow at the far end.",
+                    use("align_along_line", objects=colored("block", FOUR, BLOCK), line=corner))
+
+
+@register("put-blocks-between-zones", family="lines")
+def put_blocks_between_zones() -> TaskGraph:
+    zones = [var(f"{side}_zone", "zone", "gray", (0.12, 0.12, 0.001),
+                 initial=region((0.45, 0.6), ys), description=f"the {side} zone")
+             for side, ys in (("left", (0.22, 0.3)), ("right", (-0.3, -0.22)))]
+    return assemble("put-blocks-between-zones",
+                    "Arrange the red, blue, green and yellow blocks in a row between the two "
+                    "zones, red nearest the left zone.",
+                    use("align_along_line", objects=colored("block", FOUR, BLOCK, initial=NEAR),
+                        line=zones))

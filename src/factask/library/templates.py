@@ -233,12 +233,14 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="align_along_line",
         description="Line up the {objects} in a row lying on the {line}.",
         slots=[_objects("the row's objects, in order"),
-               _slot("line", "the line, zone, stand, pallet or container the row lies on",
-                     ["line", "zone", "stand", "pallet", "container"])],
+               _slot("line", "the line, zone, stand, pallet or container the row lies on; a "
+                     "corner marker (along its arm, from the vertex); or two variables the "
+                     "row runs between (from the first)",
+                     ["line", "zone", "stand", "pallet", "container", "corner"], many=True)],
         factors=[SubtaskFactor(
             name="along",
             description="line up the {objects} in a row along the {line}",
-            goal=Row(objects=["objects"], along="line"),
+            goal=Row(objects=["objects"], along=["line"]),
         )],
     ),
 ]

@@ -39,6 +39,12 @@ if TYPE_CHECKING:  # the graph model sits above the relations (it imports their 
     from factask.model.variables import StateVariable
 
 
+def _or_kinds(kinds: Mapping[str, tuple[str, ...]], field: str) -> str:
+    """", or a corner" for the kinds ``field`` accepts beyond its capabilities."""
+    extra = kinds.get(field, ())
+    return f", or a {' or '.join(extra)}" if extra else ""
+
+
 class RelationBase(BaseModel, abc.ABC):
     """A goal relation: the objects it moves, the anchors it is relative to, its
     tolerances, and how it is solved and checked."""
@@ -48,6 +54,9 @@ class RelationBase(BaseModel, abc.ABC):
     #: Anchor field -> the kind capabilities (:class:`~factask.model.kinds.KindSpec`
     #: flags) its variable needs, any one of them; ``()`` accepts every kind.
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {}
+    #: Anchor field -> kinds it accepts besides those with its capabilities (a
+    #: ``row`` runs along a corner marker's arm, though a corner is not a region).
+    anchor_kinds: ClassVar[Mapping[str, tuple[str, ...]]] = {}
 
     objects: list[Name] = Field(
         min_length=1, description="Variables this goal moves (all instances of each)."
@@ -98,12 +107,14 @@ class RelationBase(BaseModel, abc.ABC):
                 if not caps or name not in variables:
                     continue
                 v = variables[name]
+                if v.kind in self.anchor_kinds.get(fname, ()):
+                    continue
                 spec = kind_spec(v.kind)
                 if not any(getattr(spec, c) for c in caps):
                     out.append(Problem(factor, f"goal.{fname}",
                                        f"{name!r} is a {v.kind}, which cannot serve as {fname} "
                                        f"of '{self.kind()}' (needs a kind that is "
-                                       f"{' or '.join(caps)})",
+                                       f"{' or '.join(caps)}{_or_kinds(self.anchor_kinds, fname)})",
                                        "choose another variable or relation"))
         return out
 

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field
 
-from factask.geometry import wrap_angle
+from factask.geometry import Pose, wrap_angle
 from factask.model.errors import Problem
 from factask.model.names import Name
 from factask.model.world import TABLE_Z, WORKSPACE_DIAGONAL
@@ -23,10 +23,14 @@ from factask.relations.solving import (
     same_variable,
 )
 from factask.relations.status import CheckScene, Verdict, check_slots
-from factask.scene.collision import TABLE
+from factask.scene.collision import CLEARANCE, TABLE
 from factask.scene.objects import (
     GEOMETRY_EPS,
+    Area,
     SceneObject,
+    corner_arm_width,
+    corner_vertex,
+    group_area,
     placement_area,
     principal_yaw,
     rest_surface_z,
@@ -39,30 +43,47 @@ if TYPE_CHECKING:  # the graph model sits above the relations (it imports their 
 
 #: Extra gap in a row with no explicit spacing: widest object + this (metres).
 ROW_GAP = 0.01
+#: The marker kind a row may run along the arm of.
+CORNER_KIND = "corner"
+
+#: Builds a row's plan: (centre, yaw, surface, hosts) -> the plan.
+LineBuilder = Callable[[np.ndarray, float, float, list[str]], Plan]
 
 
 class Row(RelationBase):
     """Place the objects side by side in a straight row, centre-to-centre
     ``spacing`` metres apart (default: widest object + 1 cm). ``along``: lie on
-    that line/zone variable. ``on``: rest on top of the row below, made of the
-    instances of variable ``on`` or of a list of variables (a layer of mixed
-    colours): same count: one on each; one fewer: each bridging two neighbours,
-    as in a pyramid; fewer still: centred on the row below."""
+    that line/zone variable; or, a corner marker: along its longer arm, first
+    object at the corner's vertex; or, a list of two variables: on the table in
+    the gap between them, first object nearest the first. ``on``: rest on top of
+    the row below, made of the instances of variable ``on`` or of a list of
+    variables (a layer of mixed colours): same count: one on each; one fewer:
+    each bridging two neighbours, as in a pyramid; fewer still: centred on it."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {
         "along": ("region",), "on": ("support",)}
+    anchor_kinds: ClassVar[Mapping[str, tuple[str, ...]]] = {"along": (CORNER_KIND,)}
 
     type: Literal["row"] = "row"
     spacing: Annotated[float, Field(gt=0, le=0.5, allow_inf_nan=False)] | None = None
-    along: Name | None = None
+    along: Name | Annotated[list[Name], Field(min_length=1, max_length=2)] | None = None
     on: Name | Annotated[list[Name], Field(min_length=1, max_length=16)] | None = None
     ordered: bool = True
 
     def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
         out = super().problems(factor, variables)
-        below = self.anchor_names("on")
-        for name in dict.fromkeys(n for n in below if below.count(n) > 1):
-            out.append(Problem(factor, "goal.on", f"{name!r} listed twice", "list it once"))
+        for fname in ("on", "along"):
+            names = self.anchor_names(fname)
+            for name in dict.fromkeys(n for n in names if names.count(n) > 1):
+                out.append(Problem(factor, f"goal.{fname}", f"{name!r} listed twice",
+                                   "list it once"))
+        pair = self.anchor_names("along")
+        for name in pair if len(pair) == 2 else []:
+            v = variables.get(name)
+            if v is not None and v.kind == CORNER_KIND:
+                out.append(Problem(factor, "goal.along", f"{name!r} is a corner: a row runs "
+                                   "between two regions or supports, or along one corner",
+                                   "give the corner alone"))
         return out
 
     @classmethod
@@ -114,9 +135,14 @@ class Row(RelationBase):
                                                                           strict=True)]
             return make_plan(slots, [s for _, s, _ in spots], [h[0] for _, _, h in spots],
                              [set(h) for _, _, h in spots], matches)
-        if self.along:
-            host = ctx.inst(self.along)[0]
+        guide = self.anchor_names("along")
+        if len(guide) == 2:
+            return _between(ctx, movers, line, guide, spacing)
+        if guide:
+            host = ctx.inst(guide[0])[0]
             hobj, hpose = ctx.objs[host], ctx.current[host]
+            if hobj.kind == CORNER_KIND:
+                return _along_corner(movers, line, host, hobj, hpose, spacing)
             yaw = hpose.yaw if hobj.size[0] >= hobj.size[1] else hpose.yaw + math.pi / 2
             # A line looks the same turned half a turn: take the direction pointing to
             # +x (as principal_yaw does), so "first object" means the same end always.
@@ -142,3 +168,73 @@ class Row(RelationBase):
 
     def check(self, solved: SolvedFactor, scene: CheckScene) -> Verdict:
         return check_slots(solved, scene, self.tolerances)
+
+
+def _reach(area: Area, direction: np.ndarray) -> float:
+    """How far ``area`` reaches from its centre along the unit vector ``direction``."""
+    if area.round:
+        return float(area.half[0])
+    axes = yaw_rotation_2d(area.yaw)
+    return float(abs(direction @ axes[:, 0]) * area.half[0] +
+                 abs(direction @ axes[:, 1]) * area.half[1])
+
+
+def _footprint(ctx: SolveContext, var: str) -> Area:
+    """The outer footprint of an anchor variable (the rectangle covering its instances)."""
+    hosts = ctx.inst(var)
+    objs, poses = [ctx.objs[h] for h in hosts], [ctx.current[h] for h in hosts]
+    if len(hosts) == 1:
+        return Area(poses[0].pos[:2].copy(), poses[0].yaw, objs[0].half_xy, objs[0].is_round)
+    return group_area(objs, poses)
+
+
+def _between(ctx: SolveContext, movers: list[SceneObject], line: LineBuilder,
+             pair: list[str], spacing: float) -> Plan:
+    """A row on the table in the gap between two anchors, on the line joining their
+    centres, centred in the gap, first object nearest ``pair[0]``.
+
+    Raises:
+        Infeasible: the anchors overlap, or the row is longer than the gap.
+    """
+    first, second = (_footprint(ctx, v) for v in pair)
+    u = second.center - first.center
+    dist = float(np.linalg.norm(u))
+    if dist < GEOMETRY_EPS:
+        raise Infeasible(f"{pair[0]!r} and {pair[1]!r} have the same centre: no gap between "
+                         "them", retry=False)
+    u = u / dist
+    lo, hi = _reach(first, u), dist - _reach(second, u)
+    n = len(movers)
+    length = (n - 1) * spacing + 2 * max(float(o.half_xy[0]) for o in movers) + 2 * CLEARANCE
+    if hi - lo < length - GEOMETRY_EPS:
+        raise Infeasible(f"a row of {n} spaced {spacing:.3f} m needs {length:.3f} m between "
+                         f"{pair[0]!r} and {pair[1]!r}; the gap is {max(hi - lo, 0.0):.3f} m",
+                         retry=False)
+    return line(first.center + u * (lo + hi) / 2, math.atan2(u[1], u[0]), TABLE_Z, [])
+
+
+def _along_corner(movers: list[SceneObject], line: LineBuilder, host: str,
+                  hobj: SceneObject, hpose: Pose, spacing: float) -> Plan:
+    """A row inside a corner marker along its longer arm, touching the arm, first
+    object's end at the inner vertex.
+
+    Raises:
+        Infeasible: the row is longer than the arm.
+    """
+    rot = yaw_rotation_2d(hpose.yaw)
+    along_x = hobj.size[0] >= hobj.size[1]
+    d = rot @ (np.array([1.0, 0.0]) if along_x else np.array([0.0, 1.0]))
+    inward = rot @ (np.array([0.0, 1.0]) if along_x else np.array([1.0, 0.0]))
+    w = corner_arm_width(hobj.size)
+    arm = float(hobj.size[0] if along_x else hobj.size[1]) - w
+    n = len(movers)
+    head = float(movers[0].half_xy[0])
+    length = head + (n - 1) * spacing + float(movers[-1].half_xy[0])
+    if length > arm + GEOMETRY_EPS:
+        raise Infeasible(f"a row of {n} spaced {spacing:.3f} m is {length:.3f} m long; the "
+                         f"arm of {host!r} is {arm:.3f} m", retry=False)
+    side = max(float(o.half_xy[1]) for o in movers)
+    centre = (corner_vertex(hobj, hpose) + d * (head + (n - 1) / 2 * spacing) +
+              inward * side)
+    yaw = hpose.yaw + (0.0 if along_x else math.pi / 2)
+    return line(centre, yaw, rest_surface_z(hobj, hpose), [host])
