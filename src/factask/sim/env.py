@@ -254,18 +254,19 @@ class FactaskEnv(gym.Env):
         rng = np.random.default_rng(self.np_random.integers(0, 2**63 - 1))
         layout, solved = reset_layout(self.graph, rng)
         self.initial_layout, self.solved = layout, solved
+        # Every factor's targets, once (the markers and each info show them).
+        targets = {name: s.targets(self.objects) for name, s in solved.items()}
         self._targets_info = {
             name: {"objects": list(s.objects),
-                   "targets": {o: p.to_list() for o, p in s.targets(self.objects).items()}}
+                   "targets": {o: p.to_list() for o, p in targets[name].items()}}
             for name, s in solved.items()}
         mujoco.mj_resetData(self.model, self.data)
         for name, handle in self.scene.objects.items():
             set_object_pose(self.model, self.data, handle, layout[name])
         for (factor, slot), mocap in self.scene.markers.items():
             inst = self.scene.marker_objects[(factor, slot)]
-            targets = solved[factor].targets(self.objects)
-            if inst in targets:
-                set_marker(self.data, mocap, targets[inst])
+            if inst in targets[factor]:
+                set_marker(self.data, mocap, targets[factor][inst])
         self.robot.reset()
         self._settle()
         self.history = []

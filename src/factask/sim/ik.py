@@ -78,6 +78,7 @@ class TopDownIK:
         self._data = mujoco.MjData(self.model)
         self._site = self.model.site(TIP_SITE).id
         self._jac = np.zeros((6, self.model.nv))
+        self._damping = DLS_DAMPING * np.eye(6)
         self._lo = self.model.jnt_range[:, 0].copy()
         self._hi = self.model.jnt_range[:, 1].copy()
 
@@ -196,30 +197,34 @@ class TopDownIK:
         mujoco.mju_quat2Mat(target, quat_from_yaw(yaw))
         rt = target.reshape(3, 3)
         q = np.array(q0, dtype=float)
+        goal = np.asarray(pos, dtype=float)
         err = np.zeros(6)
-        damping = DLS_DAMPING * np.eye(6)
+        damping = self._damping
+        qpos, tip, rot = d.qpos, d.site_xpos[self._site], d.site_xmat[self._site].reshape(3, 3)
+        jac, jac_pos, jac_rot = self._jac, self._jac[:3], self._jac[3:]
+        lo, hi = self._lo, self._hi
         for _ in range(iterations):
-            d.qpos[:] = q
+            qpos[:] = q
             mujoco.mj_kinematics(m, d)
-            mujoco.mj_comPos(m, d)
-            err[:3] = pos - d.site_xpos[self._site]
-            rc = d.site_xmat[self._site].reshape(3, 3)
+            np.subtract(goal, tip, out=err[:3])
             # Rotation error: half the sum of axis cross products (small-angle axis-angle),
-            # sum_k rc[:, k] x rt[:, k] written out (np.cross costs more than the rest).
-            err[3] = 0.5 * float(rc[1] @ rt[2] - rc[2] @ rt[1])
-            err[4] = 0.5 * float(rc[2] @ rt[0] - rc[0] @ rt[2])
-            err[5] = 0.5 * float(rc[0] @ rt[1] - rc[1] @ rt[0])
+            # sum_k rot[:, k] x rt[:, k] written out (np.cross costs more than the rest).
+            err[3] = 0.5 * float(rot[1] @ rt[2] - rot[2] @ rt[1])
+            err[4] = 0.5 * float(rot[2] @ rt[0] - rot[0] @ rt[2])
+            err[5] = 0.5 * float(rot[0] @ rt[1] - rot[1] @ rt[0])
             if float(err[:3] @ err[:3]) < DLS_POS_TOL ** 2 and \
                     float(err[3:] @ err[3:]) < DLS_ROT_TOL ** 2:
                 break
-            mujoco.mj_jacSite(m, d, self._jac[:3], self._jac[3:], self._site)
-            j = self._jac
-            dq = j.T @ np.linalg.solve(j @ j.T + damping, err)
+            mujoco.mj_comPos(m, d)  # the Jacobian needs it; the error test does not
+            mujoco.mj_jacSite(m, d, jac_pos, jac_rot, self._site)
+            dq = jac.T @ np.linalg.solve(jac @ jac.T + damping, err)
             # Bounded steps keep the Newton iteration from jumping to another branch.
             biggest = float(np.abs(dq).max())
             if biggest > DLS_MAX_STEP:
                 dq *= DLS_MAX_STEP / biggest
-            q = np.clip(q + dq, self._lo, self._hi)
-        d.qpos[:] = q
+            q += dq
+            np.maximum(q, lo, out=q)
+            np.minimum(q, hi, out=q)
+        qpos[:] = q
         mujoco.mj_kinematics(m, d)
-        return q, float(np.linalg.norm(pos - d.site_xpos[self._site]))
+        return q, float(np.linalg.norm(goal - tip))
