@@ -58,6 +58,8 @@ from factask.scene.collision import centre_in_workspace
 START_ABOVE_TABLE = 0.01
 #: Slack when deciding that a support's top is under an object's bottom, metres.
 SUPPORT_SLACK = 0.02
+#: An object whose bottom is this far (m) below the table top has sunk into it.
+SINK_EPS = 0.001
 #: Weights are rescaled silently when they sum to 1 within this; beyond it, with a warning.
 WEIGHT_WARN_TOLERANCE = 1e-3
 #: Objects tilted more than this (degrees) at the start lose their tilt (with a warning).
@@ -133,9 +135,10 @@ def _hosts(o: RecordedObject, others: list[RecordedObject]
 
 def _settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int],
             warn: Any) -> None:
-    """Put objects that start in the air on nothing, or tilted, where factask starts
-    them (on the table, upright, same x, y and yaw), before anything reads their
-    poses: targets resting in or on them follow them down (a 6-DoF fixture).
+    """Put objects that start in the air on nothing, sunk into the table, or tilted,
+    where factask starts them (on the table, upright, same x, y and yaw), before
+    anything reads their poses: targets resting in or on them follow them (a 6-DoF
+    fixture down, a pallet placed with a smaller size than factask's up).
     """
     for k, o in enumerate(objects):
         if (o.random_start and o.obj_id in moved and o.category != "fixed") or (
@@ -146,6 +149,11 @@ def _settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int
             continue
         name = names[o.obj_id]
         bottom = float(o.pos[2]) - o.size[2] / 2
+        if bottom < -SINK_EPS:
+            # Sunk into the table: factask's asset is taller than the size the author
+            # placed it with (a 2 cm pallet hint for a 3.75 cm pallet). The author put
+            # it on the table, so does factask; targets on it follow it up.
+            o.pos = np.array([o.pos[0], o.pos[1], o.size[2] / 2], dtype=float)
         if bottom > START_ABOVE_TABLE:
             warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
                  "the table instead (targets in or on it follow it down)")

@@ -145,6 +145,7 @@ class _Slot:
     half: tuple[float, float]
     height: float
     objects: frozenset[int]  # ids of the objects that may take the target
+    certain: bool  # every target of its goal gets an object (not a choice among them)
 
 
 def _half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
@@ -169,7 +170,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
     of what supports it (the table, a fixed object, or a lower target) plus half
     the height of the objects that may go there, taking the targets in queue order.
     A target whose objects a later goal moves again stops supporting anything
-    from that goal on (a towers-of-hanoi disk leaves its peg).
+    from that goal on (a towers-of-hanoi disk leaves its peg), and the targets of a
+    goal with more targets than objects (a choice) support nothing.
 
     Returns:
         (goal index, target index) -> centre z, metres.
@@ -186,7 +188,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             size = max((o.size for o in allowed), key=lambda s: s[2])
             slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
                                _half_xy(size, yaw), size[2],
-                               frozenset(o.obj_id for o in allowed)))
+                               frozenset(o.obj_id for o in allowed),
+                               len(g.objs) >= len(g.targets)))
     fixed = []
     for o in objects:
         spec = kind_spec(o.kind)
@@ -212,6 +215,11 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
                 support = max(support, top)
         for other, z in done:
+            if not other.certain:
+                # A goal with more targets than objects fills the ones the robot
+                # picks at run time (each red block into either red container):
+                # none of its targets is known to carry anything.
+                continue
             # A target rests on one the author put lower, where they overlap. At the
             # same author z, a target of an earlier goal is already placed when this
             # one is: it supports this one if it stands right under its centre (a
