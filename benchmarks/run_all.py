@@ -72,7 +72,7 @@ def main() -> None:
     _section("summary of ratios (measured side by side in this run)")
     for layout in bench_compile.LAYOUTS:
         rows = {r.n: r for r in compile_rows if r.layout == layout}
-        parts = [f"n={n}: {1000 * r.total:.2f} ms"
+        parts = [f"n={n}: {1000 * r.total:.2f} ms ({1000 * r.total_cpu:.2f} ms CPU)"
                  + (f" (+ {1000 * r.validate:.2f} ms validating the graph)" if r.validate else "")
                  + (f", {r.mjcf / (r.total + r.validate):.1f}x faster than the MJCF path"
                     if r.mjcf else "")
