@@ -141,3 +141,15 @@ def test_the_check_counts_each_block_in_its_slot() -> None:
         assert fs.progress in (pytest.approx(2 / 3), 1.0) and fs.progress <= last
         last = fs.progress
     assert not fs.satisfied and fs.targets == {"blocks__1": 1}
+
+
+def test_align_along_line_binds_one_guide_as_a_name_and_two_as_a_list() -> None:
+    from factask.library.templates import get_template
+
+    tpl = get_template("align_along_line")
+    blocks = _blocks()
+    zones = _zones(0.22)
+    assert tpl.instantiate(objects=blocks, line=zones[0]).factors[0].goal.along == "near_zone"
+    pair = tpl.instantiate(objects=blocks, line=zones).factors[0]
+    assert pair.goal.along == ["near_zone", "far_zone"]
+    assert set(pair.scope_names) == {"blocks", "near_zone", "far_zone"}
