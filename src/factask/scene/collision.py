@@ -185,15 +185,27 @@ class Occupancy:
             return _receptacle_pair(mine, other, solid_fixtures)
         return True
 
-    def blockers(self, obj: SceneObject, pose: Pose, ignore: Iterable[str] = ()) -> list[str]:
-        """Names of the bodies ``obj`` at ``pose`` collides with."""
+    def blockers(self, obj: SceneObject, pose: Pose, ignore: Iterable[str] = (),
+                 clearance: float | None = None) -> list[str]:
+        """Names of the bodies ``obj`` at ``pose`` collides with.
+
+        Args:
+            obj: The object.
+            pose: Its pose.
+            ignore: Body names not to test against.
+            clearance: The gap to keep instead of this occupancy's (0: only bodies
+                that really overlap, e.g. for a pose an author gave).
+        """
         ignored = set(ignore)
         out = []
         for name, b in self._bodies.items():
             if name in ignored:
                 continue
-            alone = Occupancy(self.clearance)
-            alone._bodies = {name: b}
+            alone = Occupancy(self.clearance if clearance is None else clearance)
+            if clearance is None:
+                alone._bodies = {name: b}
+            else:
+                alone.put(name, b.obj, b.pose)
             if not bool(alone.free_mask(obj, [pose])[0]):
                 out.append(name)
         return out

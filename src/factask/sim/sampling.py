@@ -193,7 +193,7 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
                 if not on_table(obj, pose):
                     raise _Placement(inst, f"its fixed pose ({p.x}, {p.y}) leaves part of it "
                                      "hanging off the table", retry=False)
-                blocked = _physical_overlaps(objs, obj, occ.blockers(obj, pose))
+                blocked = _physical_overlaps(objs, obj, occ.blockers(obj, pose, clearance=0.0))
                 if blocked:
                     raise _Placement(inst, f"its fixed pose overlaps {blocked}", retry=False)
             else:
@@ -239,7 +239,9 @@ def _physical_overlaps(objs: Mapping[str, SceneObject], obj: SceneObject,
                        blockers: list[str]) -> list[str]:
     """The overlaps at an author-given pose that physics cannot take: two fixed
     bodies may interpenetrate (both are welded to the world; the author's shapes
-    are often finer than factask's boxes: kit holes), a movable one may not."""
+    are often finer than factask's boxes: kit holes), a movable one may not. The
+    ``blockers`` are found with no clearance: an author may put objects closer
+    than the gap factask's own sampling keeps (Ravens' free-space test is finer)."""
     return [b for b in blockers if not (obj.fixed and objs[b].fixed)]
 
 
@@ -257,7 +259,8 @@ def _place_given(objs: Mapping[str, SceneObject], occ: Occupancy, poses: dict[st
     if not placement_area(hobj, hpose).contains(np.array([x, y]))[0]:
         raise _Placement(inst, f"its given place ({dx:+.3f}, {dy:+.3f}) from {host!r}'s "
                          "centre is off that host", retry=False)
-    blocked = _physical_overlaps(objs, obj, occ.blockers(obj, pose, ignore=[host]))
+    blocked = _physical_overlaps(objs, obj, occ.blockers(obj, pose, ignore=[host],
+                                                         clearance=0.0))
     if blocked:
         raise _Placement(inst, f"its given place on {host!r} overlaps {blocked}", retry=False)
     poses[inst] = pose
