@@ -167,3 +167,36 @@ def test_one_shot_grounded_through_the_pipeline_reaches_completion() -> None:
     assert result.graph is not None and result.graph.factors[0].name == "in_zone_yellow_cylinder"
     assert "one_shot_grounded" not in json.dumps(result.to_dict())  # the step keeps its name
     assert result.steps[0].step == "one_shot"
+
+
+@pytest.mark.parametrize(("proposal", "relations"), [
+    ("put the yellow cylinder in the blue zone", {"in_zone"}),
+    ("place three blocks in a row", {"row"}),
+    ("stack the red block on the green block", {"stack", "on"}),
+    ("put the red ball into the green bowl", {"inside"}),
+])
+def test_the_relations_the_proposal_names_are_the_goals_allowed(proposal, relations) -> None:
+    assert grounded.named_relations(proposal) == relations
+    goal = grounded.compact_graph_schema(mentions(proposal), proposal)[
+        "properties"]["factors"]["items"]["properties"]["goal"]
+    types = {o["properties"]["type"]["const"] for o in goal.get("anyOf", [goal])}
+    assert types == relations
+
+
+def test_no_named_relation_leaves_every_relation_that_fits() -> None:
+    proposal = "move the yellow cylinder near the gold stand"
+    assert grounded.named_relations(proposal) == set()
+    goal = grounded.compact_graph_schema(mentions(proposal), proposal)[
+        "properties"]["factors"]["items"]["properties"]["goal"]
+    types = {o["properties"]["type"]["const"] for o in goal["anyOf"]}
+    assert len(types) > 1 and not types & {"row", "circle"}  # a row of one object: no task
+
+
+def test_goal_problems_name_an_unused_object_and_a_trivial_group() -> None:
+    found = mentions("stack the red block on the green block")
+    lone = [{"type": "stack", "objects": ["red_block"], "base": None, "ordered": True}]
+    problems = grounded.goal_problems(lone, found)
+    assert any("stack of 1 object" in p for p in problems)
+    assert any("green_block" in p for p in problems)
+    good = [{"type": "on", "objects": ["red_block"], "support": "green_block"}]
+    assert grounded.goal_problems(good, found) == []

@@ -25,6 +25,7 @@ ladder; a proposal that names no movable object gets the ungrounded schemas of
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -33,6 +34,7 @@ from pydantic import ValidationError
 from factask.gen import step_schemas as ss
 from factask.gen.examples import library_task_examples, render_examples
 from factask.gen.mentions import Mention
+from factask.model.errors import FactaskError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph
 from factask.model.kinds import ASSET_KINDS, kind_spec
@@ -187,13 +189,15 @@ def _without(field: Schema, name: str) -> Schema | None:
     return options[0] if len(options) == 1 else {"anyOf": options}
 
 
-def relation_over(relation: str, kinds: dict[str, str]) -> Schema | None:
+def relation_over(relation: str, kinds: dict[str, str],
+                  counts: dict[str, int] | None = None) -> Schema | None:
     """One relation's goal over the named objects, or None if none can fill it.
 
     ``objects`` lists only the variables the relation can move (piles for
     ``pile_in_zone``, ropes for ``rope_along``, any other movable kind for the
     rest); with a single such variable, no anchor field may name it (an object
-    on itself).
+    on itself). With ``counts`` (name -> count) and fewer than two objects to
+    move, a row or circle is left out and a stack needs its base.
     """
     wanted = OBJECT_KINDS.get(relation)
     movers = [n for n, k in kinds.items() if kind_spec(k).movable
@@ -203,6 +207,14 @@ def relation_over(relation: str, kinds: dict[str, str]) -> Schema | None:
         return None
     props = schema["properties"]
     props["objects"] = ss.array(ss.name(movers), 1, len(movers))
+    if relation in GROUP_RELATIONS and counts is not None and \
+            sum(counts.get(n, 1) for n in movers) < 2:
+        if relation != "stack" or "base" not in props:
+            return None
+        base = [o for o in props["base"].get("anyOf", [props["base"]]) if "enum" in o]
+        if not base:
+            return None
+        props["base"] = base[0]
     if len(movers) == 1:
         for field in RELATION_TYPES[relation].anchor_fields:
             if field in props:
@@ -213,13 +225,70 @@ def relation_over(relation: str, kinds: dict[str, str]) -> Schema | None:
     return schema
 
 
-def _goal(kinds: dict[str, str]) -> Schema:
-    options = [s for r in RELATION_TYPES if r not in COORDINATE_RELATIONS
-               and (s := relation_over(r, kinds)) is not None]
-    return options[0] if len(options) == 1 else {"anyOf": options}
+#: Words of a proposal that name a relation (singular; a plural ``s`` is read too).
+RELATION_WORDS: dict[str, frozenset[str]] = {
+    "in_zone": frozenset(["zone", "area", "region", "target"]),
+    "on": frozenset(["on", "onto", "top"]),
+    "inside": frozenset(["inside", "into", "bowl", "container", "bin", "tray", "cup"]),
+    "stack": frozenset(["stack", "tower", "pyramid"]),
+    "row": frozenset(["row", "line", "lined"]),
+    "circle": frozenset(["circle", "ring", "around"]),
+    "aligned": frozenset(["align", "aligned", "corner"]),
+    "pile_in_zone": frozenset(["pile", "sweep", "push"]),
+    "rope_along": frozenset(["rope"]),
+}
+#: Relations that arrange several objects: with fewer than two, the goal is trivial.
+GROUP_RELATIONS = frozenset(["row", "circle", "stack"])
 
 
-def compact_graph_schema(found: Sequence[Mention]) -> Schema:
+def named_relations(proposal: str) -> set[str]:
+    """The relation types whose words the proposal uses ("in a row" -> ``row``)."""
+    words = {w[:-1] if len(w) > 3 and w.endswith("s") else w
+             for w in re.findall(r"[a-z]+", proposal.lower())}
+    return {r for r, ws in RELATION_WORDS.items() if words & ws}
+
+
+def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
+          counts: dict[str, int] | None = None) -> Schema:
+    options = {r: s for r in RELATION_TYPES if r not in COORDINATE_RELATIONS
+               and (s := relation_over(r, kinds, counts)) is not None}
+    named = {r: s for r, s in options.items() if r in (wanted or ())}
+    chosen = list((named or options).values())
+    return chosen[0] if len(chosen) == 1 else {"anyOf": chosen}
+
+
+def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> list[str]:
+    """What makes a grounded graph's goals another (or no) task: a named object no
+    goal uses, a row, circle or stack of fewer than two objects.
+
+    Args:
+        goals: The answer's goals (JSON).
+        found: The proposal's mentions.
+
+    Returns:
+        One line per problem (empty: none).
+    """
+    counts = {m.name: m.count for m in found}
+    used: set[str] = set()
+    out: list[str] = []
+    for i, goal in enumerate(goals):
+        names = [n for v in goal.values() for n in (v if isinstance(v, list) else [v])
+                 if isinstance(n, str) and n in counts]
+        used.update(names)
+        kind = goal.get("type")
+        objects = [n for n in goal.get("objects", []) if n in counts]
+        instances = sum(counts[n] for n in objects) + (1 if goal.get("base") else 0)
+        if kind in GROUP_RELATIONS and instances < 2:
+            out.append(f"factors.{i}.goal: a {kind} of {instances} object is no task; use "
+                       "the relation the proposal asks for, over the objects it names")
+    for m in found:
+        if m.name not in used:
+            out.append(f"no goal uses {m.name} ({m.describe()}), which the proposal names: "
+                       "every named object belongs in a goal (moved, or as the anchor)")
+    return out
+
+
+def compact_graph_schema(found: Sequence[Mention], proposal: str = "") -> Schema:
     """A whole graph's *decisions* only (one-shot with a grounded proposal).
 
     The named objects' kinds, colours, counts, sizes and descriptions come from
@@ -229,9 +298,11 @@ def compact_graph_schema(found: Sequence[Mention]) -> Schema:
 
     Args:
         found: The proposal's mentions (with a movable one: :func:`applies`).
+        proposal: The proposal: where its words name relations
+            (:func:`named_relations`), the goals are of those types only.
 
     Returns:
-        ``{"variables": [{name, initial}, ...], "factors": [{name, goal}, ...]}``
+        ``{"variables": [{name, initial}, ...], "factors": [{goal}, ...]}``
         with the variables a tuple of the named objects and at most one factor
         per movable one.
     """
@@ -242,7 +313,9 @@ def compact_graph_schema(found: Sequence[Mention]) -> Schema:
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},
-        "factors": ss.array(ss.obj({"goal": _goal(kinds)}), 1, most),
+        "factors": ss.array(ss.obj({"goal": _goal(kinds, named_relations(proposal),
+                                                   {m.name: m.count for m in found})}),
+                            1, most),
     })
 
 
@@ -311,13 +384,14 @@ def compact_examples(query: str, k: int, exclude: str | None = None) -> str:
     task itself, :func:`factask.gen.examples.library_task_examples`)."""
     if k <= 0:
         return "(none)"
-    found = library_task_examples(query, k, exclude=exclude)
-    for example in found:
+    shown = []
+    for example in library_task_examples(query, k, exclude=exclude):
         try:
             example.payload = compact_example(TaskGraph.model_validate(example.payload))
-        except ValidationError:
-            continue
-    return render_examples(found)
+        except (ValidationError, FactaskError):
+            continue  # never shown in another form than the answer's
+        shown.append(example)
+    return render_examples(shown)
 
 
 def plan_bound(variables: Sequence[StateVariable]) -> int:
@@ -326,7 +400,8 @@ def plan_bound(variables: Sequence[StateVariable]) -> int:
     return max(1, min(n, ss.STEP_MAX_SUBTASKS))
 
 
-__all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "MAX_EXTRA", "OBJECT_KINDS", "applies",
-           "compact_example", "compact_examples", "compact_graph_schema", "expand_graph",
-           "factor_names", "graph_schema", "grounded_variables", "mention_variable",
-           "movable", "plan_bound", "relation_over", "variables_answer"]
+__all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "GROUP_RELATIONS", "MAX_EXTRA",
+           "OBJECT_KINDS", "RELATION_WORDS", "applies", "compact_example", "compact_examples",
+           "compact_graph_schema", "expand_graph", "factor_names", "goal_problems",
+           "graph_schema", "grounded_variables", "mention_variable", "movable",
+           "named_relations", "plan_bound", "relation_over", "variables_answer"]

@@ -39,9 +39,10 @@ from factask.gen.fragments import (
 from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
 from factask.gen.memory import SubtaskMemory
 from factask.gen.mentions import grounding_feedback, mentions, mentions_text
-from factask.gen.prompts import render
+from factask.gen.prompts import render, schema_skeleton
 from factask.gen.results import APPROACHES, GenerationResult
 from factask.gen.schemas import (
+    AnswerError,
     GoalAnswer,
     SubtaskDesign,
     SubtaskOutline,
@@ -250,24 +251,34 @@ class Generator(StepRunner):
         # The objects the proposal names come from its words; the model writes the
         # decisions (factask.gen.grounded).
         compact = self.grounded and grounded.applies(found)
-        schema = grounded.compact_graph_schema(found) if compact else ss.graph_schema(task)
+        schema = grounded.compact_graph_schema(found, desc) if compact else \
+            ss.graph_schema(task)
 
         def prompt(lv: PromptLevel) -> str:
             if compact:
                 k = min(lv.examples, self.n_examples)
+                # The grammar holds the answer to the schema: the prompt shows its
+                # outline only (a third of the tokens; prompt processing dominates
+                # a call on a CPU).
                 return render("one_shot_grounded", task_name=task, task_description=desc,
                               mentions=mentions_text(f"{desc} {task}"),
                               examples=grounded.compact_examples(query, k, task),
-                              schema=self.schema_for_prompt(schema, lv))
+                              schema=schema_skeleton(schema))
             return render("one_shot", task_name=task, task_description=desc,
                           mentions=mentions_text(f"{desc} {task}"),
                           examples=self.examples(query, ("tasks", "memory"), lv.examples),
                           schema=self.schema_for_prompt(schema, lv))
 
-        expand = (lambda data: grounded.expand_graph(data, found, task, desc)) if compact \
-            else None
+        def expand(data: dict[str, Any]) -> dict[str, Any]:
+            problems = grounded.goal_problems([f["goal"] for f in data["factors"]], found)
+            if problems:
+                raise AnswerError("The goals do not make the proposal's task:\n"
+                                  + "\n".join(f"- {p}" for p in problems))
+            return grounded.expand_graph(data, found, task, desc)
+
         out = self.ask("one_shot", prompt, schema, "task_graph",
-                       self._evaluate_graph(task, desc, schema, expand))
+                       self._evaluate_graph(task, desc, schema,
+                                            expand if compact else None))
         self.finish(out.value, out.level, None if out.ok else f"one_shot: {out.feedback}")
         if out.ok and out.value is not None:
             for f in out.value.factors:
