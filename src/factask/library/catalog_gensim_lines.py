@@ -18,7 +18,7 @@ from factask.library.builders import (
     use,
     var,
 )
-from factask.library.conventions import BALL, BLOCK, FIVE, FOUR, LINE, NEAR
+from factask.library.conventions import BALL, BLOCK, CYLINDER, FIVE, FOUR, LINE, NEAR
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
@@ -193,3 +193,30 @@ def put_blocks_between_zones() -> TaskGraph:
                     "zones, red nearest the left zone.",
                     use("align_along_line", objects=colored("block", FOUR, BLOCK, initial=NEAR),
                         line=zones))
+
+
+def _square_edges(colors: tuple[str, ...], x: float = 0.5, y: float = 0.0,
+                  side: float = 0.30) -> list[StateVariable]:
+    """A square outline of four line markers, one colour per edge: far (+x), left
+    (+y), near (-x), right (-y)."""
+    h = (side - LINE[1]) / 2
+    spots = ((x + h, y, 90.0), (x, y + h, 0.0), (x - h, y, 90.0), (x, y - h, 0.0))
+    return [var(f"{c}_edge", "line", c, (side, LINE[1], LINE[2]), initial=at(*spot),
+                description=f"the {c} edge of the square") for c, spot in zip(colors, spots,
+                                                                             strict=True)]
+
+
+@register("colored-cylinder-in-square", family="lines")
+def colored_cylinder_in_square() -> TaskGraph:
+    # GenSim's square has an edge per colour but five cylinders: its code puts the
+    # fifth (orange) in the middle, here between the far and near edges.
+    edges = _square_edges(FOUR)
+    cylinders = colored("cylinder", (*FOUR, "orange"), CYLINDER)
+    along = [use("align_along_line", objects=c, line=e)
+             for c, e in zip(cylinders[:4], edges, strict=True)]
+    return assemble("colored-cylinder-in-square",
+                    "Put the red, blue, green and yellow cylinders on the middle of the edge "
+                    "of the square of their colour, and the orange one in the middle of the "
+                    "square, between its red and green edges.",
+                    along, use("align_along_line", objects=cylinders[4],
+                               line=[edges[0], edges[2]]))
