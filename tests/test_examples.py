@@ -29,7 +29,11 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "08_collect_dataset.py": ("08_cameras.png", "08_summary.json",
                               "08_dataset/meta/info.json"),
     "09_piles_and_ropes.py": ("09_piles_and_ropes.png", "09_results.json"),
+    "10_batched.py": ("10_batched.json",),
 }
+#: Examples that compile MuJoCo Warp's kernels: with the batched env's tests in one
+#: xdist group, so one worker compiles them (once per machine, then cached).
+WARP = {"10_batched.py"}
 SIGNATURES = {".png": b"\x89PNG\r\n\x1a\n", ".gif": b"GIF8"}
 
 
@@ -37,7 +41,9 @@ def test_every_example_is_covered() -> None:
     assert sorted(p.name for p in EXAMPLES.glob("[0-9]*.py")) == sorted(EXPECTED)
 
 
-@pytest.mark.parametrize("script", sorted(EXPECTED))
+@pytest.mark.parametrize("script", [
+    pytest.param(s, marks=pytest.mark.xdist_group("warp")) if s in WARP else s
+    for s in sorted(EXPECTED)])
 def test_example_runs(script: str, tmp_path: Path) -> None:
     env = {**os.environ, "MUJOCO_GL": os.environ.get("MUJOCO_GL", "egl"),
            "MPLBACKEND": "Agg", "PYTHONHASHSEED": "0"}

@@ -42,9 +42,12 @@ def load_backend() -> tuple[ModuleType, ModuleType]:
     global _QUIETED
     try:
         wp = importlib.import_module("warp")
-        if not _QUIETED:  # before anything initialises Warp (importing mujoco_warp
-            wp.config.quiet = True  # does): no banner, no CUDA-driver warning
-            _QUIETED = True
+        if not _QUIETED:  # before anything initialises Warp: no banner, no line per
+            _QUIETED = True  # compiled module (warnings stay)
+            if hasattr(wp, "LOG_WARNING"):
+                wp.config.log_level = wp.LOG_WARNING
+            else:  # Warp before log levels
+                wp.config.quiet = True
         mjw = importlib.import_module("mujoco_warp")
     except ImportError as exc:
         raise BatchBackendMissing(

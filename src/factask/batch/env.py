@@ -34,6 +34,7 @@ import numpy as np
 from factask.batch.device import load_backend, resolve_device
 from factask.batch.scene import BatchScene
 from factask.batch.status import BatchTaskStatus, check_task_batch
+from factask.batch.suction import WorldSuction, model_with_object_welds
 from factask.batch.targets import BatchTargets
 from factask.geometry import Pose
 from factask.model.errors import InvalidValueError
@@ -42,8 +43,9 @@ from factask.relations.solving import SolvedFactor
 from factask.sim.env import FactaskEnv, ResetNeededError
 from factask.sim.floating_cup import FloatingSuctionRobot
 
-#: The MuJoCo state a reset copies into a world (everything that integrates).
-STATE_SIG = int(mujoco.mjtState.mjSTATE_INTEGRATION)
+#: The MuJoCo state a reset copies into a world: everything that integrates but the
+#: equalities' switches (the batch's model has more welds; reset turns them all off).
+STATE_SIG = int(mujoco.mjtState.mjSTATE_INTEGRATION) & ~int(mujoco.mjtState.mjSTATE_EQ_ACTIVE)
 #: Seeds drawn for worlds reset without one are below this.
 _SEED_RANGE = 2**31 - 1
 
@@ -90,11 +92,15 @@ class BatchEnv:
         self.graph = graph
         #: The single env that resets worlds (its reset is the batch's reset).
         self.cpu_env = FactaskEnv(graph, robot=robot)
-        self.model = self.cpu_env.model
+        #: The batch's host model: the scene's, with one inactive weld per free object.
+        self.model, welds = model_with_object_welds(self.cpu_env.scene)
+        self.suction = WorldSuction(self.model, welds, int(num_envs))
         self.object_names: list[str] = list(self.cpu_env.object_names)
         self.objects = self.cpu_env.objects
         self.factor_names: list[str] = graph.factor_names()
         handles = [self.cpu_env.scene.objects[n] for n in self.object_names]
+        self._body_name = {h.body_id: n for n, h in zip(self.object_names, handles,
+                                                          strict=True)}
         self._free = [(k, h.qpos_adr) for k, h in enumerate(handles) if h.mocap_id is None]
         self._fixed = [(k, h.mocap_id) for k, h in enumerate(handles) if h.mocap_id is not None]
         self._tip_site = self.cpu_env.robot.tip_site
@@ -107,13 +113,19 @@ class BatchEnv:
         self.njmax = int(njmax or default_j)
         wp, mjw = self._wp, self._mjw
         with wp.ScopedDevice(self.device):
-            self.wp_model = mjw.put_model(self.model)
-            self.wp_data = mjw.put_data(self.model, self.cpu_env.data, nworld=self.num_envs,
-                                        nconmax=self.nconmax, njmax=self.njmax)
+            # eq_data per world: each world's grasp writes its own weld pose.
+            self.wp_model = mjw.put_model(self.model, batch_sizes={"eq_data": self.num_envs})
+            self.wp_data = mjw.put_data(self.model, mujoco.MjData(self.model),
+                                        nworld=self.num_envs, nconmax=self.nconmax,
+                                        njmax=self.njmax)
             self._command = wp.zeros((self.num_envs, max(self.command_dim, 1)), dtype=float)
             self._mask = wp.zeros(self.num_envs, dtype=bool)
             self._state = wp.zeros((self.num_envs, mujoco.mj_stateSize(self.model, STATE_SIG)),
                                    dtype=float)
+            # The sleep tree of each world's held object (-1: none), kept awake each step.
+            self._held_tree = wp.full(self.num_envs, -1, dtype=int)
+            self._let_go = wp.full(self.num_envs, -1, dtype=int)
+        self._sleep = bool(self.model.opt.enableflags & mujoco.mjtEnableBit.mjENBL_SLEEP)
         self._capture = capture
         self._graph: Any = None
         self.seeds = np.full(self.num_envs, -1, dtype=np.int64)
@@ -169,7 +181,7 @@ class BatchEnv:
             return self.observe()
         state = np.zeros(self._state.shape, dtype=np.float32)
         mask = np.zeros(self.num_envs, dtype=bool)
-        m, d = self.model, self.cpu_env.data
+        m, d = self.cpu_env.model, self.cpu_env.data
         row = np.empty(mujoco.mj_stateSize(m, STATE_SIG))
         for w, s in zip(idx, seeds, strict=True):
             self.cpu_env.reset(seed=int(s))
@@ -181,6 +193,8 @@ class BatchEnv:
             self.initial_layouts[w] = dict(self.cpu_env.initial_layout)
             self._reached[w] = False
         self._was_reset |= mask
+        self.suction.reset(mask)
+        self._sync_held()
         wp, mjw = self._wp, self._mjw
         with wp.ScopedDevice(self.device):
             self._mask.assign(mask)
@@ -204,7 +218,23 @@ class BatchEnv:
         elif self.command_dim:
             wp.launch(self._kernels.set_ctrl, dim=(self.num_envs, self.command_dim),
                       inputs=[cmd, data.ctrl])
+        if self._sleep:
+            self._wake(self._held_tree)
         mjw.step(self.wp_model, data)
+
+    def _wake(self, trees: Any) -> None:
+        """Wake (keep awake) each world's tree ``trees[w]`` (-1: none)."""
+        self._wp.launch(self._kernels.wake_trees, dim=self.num_envs,
+                        inputs=[trees, int(self.model.ntree), -(1 + mujoco.mjMINAWAKE)],
+                        outputs=[self.wp_data.tree_asleep])
+
+    def _trees_of(self, bodies: np.ndarray) -> np.ndarray:
+        tree = self.model.body_treeid[np.maximum(bodies, 0)]
+        return np.where(bodies >= 0, tree, -1).astype(np.int32)
+
+    def _sync_held(self) -> None:
+        with self._wp.ScopedDevice(self.device):
+            self._held_tree.assign(self._trees_of(self.suction.held))
 
     def step(self, command: np.ndarray, substeps: int = 1) -> None:
         """Hold a low-level command in every world for ``substeps`` physics steps.
@@ -280,18 +310,63 @@ class BatchEnv:
         quat = np.zeros((self.num_envs, 4))
         for w in range(self.num_envs):
             mujoco.mju_mat2Quat(quat[w], xmat[w].astype(float))
-        active = self.wp_data.eq_active.numpy()
-        weld = self.cpu_env.robot.gripper.weld
         return {"object_poses": self.object_poses(),
                 "ee_pose": np.concatenate([xpos, quat], axis=1).astype(float),
-                "suction": active[:, weld:weld + 1].astype(float)}
+                "suction": (self.suction.held >= 0).astype(float)[:, None]}
+
+    # ---------------------------------------------------------------- suction
+    def _world_mask(self, worlds: Sequence[int] | np.ndarray | None) -> np.ndarray:
+        mask = np.zeros(self.num_envs, dtype=bool)
+        mask[self._worlds(worlds)] = True
+        return mask
+
+    def suction_on(self, worlds: Sequence[int] | np.ndarray | None = None) -> np.ndarray:
+        """Switch suction on in chosen worlds (default all): each grasps the closest free
+        object its cup touches, where it is (the single env's rule, per world).
+
+        Args:
+            worlds: World indices or a boolean mask.
+
+        Returns:
+            Whether each world holds an object now (num_envs,).
+        """
+        with self._wp.ScopedDevice(self.device):
+            held = self.suction.grasp(self.wp_model, self.wp_data, self._world_mask(worlds))
+        self._sync_held()
+        return held
+
+    def suction_off(self, worlds: Sequence[int] | np.ndarray | None = None) -> None:
+        """Switch suction off in chosen worlds (default all): held objects are let go."""
+        before = self.suction.held.copy()
+        with self._wp.ScopedDevice(self.device):
+            self.suction.release(self.wp_data, self._world_mask(worlds))
+            if self._sleep:  # what was let go falls: wake it
+                self._let_go.assign(self._trees_of(np.where(self.suction.held < 0, before, -1)))
+                self._wake(self._let_go)
+        self._sync_held()
+
+    def held_objects(self) -> list[str | None]:
+        """The instance each world's cup holds, or None."""
+        return [self._body_name.get(int(b)) for b in self.suction.held]
 
     def scene(self) -> BatchScene:
-        """Every world's poses as the batched checks read them (nothing held yet: the
-        suction grasp per world is not batched)."""
+        """Every world's poses and held object as the batched checks read them."""
         poses = self.object_poses()
+        held = np.array([[n == h for n in self.object_names] for h in self.held_objects()],
+                        dtype=bool).reshape(poses.shape[:2])
         return BatchScene(self.objects, tuple(self.object_names), poses[..., :3],
-                          poses[..., 3:], np.zeros(poses.shape[:2], dtype=bool))
+                          poses[..., 3:], held)
+
+    @property
+    def targets(self) -> dict[str, BatchTargets]:
+        """Every factor's solved targets in every world (after every world's reset).
+
+        Raises:
+            ResetNeededError: a world was never reset.
+        """
+        if not self._was_reset.all():
+            raise ResetNeededError("reset every world before reading the targets")
+        return dict(self._targets)
 
     def status(self, latch: bool = True) -> BatchTaskStatus:
         """Every factor's status, the reward and success in every world, now.

@@ -1,4 +1,4 @@
-"""Warp kernels of the batched env: writing each world's low-level command.
+"""Warp kernels of the batched env: each world's low-level command, held objects awake.
 
 Imported only once the backend is known to be installed
 (:func:`factask.batch.device.load_backend`): it imports Warp at module import.
@@ -30,4 +30,32 @@ def set_ctrl(cmd: wp.array2d(dtype=float),
     ctrl[w, k] = cmd[w, k]
 
 
-__all__ = ["set_ctrl", "set_mocap_xyzyaw"]
+
+
+@wp.kernel
+def wake_trees(tree: wp.array(dtype=int), ntree: int, awake: int,
+               tree_asleep: wp.array2d(dtype=int)):  # pragma: no cover - device code
+    """Keep world w's tree ``tree[w]`` awake (none where it is -1): a sleeping tree is
+    woken with its whole sleep cycle; an awake one gets its full awake count back.
+
+    A held object is welded to the cup, a static mocap body: MuJoCo's sleep rules do
+    not wake a tree for an equality with a static body, nor keep it awake."""
+    w = wp.tid()
+    t = tree[w]
+    if t < 0:
+        return
+    if tree_asleep[w, t] < 0:
+        tree_asleep[w, t] = awake
+        return
+    cur = t
+    for _ in range(ntree + 1):
+        nxt = tree_asleep[w, cur]
+        if nxt < 0 or nxt >= ntree:
+            break
+        tree_asleep[w, cur] = awake
+        cur = nxt
+        if cur == t:
+            break
+
+
+__all__ = ["set_ctrl", "set_mocap_xyzyaw", "wake_trees"]
