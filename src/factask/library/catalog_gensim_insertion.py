@@ -233,3 +233,34 @@ def color_coordinated_sphere_cylinder_matching() -> TaskGraph:
     return assemble("color-coordinated-sphere-cylinder-matching",
                     "Drop each sphere into the open cylinder of its colour.",
                     match_pairs("put_in_container", pairs))
+
+
+@register("sequential-insertion-and-stacking", family="insertion")
+def sequential_insertion_and_stacking() -> TaskGraph:
+    fixtures = [var(f"{c}_fixture", "fixture", c, ELL_FIXTURE, initial=at(*xy))
+                for c, xy in zip(THREE, _row(3, 0.64, 0.6), strict=True)]
+    ells = colored("ell", THREE, ELL, initial=NEAR)
+    corner = var("corner", "corner", "gray", (ELL[0], ELL[1], 0.001),
+                 description="the corner of the tabletop the ells are stacked in")
+    inserts: list[TaskGraph] = []
+    for ell, fixture in zip(ells, fixtures, strict=True):  # each undone by the stack
+        inserts.append(use("insert_into_fixture", objects=ell, fixture=fixture,
+                           after=inserts[-1:], milestone=True))
+    return assemble("sequential-insertion-and-stacking",
+                    "Insert the red, blue and green ells into the fixtures of their colours, in "
+                    "that order; then take them out again and stack them in the corner: red "
+                    "at the bottom, blue in the middle, green on top.",
+                    inserts, use("stack_on_base", layers=ells, base=corner, after=inserts))
+
+
+@register("create-pyramid-with-color-coded-ells", family="insertion")
+def create_pyramid_with_color_coded_ells() -> TaskGraph:
+    # GenSim's code: red, blue and yellow in a row on the pallet, green on the middle
+    # one (an ell carries only an equal ell, laid exactly on it).
+    pallet = var("pallet", "pallet", "brown", (0.30, 0.15, 0.02), description="the pallet")
+    red, blue, yellow, green = colored("ell", ("red", "blue", "yellow", "green"), ELL)
+    row = use("align_along_line", objects=[red, blue, yellow], line=pallet)
+    return assemble("create-pyramid-with-color-coded-ells",
+                    "Build a pyramid of ells on the pallet: red, blue and yellow side by side "
+                    "at the bottom, the green ell on top of the blue one.",
+                    row, use("stack_on_base", layers=[green], base=blue, after=[row]))

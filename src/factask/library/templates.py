@@ -40,8 +40,10 @@ STACKABLE = ["block", "box", "cylinder"]
 REGIONS = ["zone", "pallet", "kit", "stand", "line", "bowl", "container", "fixture"]
 # Kinds one can put things inside.
 RECEPTACLES = ["container", "bowl", "fixture"]
-# Kinds a column may stand on (``stack`` base: support or region).
-BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinder"]
+# Kinds a column may stand on (``stack`` base: support or region; a corner marker
+# holds a column of ells, an ell carries an equal ell).
+BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinder", "corner",
+         "ell"]
 # Kinds objects may rest on (``on`` support: support or receptacle).
 SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "bowl"]
 
@@ -100,7 +102,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="stack_on_base",
         description="Stack the {layers} into one column on the {base}, first at the bottom.",
-        slots=[_objects("the column's layers, bottom first", STACKABLE, "layers"),
+        slots=[_objects("the column's layers, bottom first", [*STACKABLE, "ell"], "layers"),
                _slot("base", "what the column stands on", BASES)],
         factors=[SubtaskFactor(
             name="stack_on",

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Mapping
-from typing import Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 
+from factask.model.errors import Problem
 from factask.model.names import Name
 from factask.model.world import TABLE_Z
 from factask.relations.base import RelationBase
@@ -22,17 +24,41 @@ from factask.relations.status import CheckScene, Verdict, check_slots
 from factask.scene.collision import MAX_TRIES_PER_OBJECT, TABLE
 from factask.scene.objects import GEOMETRY_EPS, SceneObject, resting_pose, yaw_rotation_2d
 
+if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
+    from factask.model.variables import StateVariable
+
+#: A base marker a column may stand in, and the piece that carries only its equal.
+CORNER_KIND, ELL_KIND = "corner", "ell"
+
 
 class Stack(RelationBase):
     """Stack the objects into one column, first object at the bottom. The column
-    stands on ``base`` if given, else on a free spot of the table. With ``ordered``
-    false any order of the objects counts."""
+    stands on ``base`` if given (a corner marker: in it, the column at its
+    centre and yaw), else on a free spot of the table. An ell carries only an ell
+    of its size (laid exactly on it). With ``ordered`` false any order counts."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"base": ("support", "region")}
+    anchor_kinds: ClassVar[Mapping[str, tuple[str, ...]]] = {"base": (CORNER_KIND, ELL_KIND)}
 
     type: Literal["stack"] = "stack"
     base: Name | None = None
     ordered: bool = True
+
+    def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
+        """Beyond the anchors: whatever rests on an ell (the base or a layer) is an ell
+        of the same size, since an L carries nothing else flat."""
+        out = super().problems(factor, variables)
+        column = ([self.base] if self.base else []) + list(self.objects)
+        for below, above in itertools.pairwise(column):
+            lo, hi = variables.get(below), variables.get(above)
+            if lo is None or hi is None or lo.kind != ELL_KIND:
+                continue
+            if hi.kind != ELL_KIND or tuple(hi.extents) != tuple(lo.extents):
+                out.append(Problem(factor, "goal.objects",
+                                   f"{above!r} ({hi.kind}) would rest on the ell {below!r}: an "
+                                   "ell carries only an ell of its size",
+                                   "put it on a block, box or pallet, or use an equal ell"))
+        return out
 
     @classmethod
     def example(cls) -> tuple[list[dict[str, Any]], Stack]:
