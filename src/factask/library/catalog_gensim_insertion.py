@@ -264,3 +264,16 @@ def create_pyramid_with_color_coded_ells() -> TaskGraph:
                     "Build a pyramid of ells on the pallet: red, blue and yellow side by side "
                     "at the bottom, the green ell on top of the blue one.",
                     row, use("stack_on_base", layers=[green], base=blue, after=[row]))
+
+
+@register("vertical-insertion-blocks", family="insertion")
+def vertical_insertion_blocks() -> TaskGraph:
+    # GenSim's "stands set upright" that blocks are inserted into (its code overlaps
+    # each block with a stand): upright square sleeves, block fixtures 8 cm tall.
+    sleeves = [var(f"{c}_stand", "fixture", c, (BLOCK_FIXTURE[0], BLOCK_FIXTURE[1], 0.08),
+                   description=f"the upright {c} stand a block is inserted into")
+               for c in FOUR]
+    return _insert("vertical-insertion-blocks",
+                   "Insert each block into the upright stand of its colour: red into red, "
+                   "blue into blue, green into green, yellow into yellow.",
+                   colored("block", FOUR, BLOCK), sleeves)
