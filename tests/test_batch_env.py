@@ -233,3 +233,34 @@ def test_suction_grasps_lifts_and_lets_go_per_world(batch: BatchEnv) -> None:
     assert batch.held_objects() == [None, None, "blue_block"]
     batch.reset(seed=SEEDS)
     assert batch.held_objects() == [None, None, None]
+
+
+def test_no_world_reports_a_physics_failure_and_nan_is_one(batch: BatchEnv) -> None:
+    batch.reset(seed=SEEDS)
+    batch.step(batch.home_command(), substeps=3)
+    assert batch.physics_failures() == [None] * len(SEEDS)
+    qpos = batch.wp_data.qpos.numpy().copy()
+    qpos[1, 0] = np.nan
+    batch.wp_data.qpos.assign(qpos)
+    failures = batch.physics_failures()
+    assert failures[0] is None and failures[2] is None and "not finite" in failures[1]
+    assert not batch.status(latch=False).finite[1]
+    batch.reset(seed=SEEDS)
+    assert batch.physics_failures() == [None] * len(SEEDS)
+
+
+@pytest.mark.slow  # the arm's kernels: about 100 s more compilation on a cold cache
+def test_an_arm_batch_holds_its_home_pose_as_cpu_mujoco_does() -> None:
+    arm = make_batch(small_task(), 2, device="cpu", robot="arm")
+    arm.reset(seed=[3, 5])
+    home = arm.home_command()
+    assert home.shape == (2, arm.model.nu)
+    arm.step(home, substeps=30)
+    single = FactaskEnv(small_task(), robot="arm")
+    single.reset(seed=5)
+    for _ in range(30):
+        mujoco.mj_step(single.model, single.data)
+    assert np.allclose(arm.wp_data.qpos.numpy()[1], single.data.qpos, atol=2e-5)
+    assert np.allclose(arm.observe()["ee_pose"][1], single._obs()["ee_pose"], atol=1e-5)
+    single.close()
+    arm.close()

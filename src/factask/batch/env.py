@@ -314,6 +314,30 @@ class BatchEnv:
                 "ee_pose": np.concatenate([xpos, quat], axis=1).astype(float),
                 "suction": (self.suction.held >= 0).astype(float)[:, None]}
 
+    def physics_failures(self) -> list[str | None]:
+        """Per world, why its simulation is no longer trustworthy, or None: positions or
+        velocities not finite, or more contacts or constraint rows than allocated
+        (``nconmax``, ``njmax``: MuJoCo Warp drops the rest; make a batch with more).
+        """
+        data = self.wp_data
+        finite = (np.isfinite(data.qpos.numpy()).all(axis=1)
+                  & np.isfinite(data.qvel.numpy()).all(axis=1))
+        nefc = data.nefc.numpy()
+        contacts = int(data.nacon.numpy()[0])
+        out: list[str | None] = []
+        for w in range(self.num_envs):
+            if not finite[w]:
+                out.append("physics: positions or velocities are not finite")
+            elif nefc[w] > data.njmax:
+                out.append(f"physics: {int(nefc[w])} constraint rows, more than njmax = "
+                           f"{data.njmax}")
+            elif contacts > data.naconmax:
+                out.append(f"physics: {contacts} contacts in all worlds, more than "
+                           f"{data.naconmax} (nconmax = {self.nconmax} per world)")
+            else:
+                out.append(None)
+        return out
+
     # ---------------------------------------------------------------- suction
     def _world_mask(self, worlds: Sequence[int] | np.ndarray | None) -> np.ndarray:
         mask = np.zeros(self.num_envs, dtype=bool)
@@ -407,7 +431,7 @@ def make_batch(task: TaskGraph | str, num_envs: int, device: str | None = None,
     Raises:
         BatchBackendMissing: the ``gpu`` extra is not installed.
         DeviceUnavailableError: ``device`` asks for a GPU this machine lacks.
-        KeyError: an unknown library task name (the library's own error).
+        UnknownTaskError: an unknown library task name.
     """
     if isinstance(task, str):
         from factask.library import get_task

@@ -29,14 +29,17 @@ class BatchScene:
         names: Instance names, the column order of the arrays.
         pos: Positions (W, N, 3).
         quat: Unit quaternions (W, N, 4) (normalised on construction).
-        held: Which instance the robot holds, per world (W, N) bool.
+        held: Which instance the robot holds, per world (W, N) bool (None: nothing).
+
+    Raises:
+        InvalidValueError: the arrays' shapes do not fit ``names``.
     """
 
     objects: Mapping[str, SceneObject]
     names: tuple[str, ...]
     pos: np.ndarray
     quat: np.ndarray
-    held: np.ndarray
+    held: np.ndarray | None = None
     _index: dict[str, int] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
