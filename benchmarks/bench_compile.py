@@ -215,7 +215,8 @@ def run(quick: bool = False, repeats: int | None = None,
                   else f"{'-':>9s}")
             check = f"{1000 * t.validate:8.2f}" if t.validate else f"{'-':>8s}"
             print(f"{layout:9s} {n:4d} {t.nbody:6d} {t.ngeom:6d} {1000 * t.total:7.2f} "
-                  f"{1000 * t.total_cpu:7.2f} {1000 * t.spec:7.2f} {1000 * t.mujoco:7.2f} {1000 * t.total / n:6.3f} "
+                  f"{1000 * t.total_cpu:7.2f} {1000 * t.spec:7.2f} {1000 * t.mujoco:7.2f} "
+                  f"{1000 * t.total / n:6.3f} "
                   f"{check} {mj}")
     for layout in layouts:
         rows = [t for t in out if t.layout == layout]

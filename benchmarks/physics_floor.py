@@ -114,28 +114,31 @@ def clock_overhead(clock: Callable[[], float], samples: int = 2000) -> float:
     return best
 
 
-def bare_step_cost(rec: Recording, repeats: int = 3) -> StepCost:
-    """Mean cost of one bare ``mj_step`` from each recorded state.
+def bare_step_times(rec: Recording, repeats: int = 3) -> tuple[np.ndarray, np.ndarray]:
+    """Seconds of one bare ``mj_step`` from each recorded state (wall, CPU).
 
     Each state is stepped ``repeats`` times and its least time kept (the one least
-    disturbed by other jobs on the machine), in wall time and in CPU time.
+    disturbed by other jobs on the machine). Callers that time the run itself
+    several times can take this once per round and keep each state's least time
+    over the rounds: both sides are then measured under the same load.
 
     Args:
-        rec: A recording with at least one state.
+        rec: A recording.
         repeats: Timed steps per state.
 
     Returns:
-        Seconds per step (NaN when nothing was recorded).
+        Two arrays, one entry per recorded state (empty when nothing was recorded).
     """
-    if not rec.states:
-        return StepCost(math.nan, math.nan)
+    n = len(rec.states)
+    walls, cpus = np.zeros(n), np.zeros(n)
+    if not n:
+        return walls, cpus
     m = rec.model
     keep = m.eq_obj2id.copy(), m.eq_data.copy()
     d = mujoco.MjData(m)
     wall_0, cpu_0 = clock_overhead(time.perf_counter), clock_overhead(time.thread_time)
-    wall = cpu = 0.0
     try:
-        for state, obj2id, eq_data, sleep in rec.states:
+        for i, (state, obj2id, eq_data, sleep) in enumerate(rec.states):
             m.eq_obj2id[:] = obj2id
             m.eq_data[:] = eq_data
             best_w = best_c = math.inf
@@ -147,9 +150,25 @@ def bare_step_cost(rec: Recording, repeats: int = 3) -> StepCost:
                 c1, w1 = time.thread_time(), time.perf_counter()
                 best_w, best_c = min(best_w, w1 - w0), min(best_c, c1 - c0)
             # The wall interval holds two CPU-clock reads, the CPU interval none.
-            wall += max(best_w - wall_0 - 2 * cpu_0, 0.0)
-            cpu += max(best_c - cpu_0, 0.0)
+            walls[i] = max(best_w - wall_0 - 2 * cpu_0, 0.0)
+            cpus[i] = max(best_c - cpu_0, 0.0)
     finally:
         m.eq_obj2id[:], m.eq_data[:] = keep
-    n = len(rec.states)
-    return StepCost(wall / n, cpu / n)
+    return walls, cpus
+
+
+def bare_step_cost(rec: Recording, repeats: int = 3) -> StepCost:
+    """Mean cost of one bare ``mj_step`` from each recorded state
+    (:func:`bare_step_times`, averaged).
+
+    Args:
+        rec: A recording with at least one state.
+        repeats: Timed steps per state.
+
+    Returns:
+        Seconds per step (NaN when nothing was recorded).
+    """
+    if not rec.states:
+        return StepCost(math.nan, math.nan)
+    walls, cpus = bare_step_times(rec, repeats)
+    return StepCost(float(walls.mean()), float(cpus.mean()))
