@@ -1,5 +1,5 @@
 """``stack`` of ells: a column standing in a corner marker, an ell carrying only
-an equal ell (laid exactly on it)."""
+an ell no larger than itself (centred on it)."""
 
 from __future__ import annotations
 
@@ -24,12 +24,14 @@ def _ells(*colors: str, size: tuple[float, float, float] = ELL) -> list[StateVar
     return [StateVariable(name=f"{c}_ell", kind="ell", color=c, size=size) for c in colors]
 
 
-def test_an_ell_carries_only_an_equal_ell() -> None:
+def test_an_ell_carries_only_an_ell_no_larger() -> None:
     red, blue = _ells("red", "blue")
     small = _ells("green", size=(0.06, 0.06, 0.04))[0]
+    big = _ells("yellow", size=(0.10, 0.08, 0.04))[0]
     block = StateVariable(name="block", kind="block")
     assert _graph([red, blue], Stack(objects=["red_ell", "blue_ell"])).problems() == []
-    for top in (small, block):
+    assert _graph([red, small], Stack(objects=["red_ell", "green_ell"])).problems() == []
+    for top in (big, block):
         bad = _graph([red, top], Stack(objects=["red_ell", top.name]))
         assert any("carries only an ell" in p.message for p in bad.problems()), top.name
     on_base = _graph([red, block], Stack(objects=["block"], base="red_ell"))

@@ -277,3 +277,24 @@ def vertical_insertion_blocks() -> TaskGraph:
                    "Insert each block into the upright stand of its colour: red into red, "
                    "blue into blue, green into green, yellow into yellow.",
                    colored("block", FOUR, BLOCK), sleeves)
+
+
+#: GenSim's three ell sizes (large, medium, small), each 2 cm tall.
+ELL_SIZES = (("large", (0.08, 0.08, 0.02)), ("medium", (0.06, 0.06, 0.02)),
+             ("small", (0.04, 0.04, 0.02)))
+
+
+@register("multi-level-insertion-and-zone-matching", family="insertion")
+def multi_level_insertion_and_zone_matching() -> TaskGraph:
+    # GenSim's code sends the three ells of a colour to its zone's pose in the order
+    # large, medium, small: a column of three levels, each ell centred on the larger.
+    fragments = []
+    for c in THREE:
+        zone = var(f"{c}_zone", "zone", c, (0.12, 0.12, 0.001), description=f"the {c} zone")
+        ells = [var(f"{size}_{c}_ell", "ell", c, dims, description=f"the {size} {c} ell")
+                for size, dims in ELL_SIZES]
+        fragments.append(use("stack_on_base", layers=ells, base=zone))
+    return assemble("multi-level-insertion-and-zone-matching",
+                    "Put the ells of each colour into the zone of that colour in three levels: "
+                    "the large one first, the medium one on it, the small one on top.",
+                    fragments)

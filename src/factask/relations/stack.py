@@ -27,7 +27,7 @@ from factask.scene.objects import GEOMETRY_EPS, SceneObject, resting_pose, yaw_r
 if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
     from factask.model.variables import StateVariable
 
-#: A base marker a column may stand in, and the piece that carries only its equal.
+#: A base marker a column may stand in, and the piece that carries only its like.
 CORNER_KIND, ELL_KIND = "corner", "ell"
 
 
@@ -35,7 +35,8 @@ class Stack(RelationBase):
     """Stack the objects into one column, first object at the bottom. The column
     stands on ``base`` if given (a corner marker: in it, the column at its
     centre and yaw), else on a free spot of the table. An ell carries only an ell
-    of its size (laid exactly on it). With ``ordered`` false any order counts."""
+    no larger than itself (centred on it, its bars on the lower bars). With
+    ``ordered`` false any order counts."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"base": ("support", "region")}
     anchor_kinds: ClassVar[Mapping[str, tuple[str, ...]]] = {"base": (CORNER_KIND, ELL_KIND)}
@@ -46,18 +47,20 @@ class Stack(RelationBase):
 
     def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
         """Beyond the anchors: whatever rests on an ell (the base or a layer) is an ell
-        of the same size, since an L carries nothing else flat."""
+        no larger than it, since an L carries nothing else flat (a centred smaller
+        ell of the library's proportions has most of its bars on the lower bars)."""
         out = super().problems(factor, variables)
         column = ([self.base] if self.base else []) + list(self.objects)
         for below, above in itertools.pairwise(column):
             lo, hi = variables.get(below), variables.get(above)
             if lo is None or hi is None or lo.kind != ELL_KIND:
                 continue
-            if hi.kind != ELL_KIND or tuple(hi.extents) != tuple(lo.extents):
+            if hi.kind != ELL_KIND or hi.extents[0] > lo.extents[0] + GEOMETRY_EPS or \
+                    hi.extents[1] > lo.extents[1] + GEOMETRY_EPS:
                 out.append(Problem(factor, "goal.objects",
                                    f"{above!r} ({hi.kind}) would rest on the ell {below!r}: an "
-                                   "ell carries only an ell of its size",
-                                   "put it on a block, box or pallet, or use an equal ell"))
+                                   "ell carries only an ell no larger than itself",
+                                   "put it on a block, box or pallet, or use a smaller ell"))
         return out
 
     @classmethod
