@@ -200,3 +200,15 @@ def test_goal_problems_name_an_unused_object_and_a_trivial_group() -> None:
     assert any("green_block" in p for p in problems)
     good = [{"type": "on", "objects": ["red_block"], "support": "green_block"}]
     assert grounded.goal_problems(good, found) == []
+
+
+def test_an_object_is_never_its_own_anchor() -> None:
+    proposal = "stack the red block on the green block"
+    schema = grounded.compact_graph_schema(mentions(proposal), proposal)
+    answer = {"variables": [{"name": n, "initial": {"type": "table"}}
+                            for n in ("red_block", "green_block")],
+              "factors": [{"goal": {"type": "on", "objects": ["red_block"],
+                                    "support": "red_block"}}]}
+    assert schema_problems(answer, schema)
+    answer["factors"][0]["goal"]["support"] = "green_block"
+    assert schema_problems(answer, schema) == []

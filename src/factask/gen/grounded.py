@@ -207,14 +207,16 @@ def relation_over(relation: str, kinds: dict[str, str],
         return None
     props = schema["properties"]
     props["objects"] = ss.array(ss.name(movers), 1, len(movers))
-    if relation in GROUP_RELATIONS and counts is not None and \
-            sum(counts.get(n, 1) for n in movers) < 2:
-        if relation != "stack" or "base" not in props:
-            return None
-        base = [o for o in props["base"].get("anyOf", [props["base"]]) if "enum" in o]
-        if not base:
-            return None
-        props["base"] = base[0]
+    if relation in GROUP_RELATIONS and counts is not None:
+        if sum(counts.get(n, 1) for n in movers) < 2:
+            if relation != "stack" or "base" not in props:
+                return None
+            base = [o for o in props["base"].get("anyOf", [props["base"]]) if "enum" in o]
+            if not base:
+                return None
+            props["base"] = base[0]
+        elif relation != "stack" and all(counts.get(n, 1) < 2 for n in movers):
+            props["objects"]["minItems"] = 2  # a row of one single object is no row
     if len(movers) == 1:
         for field in RELATION_TYPES[relation].anchor_fields:
             if field in props:
@@ -222,7 +224,42 @@ def relation_over(relation: str, kinds: dict[str, str],
                 if narrowed is None:
                     return None
                 props[field] = narrowed
-    return schema
+        return schema
+    return _split_by_anchor(schema, relation, movers)
+
+
+def _enum_of(field: Schema) -> list[str]:
+    """The names an anchor field's schema allows (through a nullable ``anyOf``)."""
+    return [n for o in field.get("anyOf", [field]) for n in o.get("enum", [])]
+
+
+def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema | None:
+    """The relation as one branch per value of its first anchor that could also be
+    moved, that anchor written first and ``objects`` listing the others -- so
+    an object is never its own anchor ("the red block on the red block").
+    Unchanged when no anchor names a movable variable."""
+    props = schema["properties"]
+    field = next((f for f in RELATION_TYPES[relation].anchor_fields
+                  if f in props and set(_enum_of(props[f])) & set(movers)), None)
+    if field is None:
+        return schema
+    objects = props["objects"]
+    rest = {k: v for k, v in props.items() if k not in ("type", field, "objects")}
+    branches: list[Schema] = []
+    for anchor in _enum_of(props[field]):
+        others = [m for m in movers if m != anchor]
+        if len(others) < objects.get("minItems", 1):
+            continue
+        branches.append(ss.obj({"type": props["type"], field: {"const": anchor},
+                                "objects": ss.array(ss.name(others),
+                                                    objects.get("minItems", 1), len(others)),
+                                **rest}))
+    if any(o.get("type") == "null" for o in props[field].get("anyOf", [])):
+        branches.append(ss.obj({"type": props["type"], field: {"type": "null"},
+                                "objects": objects, **rest}))
+    if not branches:
+        return None
+    return branches[0] if len(branches) == 1 else {"anyOf": branches}
 
 
 #: Words of a proposal that name a relation (singular; a plural ``s`` is read too).
@@ -253,7 +290,8 @@ def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
     options = {r: s for r in RELATION_TYPES if r not in COORDINATE_RELATIONS
                and (s := relation_over(r, kinds, counts)) is not None}
     named = {r: s for r, s in options.items() if r in (wanted or ())}
-    chosen = list((named or options).values())
+    chosen = [b for s in (named or options).values() for b in s.get("anyOf", [s])
+              if "properties" in b]
     return chosen[0] if len(chosen) == 1 else {"anyOf": chosen}
 
 
