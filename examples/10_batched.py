@@ -7,10 +7,9 @@ minutes on a CPU). Writes ``out/examples/10_batched.json``.
 ``make_batch`` compiles the task once and keeps ``num_envs`` worlds of it on a Warp
 device: a GPU when there is one, else Warp's CPU device (slow, but the same code).
 A world reset with seed *s* starts from the single env's state for seed *s*; a
-low-level command (here the floating cup's pose) steps every world at once, the
-suction switches per world, and the batched checks score every factor in every
-world. The pick-and-place below is scripted in a few lines (no guarded moves): the
-batched primitive and oracle are still to come.
+low-level command (here the floating cup's pose) steps every world at once; a
+suction pick-and-place runs in every world in lockstep; the batched checks score
+every factor in every world.
 """
 
 # %% Imports and the output folder
@@ -41,40 +40,29 @@ gap = float(np.abs(obs["object_poses"][2] - single_obs["object_poses"]).max())
 print(f"world 2 vs the single env's seed 2: {gap:.1e} m apart (Warp computes in float32)")
 single.close()
 
-# %% A scripted pick-and-place in lockstep: every cup takes its world's block to its bowl
-mover = batch.graph.factors[0].goal.objects[0]  # the block the task moves
+# %% A low-level command for every world: each cup 10 cm lower, 100 physics steps
+cmd = batch.home_command()
+cmd[:, 2] -= 0.1
+t0 = time.perf_counter()
+batch.step(cmd, substeps=100)
+elapsed = time.perf_counter() - t0
+print(f"100 steps of {batch.num_envs} worlds in {elapsed:.2f} s "
+      f"({100 * batch.num_envs / elapsed:,.0f} world steps/s on {batch.device})")
+
+# %% One pick-and-place per world, in lockstep: every block to its bowl
+factor = batch.graph.factors[0]
+mover = factor.goal.objects[0]  # the block the task moves
 block = batch.object_names.index(mover)
 half = float(batch.objects[mover].half[2])
-start = obs["object_poses"][:, block, :3]
-goal = np.array([s.targets(batch.objects)[mover].pos for s in
-                 (batch.solved[w][batch.graph.factors[0].name] for w in range(batch.num_envs))])
-
-
-def move(a: np.ndarray, b: np.ndarray, steps: int) -> np.ndarray:
-    """The cup from a to b (x, y, z, yaw per world) in a straight line, all worlds."""
-    for s in np.linspace(0.0, 1.0, steps):
-        batch.step(a + s * (b - a))
-    return b
-
-
-def at(xyz: np.ndarray, dz: float) -> np.ndarray:
-    return np.concatenate([xyz[:, :2], xyz[:, 2:3] + dz, np.zeros((len(xyz), 1))], axis=1)
-
-
-t0 = time.perf_counter()
-cmd = move(batch.home_command(), at(start, half + 0.1), 150)
-cmd = move(cmd, at(start, half - 0.001), 100)  # onto the block's top
-held = batch.suction_on()
-print("holding:", batch.held_objects())
-cmd = move(cmd, at(start, half + 0.1), 100)
-cmd = move(cmd, at(goal, half + 0.1), 150)
-cmd = move(cmd, at(goal, half + 0.005), 100)
-batch.suction_off()
-batch.step(cmd, substeps=150)
-steps = 750
-elapsed = time.perf_counter() - t0
-print(f"{steps} steps of {batch.num_envs} worlds in {elapsed:.1f} s "
-      f"({steps * batch.num_envs / elapsed:,.0f} world steps/s on {batch.device})")
+start = batch.object_poses()[:, block, :3]
+goal = np.array([batch.solved[w][factor.name].targets(batch.objects)[mover].pos
+                 for w in range(batch.num_envs)])
+zeros = np.zeros(batch.num_envs)
+pick = np.c_[start[:, :2], start[:, 2] + half, zeros]  # the tip on the block's top
+place = np.c_[goal[:, :2], goal[:, 2] + half, zeros]
+result = batch.pick_and_place(pick, place)
+held = result.ok
+print(f"pick-and-place: ok {result.ok.tolist()} in {result.sim_steps} physics steps")
 
 # %% Every factor in every world, checked at once
 status = batch.status()
@@ -97,8 +85,8 @@ print("every block at its target:", done.reward.round(3).tolist(), done.success.
     "device": batch.device,
     "seeds": batch.seeds.tolist(),
     "gap_to_single_env_m": gap,
-    "world_steps_per_second": steps * batch.num_envs / elapsed,
-    "held": [bool(h) for h in held],
+    "world_steps_per_second": 100 * batch.num_envs / elapsed,
+    "pick_and_place_ok": [bool(h) for h in held],
     "reward": status.reward.tolist(),
     "success": status.success.tolist(),
     "reward_at_targets": done.reward.tolist(),

@@ -264,3 +264,34 @@ def test_an_arm_batch_holds_its_home_pose_as_cpu_mujoco_does() -> None:
     assert np.allclose(arm.observe()["ee_pose"][1], single._obs()["ee_pose"], atol=1e-5)
     single.close()
     arm.close()
+
+
+def test_a_pick_and_place_in_lockstep_does_what_the_single_env_does(batch: BatchEnv) -> None:
+    batch.reset(seed=SEEDS)
+    factor = batch.graph.factors[0]
+    mover = factor.goal.objects[0]
+    k = batch.object_names.index(mover)
+    half = float(batch.objects[mover].half[2])
+    pos = batch.object_poses()[:, k, :3]
+    target = np.array([batch.solved[w][factor.name].targets(batch.objects)[mover].pos
+                       for w in range(batch.num_envs)])
+    pick = np.c_[pos[:, :2], pos[:, 2] + half, np.zeros(len(SEEDS))]
+    place = np.c_[target[:, :2], target[:, 2] + half, np.zeros(len(SEEDS))]
+    pick[1, 2] = 0.2  # world 1 reaches into the air above its block
+    result = batch.pick_and_place(pick, place)
+    assert result.ok.tolist() == [True, False, True]
+    assert result.reasons[1].startswith("nothing to grasp") and result.sim_steps > 0
+    status = batch.status()
+    assert status.success.tolist() == [True, False, True]
+    assert batch.held_objects() == [None, None, None]
+    single = FactaskEnv(small_task())
+    single.reset(seed=SEEDS[0])
+    _, _, _, _, info = single.step({"pick": pick[0], "place": place[0]})
+    assert info["action_ok"] and info["success"]
+    # Where the single env put the block, the batch put it too (not the same motion:
+    # within a few millimetres).
+    here = batch.object_poses()[0, k, :3]
+    assert np.allclose(here, single.object_poses()[mover].pos, atol=0.005)
+    single.close()
+    with pytest.raises(InvalidValueError):
+        batch.pick_and_place(pick[:2], place)

@@ -32,6 +32,7 @@ import mujoco
 import numpy as np
 
 from factask.batch.device import load_backend, resolve_device
+from factask.batch.primitive import BatchActionResult, pick_and_place
 from factask.batch.scene import BatchScene
 from factask.batch.status import BatchTaskStatus, check_task_batch
 from factask.batch.suction import WorldSuction, model_with_object_welds
@@ -134,6 +135,9 @@ class BatchEnv:
         self._targets: dict[str, BatchTargets] = {}
         self._reached = np.zeros((self.num_envs, len(self.factor_names)), dtype=bool)
         self._seed_rng = np.random.default_rng()
+        #: The command each world holds now (num_envs, command_dim): the last one
+        #: stepped, or the robot's home after a reset.
+        self.command = np.zeros((self.num_envs, self.command_dim))
         self._was_reset = np.zeros(self.num_envs, dtype=bool)
 
     # ------------------------------------------------------------------ reset
@@ -202,6 +206,7 @@ class BatchEnv:
             mjw.reset_data(self.wp_model, self.wp_data, reset=self._mask)
             mjw.set_state(self.wp_model, self.wp_data, self._state, STATE_SIG, self._mask)
             mjw.kinematics(self.wp_model, self.wp_data)
+        self.command[mask] = self.home_command()[mask]
         if self._was_reset.all():
             self._targets = {f: BatchTargets.stack([self.solved[w][f]
                                                     for w in range(self.num_envs)])
@@ -259,6 +264,7 @@ class BatchEnv:
         if int(substeps) < 1:
             raise InvalidValueError(f"substeps must be at least 1, got {substeps}")
         wp = self._wp
+        self.command = cmd.copy()
         with wp.ScopedDevice(self.device):
             if self.command_dim:
                 self._command.assign(cmd.astype(np.float32))
@@ -368,6 +374,24 @@ class BatchEnv:
                 self._let_go.assign(self._trees_of(np.where(self.suction.held < 0, before, -1)))
                 self._wake(self._let_go)
         self._sync_held()
+
+    def pick_and_place(self, pick: np.ndarray, place: np.ndarray,
+                       worlds: Sequence[int] | np.ndarray | None = None) -> BatchActionResult:
+        """One suction pick-and-place per chosen world (default all), in lockstep (see
+        :func:`factask.batch.primitive.pick_and_place`; floating cup only).
+
+        Args:
+            pick: (num_envs, 4) the tip's (x, y, z, yaw) on the object's top face.
+            place: (num_envs, 4) the tip's (x, y, z, yaw) at the release.
+            worlds: World indices or a boolean mask of the worlds that act.
+
+        Returns:
+            What the action did in every world.
+
+        Raises:
+            InvalidValueError: an arm batch, or malformed poses.
+        """
+        return pick_and_place(self, pick, place, self._world_mask(worlds))
 
     def held_objects(self) -> list[str | None]:
         """The instance each world's cup holds, or None."""

@@ -95,6 +95,22 @@ class WorldSuction:
         """Forget what ``worlds`` held (their ``eq_active`` is reset with their data)."""
         self.held[worlds] = -1
 
+    def contacts(self, data: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The last physics step's contacts closer than ``TOUCH_DISTANCE``, all worlds:
+        (world (k,), geom pairs (k, 2), distance (k,)).
+
+        Args:
+            data: The batch's ``mujoco_warp.Data``.
+        """
+        n = min(int(data.nacon.numpy()[0]), int(data.contact.dist.shape[0]))
+        if n == 0:
+            return np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int), np.zeros(0)
+        geom = data.contact.geom.numpy()[:n].reshape(n, 2)
+        dist = data.contact.dist.numpy()[:n]
+        world = data.contact.worldid.numpy()[:n]
+        near = dist <= TOUCH_DISTANCE
+        return world[near], geom[near], dist[near]
+
     def touched(self, data: Any) -> np.ndarray:
         """The closest free object each world's cup touches (num_envs,), -1 for none,
         from the contacts of the last physics step.
@@ -102,21 +118,37 @@ class WorldSuction:
         Args:
             data: The batch's ``mujoco_warp.Data``.
         """
-        n = min(int(data.nacon.numpy()[0]), int(data.contact.dist.shape[0]))
         out = np.full(self.num_envs, -1, dtype=np.int64)
-        if n == 0:
-            return out
-        geom = data.contact.geom.numpy()[:n].reshape(n, 2)
-        dist = data.contact.dist.numpy()[:n]
-        world = data.contact.worldid.numpy()[:n]
+        world, geom, dist = self.contacts(data)
         cup1, cup2 = geom[:, 0] == self.cup_geom, geom[:, 1] == self.cup_geom
         other = np.where(cup1, geom[:, 1], geom[:, 0])
         obj = np.where(cup1 | cup2, self.geom_object[other], -1)
-        keep = (obj >= 0) & (dist <= TOUCH_DISTANCE)
+        keep = obj >= 0
         best = np.full(self.num_envs, np.inf)
         for w, o, dd in zip(world[keep], obj[keep], dist[keep], strict=True):
             if dd < best[w]:
                 best[w], out[w] = dd, o
+        return out
+
+    def cup_touching(self, data: Any) -> np.ndarray:
+        """Worlds (num_envs,) whose cup geom touches anything (object, table, fixture)."""
+        world, geom, _ = self.contacts(data)
+        hit = (geom == self.cup_geom).any(axis=1)
+        out = np.zeros(self.num_envs, dtype=bool)
+        out[world[hit]] = True
+        return out
+
+    def held_touching(self, data: Any) -> np.ndarray:
+        """Worlds (num_envs,) whose held object touches something besides the cup."""
+        world, geom, _ = self.contacts(data)
+        body = self.model.body_rootid[self.model.geom_bodyid[geom]]  # (k, 2)
+        held = self.held[world][:, None]
+        mine = (body == held) & (held >= 0)
+        cup = geom == self.cup_geom
+        hit = (mine[:, 0] & ~cup[:, 1] & (body[:, 1] != held[:, 0])) | \
+              (mine[:, 1] & ~cup[:, 0] & (body[:, 0] != held[:, 0]))
+        out = np.zeros(self.num_envs, dtype=bool)
+        out[world[hit]] = True
         return out
 
     def grasp(self, wp_model: Any, data: Any, worlds: np.ndarray) -> np.ndarray:
