@@ -11,6 +11,7 @@ along the table. The way to the pick is the usual transfer (the cup is empty).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -33,6 +34,11 @@ from factask.sim.primitive import (
 
 #: Lift (m) of a rope segment while carried (Ravens' rope primitive: 2 cm).
 ROPE_LIFT = 0.02
+#: Speed (m/s) of the carry: slow, so the rope trailing behind does not run on and
+#: pile up over the segment when it stops (Ravens' rope primitive is slow too).
+CARRY_SPEED = 0.08
+#: The carry's straight line is followed in pieces this long (m).
+CARRY_PIECE = 0.02
 
 
 @dataclass(frozen=True)
@@ -103,6 +109,18 @@ def low_pick_and_place(robot: SuctionRobot, pick: Pose, place: Pose, lift: float
     return PrimitiveResult(True, None, robot._steps, grasped)
 
 
+def _carry(robot: SuctionRobot, goal: np.ndarray, yaw0: float, yaw1: float) -> None:
+    """Straight to ``goal`` at :data:`CARRY_SPEED`, turning from ``yaw0`` to ``yaw1`` on
+    the way, in pieces of :data:`CARRY_PIECE` (the arm's joint-space moves stay on
+    the line, as a push's do)."""
+    start = robot._cmd_pos.copy()
+    pieces = max(1, math.ceil(float(np.linalg.norm(goal - start)) / CARRY_PIECE))
+    for k in range(1, pieces + 1):
+        f = k / pieces
+        robot._follow(robot._line(start + (goal - start) * f, yaw0 + (yaw1 - yaw0) * f,
+                                  CARRY_SPEED))
+
+
 def _run(robot: SuctionRobot, pick: Pose, place: Pose, lift: float) -> int:
     """Down, grasp, up ``lift``, over, down, release; raises PrimitiveAbort."""
     if robot.gripper.held is not None:
@@ -120,7 +138,8 @@ def _run(robot: SuctionRobot, pick: Pose, place: Pose, lift: float) -> int:
     grasped = robot.gripper.held
     assert grasped is not None
     low = place.pos + lift * up
-    robot._follow(robot._path([(robot._cmd_pos + lift * up, yaw0), (low, yaw1)]))
+    robot._follow(robot._path([(robot._cmd_pos + lift * up, yaw0)]))
+    _carry(robot, low, yaw0, yaw1)
     robot._settle()
     if not robot.gripper.held_in_contact() and robot._follow(
             robot._line(place.pos, yaw1, GUARDED_SPEED), stop=robot.gripper.held_in_contact):

@@ -36,13 +36,14 @@ import numpy as np
 from factask.geometry import Pose, tilt_deg, wrap_angle
 from factask.model.kinds import yaw_symmetry_deg
 from factask.relations.pile_in_zone import PileInZone
-from factask.relations.rope import RopeAlong, rope_slot_order
+from factask.relations.rope import RopeAlong
 from factask.relations.status import MAX_TILT_DEG, FactorStatus
 from factask.scene.collision import occupying, parking_spot, resting_on
 from factask.scene.objects import SPHERE_KINDS, SceneObject, top_z
 from factask.sim.env import FactaskEnv
-from factask.sim.low_carry import ROPE_LIFT, CarryAction
+from factask.sim.low_carry import CarryAction
 from factask.sim.push_oracle import PushAction, plan_push
+from factask.sim.rope_oracle import plan_rope_carry
 
 #: Attempts at placing one object for one factor before the oracle gives up.
 MAX_ATTEMPTS_PER_OBJECT = 3
@@ -212,26 +213,22 @@ class Oracle:
 
     def _rope_segment(self, fname: str, fstatus: FactorStatus,
                       poses: dict[str, Pose]) -> CarryAction | None:
-        """Place the rope's next segment (:func:`rope_slot_order`: its two ends, then
-        the farthest from its place), carried low (:mod:`factask.sim.low_carry`) so the rope
-        slides after it. Its neighbours are no obstacles: they are the rope."""
+        """Place the rope's next segment (:func:`~factask.sim.rope_oracle.plan_rope_carry`:
+        its two ends, then folds, then the farthest from its place, each set down head
+        first along the run), carried low so the rope slides after it."""
         for name in fstatus.placed:
             self.attempts.pop((fname, name), None)
-        targets = self._targets(fname, fstatus)
-        if not targets:
+        action = plan_rope_carry(fname, self.env.solved[fname], fstatus, self.env.objects,
+                                 poses)
+        if action is None:
             self.failure = f"factor {fname!r}: no slot for the rope's segments"
             return None
-        far = {n: float(np.linalg.norm(poses[n].pos[:2] - targets[n].pos[:2]))
-               for n in targets}
-        name = rope_slot_order(fstatus.targets, len(self.env.solved[fname].objects), far)
-        self.attempts[(fname, name)] += 1
-        if self.attempts[(fname, name)] > MAX_ATTEMPTS_PER_OBJECT:
-            self.failure = (f"factor {fname!r}: could not place {name!r} after "
+        self.attempts[(fname, action.obj)] += 1
+        if self.attempts[(fname, action.obj)] > MAX_ATTEMPTS_PER_OBJECT:
+            self.failure = (f"factor {fname!r}: could not place {action.obj!r} after "
                             f"{MAX_ATTEMPTS_PER_OBJECT} attempts ({fstatus.detail})")
             return None
-        a = self._action(self.env.objects[name], poses[name], targets[name], fname,
-                         f"place {name}")
-        return CarryAction(a.pick, a.place, ROPE_LIFT, a.obj, a.factor, a.purpose)
+        return action
 
     def act(self) -> dict[str, np.ndarray] | None:
         """The next action for ``env.step``, or None (done, or gave up)."""
