@@ -14,6 +14,9 @@ Rules (documented in docs/compat.md):
   :mod:`factask.compat.cliport.goals`;
 * a pushing task's zone goal over small blocks only -> one ``pile`` variable and
   a ``PileInZone`` factor (:mod:`factask.compat.cliport.piles`);
+* multibodies linked in a chain by constraints -> one ``rope`` variable, and a
+  pose goal over its beads -> a ``RopeAlong`` on the beads' targets
+  (:mod:`factask.compat.cliport.ropes`);
 * weights = ``step_max_reward``, rescaled to sum to 1;
 * the goals keep Ravens' queue: each factor comes ``after`` the one before it; a
   goal whose objects a later goal moves again is a **milestone** (it counts once
@@ -40,6 +43,7 @@ from factask.compat.cliport.goals import (
 from factask.compat.cliport.grippers import Spatula
 from factask.compat.cliport.piles import RAVENS_PILE_FRACTION, find_piles
 from factask.compat.cliport.recorder import RecordedObject, Session
+from factask.compat.cliport.ropes import find_ropes, rope_goal
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
 from factask.geometry import Pose, tilt_deg
@@ -290,6 +294,10 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         raise CliportImportError("reset added no goals (add_goal was never called)")
     piles = {p.goal: p for p in find_piles(task, goals, names)}
     in_piles = {o.obj_id for p in piles.values() for o in p.blocks}
+    ropes = find_ropes(session, names, warn)
+    in_ropes = {oid for r in ropes for oid in r.ids}
+    # The beads are the ropes' segments: no object of their own, host of nothing.
+    objects = [o for o in objects if o.obj_id not in in_ropes]
     if getattr(task, "ee", None) is Spatula and not piles:
         warn("the task asks for a spatula but has no pile to push; factask uses its "
              "suction cup")
@@ -326,7 +334,8 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             g.matches = g.matches[rows, :]
     goal_objects = {o.obj_id for g in goals for o in g.objs}
     _settle(objects, names, goal_objects, warn)
-    rest = resting_heights(goals, objects, goal_objects)
+    rest = resting_heights([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],
+                           objects, goal_objects)
     drafts: list[tuple[RecordedGoal, Any]] = []
     for g in goals:
         if not g.objs:
@@ -334,7 +343,10 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             continue
         objs = [names[o.obj_id] for o in g.objs]
         extra_kw = {"tolerances": tol} if tol is not None else {}
-        if g.metric == "pose":
+        rope_rel = rope_goal(g, ropes, extra_kw) if in_ropes else None
+        if rope_rel is not None:  # a rope's beads laid on their targets
+            rel: Any = rope_rel
+        elif g.metric == "pose":
             if len(g.objs) > len(g.targets):
                 raise Unsupported(f"goal {g.index}: {len(g.objs)} objects but only "
                                   f"{len(g.targets)} target pose(s); factask gives every "
@@ -343,7 +355,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             poses = [target_pose(p, q, tallest, rest.get((g.index, j)),
                                  f"goal {g.index} target {j}", warn)
                      for j, (p, q) in enumerate(g.targets)]
-            rel: Any = AtPose(objects=objs, poses=poses,
+            rel = AtPose(objects=objs, poses=poses,
                               matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
         elif g.index in piles:  # small blocks swept with a spatula: one pile
             zone = _zone_variable(g, objects, names, extra, warn)
@@ -403,6 +415,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             size=o.size, color=o.color, fixed=fixed, symmetry_deg=sym_deg,
             initial=_placement(o, objects[:k] + objects[k + 1:], names, moved, warn)))
     variables.extend(p.variable() for p in piles.values())
+    variables.extend(r.variable() for r in ropes)
     variables.extend(extra)
 
     max_steps = int(getattr(task, "max_steps", 0) or 0)

@@ -3,7 +3,11 @@
 Pure pose maths (``getQuaternionFromEuler``, ``multiplyTransforms``, ...) is
 computed; calls about recorded objects (``getBasePositionAndOrientation``,
 ``resetBasePositionAndOrientation``, ``changeVisualShape``) read or update the
-recording; ``stepSimulation`` does nothing (nothing moves during a reset).
+recording; bodies built from shapes and the constraints between them
+(``createCollisionShape``, ``createVisualShape``, ``createMultiBody``,
+``createConstraint``, ``changeConstraint``, ``removeConstraint``) are recorded
+(:mod:`factask.compat.cliport.bodies`: a chain of them becomes a rope);
+``stepSimulation`` does nothing (nothing moves during a reset).
 Anything else raises :class:`~factask.compat.cliport.errors.Unsupported` naming
 the call.
 """
@@ -15,7 +19,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from factask.compat.cliport import transforms
+from factask.compat.cliport import bodies, transforms
 from factask.compat.cliport.errors import Unsupported
 from factask.compat.cliport.recorder import active_session, color_name
 
@@ -98,6 +102,62 @@ def getAABB(obj_id: int, *args: Any, **kwargs: Any
     rot = np.abs(transforms.rotation(o.quat).as_matrix())
     half = rot @ (np.asarray(o.size, dtype=float) / 2)
     return tuple(map(float, o.pos - half)), tuple(map(float, o.pos + half))
+
+
+def createCollisionShape(shapeType: int, radius: float = bodies.DEFAULT_RADIUS,
+                         halfExtents: Any = bodies.DEFAULT_HALF_EXTENTS,
+                         height: float = bodies.DEFAULT_HEIGHT, *args: Any,
+                         **kwargs: Any) -> int:
+    """Record a collision shape (box, sphere, cylinder, capsule); returns its id."""
+    return bodies.add_shape(active_session(), shapeType, radius, halfExtents, height)
+
+
+def createVisualShape(shapeType: int, radius: float = bodies.DEFAULT_RADIUS,
+                      halfExtents: Any = bodies.DEFAULT_HALF_EXTENTS,
+                      length: float = bodies.DEFAULT_HEIGHT, *args: Any,
+                      rgbaColor: Any = None, **kwargs: Any) -> int:
+    """Record a visual shape (its colour colours the body); returns its id."""
+    return bodies.add_shape(active_session(), shapeType, radius, halfExtents, length,
+                            rgbaColor)
+
+
+def createMultiBody(baseMass: float = 0.0, baseCollisionShapeIndex: int = -1,
+                    baseVisualShapeIndex: int = -1, basePosition: Any = (0.0, 0.0, 0.0),
+                    baseOrientation: Any = (0.0, 0.0, 0.0, 1.0), *args: Any,
+                    **kwargs: Any) -> int:
+    """Record a one-link body made of recorded shapes; returns its object id.
+
+    Raises:
+        Unsupported: a body with links (``linkMasses`` ...) or batch positions.
+    """
+    if kwargs.get("linkMasses") or kwargs.get("batchPositions") or len(args) > 2:
+        raise Unsupported("pybullet.createMultiBody with links or batch positions: only "
+                          "single bodies made of one shape are supported")
+    return bodies.add_multibody(active_session(), baseMass, baseCollisionShapeIndex,
+                                baseVisualShapeIndex, basePosition, baseOrientation)
+
+
+def createConstraint(parentBodyUniqueId: int, parentLinkIndex: int = -1,
+                     childBodyUniqueId: int = -1, childLinkIndex: int = -1,
+                     jointType: int = JOINT_FIXED, jointAxis: Any = (0.0, 0.0, 0.0),
+                     parentFramePosition: Any = (0.0, 0.0, 0.0),
+                     childFramePosition: Any = (0.0, 0.0, 0.0), *args: Any,
+                     **kwargs: Any) -> int:
+    """Record a constraint between two bodies; returns its id."""
+    return bodies.add_constraint(active_session(), parentBodyUniqueId, parentLinkIndex,
+                                 childBodyUniqueId, childLinkIndex, jointType,
+                                 parentFramePosition, childFramePosition)
+
+
+def changeConstraint(constraint_id: int, *args: Any, **kwargs: Any) -> None:
+    """Accepted and ignored (a rope's links in factask have their own strength)."""
+    if int(constraint_id) not in active_session().constraints:
+        raise Unsupported(f"pybullet.changeConstraint: no constraint {constraint_id!r}")
+
+
+def removeConstraint(constraint_id: int, *args: Any, **kwargs: Any) -> None:
+    """Forget a recorded constraint."""
+    active_session().constraints.pop(int(constraint_id), None)
 
 
 def stepSimulation(*args: Any, **kwargs: Any) -> None:

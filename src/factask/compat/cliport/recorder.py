@@ -87,6 +87,9 @@ class Session:
         objects: Recorded objects by id, in the order they were added.
         warnings: Everything approximated or dropped, for the import report.
         random_spots: Positions ``get_random_pose`` returned (rounded keys).
+        shapes: PyBullet shape id -> what ``createCollisionShape`` /
+            ``createVisualShape`` was asked (:mod:`factask.compat.cliport.bodies`).
+        constraints: Constraint id -> what ``createConstraint`` was asked.
     """
 
     seed: int = 0
@@ -96,6 +99,8 @@ class Session:
     objects: dict[int, RecordedObject] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
     random_spots: set[tuple[float, ...]] = field(default_factory=set)
+    shapes: dict[int, Any] = field(default_factory=dict)
+    constraints: dict[int, Any] = field(default_factory=dict)
     _next_id: int = FIRST_OBJECT_ID
 
     def warn(self, message: str) -> None:

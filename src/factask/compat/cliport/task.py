@@ -25,6 +25,7 @@ from factask.compat.cliport.errors import Unsupported
 from factask.compat.cliport.grippers import Spatula, Suction
 from factask.compat.cliport.piles import make_piles
 from factask.compat.cliport.recorder import active_session
+from factask.compat.cliport.ropes import make_ropes
 from factask.compat.cliport.scoring import pose_match
 from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
 from factask.model.errors import InvalidValueError
@@ -309,8 +310,18 @@ class Task:
         self._factask_made_piles = True  # GenSim sweeps what make_piles adds
         return make_piles(env, self.bounds, int(self.num_blocks), block_color)
 
-    def make_ropes(self, *args: Any, **kwargs: Any) -> Any:
-        return self._unsupported("make_ropes (ropes are deformable)")
+    def make_ropes(self, env: Any, corners: Any, radius: float = 0.005, n_parts: int = 20,
+                   color_name: str = "red", *args: Any, **kwargs: Any
+                   ) -> tuple[list[Any], list[Any], np.ndarray]:
+        """GenSim's ropes: ``n_parts`` beads linked in a chain (one ``rope`` variable,
+        :mod:`factask.compat.cliport.ropes`), dropped at a random spot, each with a
+        target on the line from ``corners[0]`` to ``corners[1]``.
+
+        Returns:
+            (objects, targets, matches) for ``add_goal``: ``(id, (0, None))`` per bead,
+            a target pose per bead, ``eye + flipped eye`` (either end first).
+        """
+        return make_ropes(self, env, corners, radius, int(n_parts), color_name)
 
     make_rope = make_ropes
 
