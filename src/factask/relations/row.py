@@ -71,6 +71,8 @@ class Row(RelationBase):
     ordered: bool = True
 
     def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
+        """Beyond the anchors' kinds: no name twice in ``on`` or ``along``, and no
+        corner among two variables a row runs between."""
         out = super().problems(factor, variables)
         for fname in ("on", "along"):
             names = self.anchor_names(fname)
@@ -82,7 +84,7 @@ class Row(RelationBase):
             v = variables.get(name)
             if v is not None and v.kind == CORNER_KIND:
                 out.append(Problem(factor, "goal.along", f"{name!r} is a corner: a row runs "
-                                   "between two regions or supports, or along one corner",
+                                   "between two regions, or along one corner",
                                    "give the corner alone"))
         return out
 
