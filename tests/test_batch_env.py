@@ -25,10 +25,12 @@ from factask.batch import (
 )
 from factask.batch.device import load_backend
 from factask.batch.env import BatchEnv
+from factask.batch.oracle import run_oracle
 from factask.library import get_task
 from factask.model import TaskGraph
 from factask.model.errors import InvalidValueError
 from factask.sim.env import FactaskEnv, ResetNeededError
+from factask.sim.episode import run_episode
 
 pytestmark = pytest.mark.xdist_group("warp")
 if importlib.util.find_spec("mujoco_warp") is None or importlib.util.find_spec("warp") is None:
@@ -295,3 +297,13 @@ def test_a_pick_and_place_in_lockstep_does_what_the_single_env_does(batch: Batch
     single.close()
     with pytest.raises(InvalidValueError):
         batch.pick_and_place(pick[:2], place)
+
+
+def test_the_oracle_in_lockstep_succeeds_where_the_cpu_oracle_does(batch: BatchEnv) -> None:
+    batch.reset(seed=SEEDS)
+    result = run_oracle(batch)
+    for w, seed in enumerate(SEEDS):
+        cpu = run_episode(small_task(), seed=seed)
+        assert bool(result.success[w]) == cpu.success, (seed, result.failure[w], cpu.failure)
+        assert result.actions[w] == cpu.steps
+    assert result.success.all() and result.failure == [None] * len(SEEDS)

@@ -406,6 +406,12 @@ class BatchEnv:
                           poses[..., 3:], held)
 
     @property
+    def reached(self) -> np.ndarray:
+        """Factors reached so far per world (num_envs, n_factors), in graph order:
+        milestones latch on it (updated by :meth:`status`)."""
+        return self._reached.copy()
+
+    @property
     def targets(self) -> dict[str, BatchTargets]:
         """Every factor's solved targets in every world (after every world's reset).
 
