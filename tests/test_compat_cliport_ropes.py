@@ -94,3 +94,11 @@ def test_the_oracle_completes_bead_chain_tasks_under_ravens_scoring(path: Path,
         episode, ravens = scored_episode(result, seed)
         assert episode.success, episode.failure
         assert ravens.success, ravens.rewards
+
+
+def test_objects_added_with_add_object_and_linked_are_a_rope_too() -> None:
+    result = import_cliport(ROPES / "ball_chain_add_object.py", seed=0)
+    (rope,) = result.graph.variables
+    assert rope.kind == "rope" and rope.count == 12 and rope.color == "blue"
+    assert rope.size[0] == pytest.approx(0.015)
+    assert _rope_goal(result).either_end

@@ -36,6 +36,8 @@ from factask.model.variables import AtFixedPose, OnTable, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.relations import RopeAlong, TargetPose
 
+#: Kinds of ``add_object`` bodies that may be a rope's beads when linked.
+BEAD_KINDS = ("block", "ball", "cylinder")
 #: Beads whose extents differ by more than this (m) are not one rope's.
 SIZE_SLACK = 1e-4
 #: A rope whose centre is within this (m) of a ``get_random_pose`` spot starts at a
@@ -83,8 +85,11 @@ class Rope:
 
 
 def _chains(session: Session, warn: Any) -> list[list[int]]:
-    """Groups of linked multibodies, each in chain order (from its lower-id end)."""
-    bodies = {oid for oid, o in session.objects.items() if o.urdf == MULTIBODY}
+    """Groups of linked bodies, each in chain order (from its lower-id end): beads made
+    with ``createMultiBody``, or movable blocks, balls and cylinders added with
+    ``add_object`` (three or more of them: two linked objects are no rope)."""
+    bodies = {oid for oid, o in session.objects.items()
+              if o.urdf == MULTIBODY or (o.category == "rigid" and o.kind in BEAD_KINDS)}
     adj: dict[int, set[int]] = {}
     for cid, c in session.constraints.items():
         if c.joint not in LINK_JOINTS or c.parent not in bodies or c.child not in bodies:
@@ -107,6 +112,10 @@ def _chains(session: Session, warn: Any) -> list[list[int]]:
                 group.add(b)
                 todo.extend(adj[b] - group)
         seen |= group
+        if len(group) < 3 and any(session.objects[b].urdf != MULTIBODY for b in group):
+            warn(f"objects {sorted(group)} are linked by a constraint; factask drops it "
+                 "(three or more linked beads make a rope)")
+            continue
         edges = sum(len(adj[b]) for b in group) // 2
         ends = sorted(b for b in group if len(adj[b]) == 1)
         if edges != len(group) - 1 or len(ends) != 2:
