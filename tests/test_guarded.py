@@ -89,3 +89,16 @@ def test_status_is_kept_until_the_state_changes() -> None:
         assert again.reward == pytest.approx(kept.reward)
     finally:
         env.close()
+
+
+def test_descent_over_nothing_runs_to_its_end() -> None:
+    """Off the table nothing lies below the cup (an infinite clearance): the guarded
+    descent plays to its end and reports no contact."""
+    _, data, robot = _scene("floating", ((0.5, 0.1),))
+    data.mocap_pos[robot.mocap] = (2.0, 2.0, 0.2)
+    mujoco.mj_forward(robot.model, data)
+    robot._hold_here()
+    assert robot.gripper.clearance(held=False, margin=0.01) == np.inf
+    assert robot._descend(np.array([2.0, 2.0, 0.1]), robot._cmd_yaw, held=False) is False
+    assert data.mocap_pos[robot.mocap][2] == pytest.approx(0.1)
+

@@ -337,8 +337,10 @@ class SuctionRobot(ABC):
             room = (self.gripper.clearance(held, GUARD_MARGIN) - lag - GUARD_SLACK
                     - self.gripper.contact_reach)
             n = len(rows)
-            # After row i (0-based) the command is drop * (i + 1) / n lower.
-            free = min(n, max(0, math.ceil(room * n / drop) - 1))
+            # After row i (0-based) the command is drop * (i + 1) / n lower. Nothing
+            # below at all (no table there): the whole descent; NaN: none of it.
+            free = (min(n, max(0, math.ceil(room * n / drop) - 1)) if math.isfinite(room)
+                    else n if room > 0 else 0)
         if free:
             self._follow(rows[:free])
         return self._follow(rows[free:], stop=stop)
