@@ -14,7 +14,8 @@ guarded move. After the release the robot lifts a little and waits until the
 objects rest (settle detection, not a fixed wait). Every sample of a motion is
 computed before it starts and played in a tight loop (one array copy into the
 controls plus ``mj_step``); health and budget are checked between chunks of
-steps, contacts only during guarded moves.
+steps, contacts only during guarded moves (and there only once the clearance
+below allows one: :meth:`SuctionRobot._descend`).
 
 Everything runs in simulated time (``mujoco.mj_step``); nothing reads the clock.
 """
