@@ -212,3 +212,18 @@ def test_an_object_is_never_its_own_anchor() -> None:
     assert schema_problems(answer, schema)
     answer["factors"][0]["goal"]["support"] = "green_block"
     assert schema_problems(answer, schema) == []
+
+
+def test_a_warm_request_to_llama_cpp_samples_from_every_grammar_valid_token() -> None:
+    from factask.gen import LLMClient, LLMConfig
+    from factask.gen.loopback import LoopbackServer, ScriptedResponder
+
+    msgs = [{"role": "user", "content": "Step: one_shot\nhi"}]
+    with LoopbackServer(ScriptedResponder({"one_shot": ["{}"]})) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=0, timeout=30, response_format="llama_cpp"))
+        client.complete(msgs, schema={"type": "object"}, temperature=0.0)
+        client.complete(msgs, schema={"type": "object"}, temperature=0.7)
+        cold, warm = server.requests
+    assert "min_p" not in cold and cold.get("top_p") in (None, 1.0)
+    assert warm["top_p"] == 1.0 and warm["min_p"] == 0.0 and warm["top_k"] == 0

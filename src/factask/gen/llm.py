@@ -380,6 +380,13 @@ class LLMClient:
                 prompt_s = 0.1 * self.seconds_per_token * self.count_tokens(msgs)
             kwargs["timeout"] = max(cfg.timeout,
                                     30 + limit * self.seconds_per_token + prompt_s)
+        if self.form == "llama_cpp" and temp > 0:
+            # llama.cpp truncates (top_k 40, top_p 0.95, min_p 0.05) *before* the
+            # temperature: under a grammar a small model's distribution is so peaked
+            # that a warmer retry answered the same text. A warm retry samples from
+            # every grammar-valid token instead.
+            kwargs["top_p"] = 1.0
+            kwargs["extra_body"] = {"min_p": 0.0, "top_k": 0}
         fmt = response_format_param(self.form, schema, schema_name)
         if fmt is not None:
             kwargs["response_format"] = fmt
