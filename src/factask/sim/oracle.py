@@ -43,7 +43,7 @@ from factask.scene.objects import SPHERE_KINDS, SceneObject, top_z
 from factask.sim.env import FactaskEnv
 from factask.sim.low_carry import CarryAction
 from factask.sim.push_oracle import PushAction, plan_push
-from factask.sim.rope_oracle import plan_rope_carry
+from factask.sim.rope_oracle import MAX_FOLD_FIXES, plan_rope_carry
 
 #: Attempts at placing one object for one factor before the oracle gives up.
 MAX_ATTEMPTS_PER_OBJECT = 3
@@ -218,8 +218,11 @@ class Oracle:
         first along the run), carried low so the rope slides after it."""
         for name in fstatus.placed:
             self.attempts.pop((fname, name), None)
+        # A segment placed already is moved again as a fold; a few times at most.
+        settled = {n for n in fstatus.placed
+                   if self.attempts[(fname, f"fold:{n}")] >= MAX_FOLD_FIXES}
         action = plan_rope_carry(fname, self.env.solved[fname], fstatus, self.env.objects,
-                                 poses)
+                                 poses, settled)
         if action is None:
             self.failure = f"factor {fname!r}: no slot for the rope's segments"
             return None
@@ -228,6 +231,8 @@ class Oracle:
             self.failure = (f"factor {fname!r}: could not place {action.obj!r} after "
                             f"{MAX_ATTEMPTS_PER_OBJECT} attempts ({fstatus.detail})")
             return None
+        if action.obj in fstatus.placed:
+            self.attempts[(fname, f"fold:{action.obj}")] += 1
         return action
 
     def act(self) -> dict[str, np.ndarray] | None:

@@ -20,7 +20,8 @@ rules make the moves converge (:func:`plan_rope_carry`):
   (:func:`~factask.relations.rope.rope_slot_order`), a segment near its slot but
   turned more than :data:`KINK_DEG` from the run's direction is placed next, even
   when it is within tolerance of its slot: straightening it gives the rope its
-  length back.
+  length back. A segment straightened :data:`MAX_FOLD_FIXES` times that its
+  neighbours turned back is no fold any more (the oracle's choice).
 * **A slow carry.** The carry moves at
   :data:`~factask.sim.low_carry.CARRY_SPEED`: carried fast, the rope trailing
   behind runs on when the segment stops and piles up over it (a tangle no single
@@ -33,7 +34,7 @@ Each move is a low carry (:mod:`factask.sim.low_carry`): the segment is lifted
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 
 import numpy as np
 
@@ -46,6 +47,8 @@ from factask.sim.low_carry import ROPE_LIFT, CarryAction
 
 #: A segment turned more than this (degrees) from the run's direction is a fold...
 KINK_DEG = 60.0
+#: Straightening one segment this often is enough (its neighbours hold it turned).
+MAX_FOLD_FIXES = 2
 #: ... when it lies within this (m) of where it is aimed (farther off, it is merely
 #: not laid out yet).
 FOLD_NEAR = 0.04
@@ -89,7 +92,8 @@ def aim_points(slots: np.ndarray, segment: float, pitch: float = SLOT_PITCH) -> 
 
 def plan_rope_carry(fname: str, solved: SolvedFactor, status: FactorStatus,
                     objects: Mapping[str, SceneObject], poses: Mapping[str, Pose],
-                    lift: float = ROPE_LIFT) -> CarryAction | None:
+                    settled: Collection[str] = (), lift: float = ROPE_LIFT
+                    ) -> CarryAction | None:
     """The next low carry for a ``rope_along`` factor, or None when no segment is
     left to place.
 
@@ -99,6 +103,8 @@ def plan_rope_carry(fname: str, solved: SolvedFactor, status: FactorStatus,
         status: Its status now (which segments are placed, on which slots).
         objects: Scene objects by instance name.
         poses: Current poses.
+        settled: Segments no longer treated as folds (straightened often enough: their
+            neighbours turn them back).
         lift: How high the segment is carried.
     """
     if not status.targets:
@@ -111,7 +117,7 @@ def plan_rope_carry(fname: str, solved: SolvedFactor, status: FactorStatus,
     dist = {name: float(np.linalg.norm(poses[name].pos[:2] - aims[s]))
             for name, s in slots.items()}
     bend = {name: abs(math.degrees(wrap_angle(poses[name].yaw - want[name])))
-            for name in slots}
+            for name in slots if name not in settled}
     name = rope_slot_order(status.targets, len(solved.objects), dist, bend=bend,
                            kink_deg=KINK_DEG, near=FOLD_NEAR)
     obj, now = objects[name], poses[name]
@@ -122,4 +128,5 @@ def plan_rope_carry(fname: str, solved: SolvedFactor, status: FactorStatus,
     return CarryAction(pick, place, lift, name, fname, f"place {name}")
 
 
-__all__ = ["FOLD_NEAR", "KINK_DEG", "aim_points", "heading", "plan_rope_carry", "segment_slots"]
+__all__ = ["FOLD_NEAR", "KINK_DEG", "MAX_FOLD_FIXES", "aim_points", "heading",
+           "plan_rope_carry", "segment_slots"]
