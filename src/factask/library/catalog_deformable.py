@@ -209,3 +209,50 @@ def manipulating_two_ropes() -> TaskGraph:
         "Lay the red and the blue rope each straight along the line of its colour.",
         fragments,
     )
+
+
+#: Ravens' 3-sided square of its rope tasks: side 2 x bead radius x 20 x sqrt(2).
+ROPE_SQUARE = (0.283, 0.283, 0.001)
+
+
+def _on_side(fragment: TaskGraph, side: str) -> TaskGraph:
+    """The ``lay_rope_along`` fragment with its run moved to one ``side`` of its region
+    (an edge, or the diagonal)."""
+    factor = fragment.factors[0]
+    factor.goal = factor.goal.model_copy(update={"side": side})
+    return fragment
+
+
+def _square_rope_task(name: str, description: str, side: str) -> TaskGraph:
+    rope = _rope("red")
+    square = var("green_square", "zone", "green", ROPE_SQUARE,
+                 description="the 3-sided square (its outline as a flat zone)")
+    return assemble(name, description,
+                    _on_side(use("lay_rope_along", rope=rope, line=square), side))
+
+
+@register("align-rope")
+def align_rope() -> TaskGraph:
+    return _square_rope_task(
+        "align-rope",
+        "Align the rope from the front right tip to the back right corner of the 3-sided "
+        "square (its ends at the two corners of that side).", "+x")
+
+
+@register("manipulating-rope")
+def manipulating_rope() -> TaskGraph:
+    return _square_rope_task(
+        "manipulating-rope",
+        "Rearrange the rope so that it connects the two end points of the 3-sided square "
+        "(the open side).", "+y")
+
+
+@register("align-rope-cross-zone")
+def align_rope_cross_zone() -> TaskGraph:
+    rope = _rope("blue")
+    zone = var("green_zone", "zone", "green", (0.2, 0.2, 0.001), description="the zone")
+    return assemble(
+        "align-rope-cross-zone",
+        "Align the rope across the diagonal of the green zone marked on the tabletop.",
+        _on_side(use("lay_rope_along", rope=rope, line=zone), "diagonal"),
+    )
