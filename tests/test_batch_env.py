@@ -26,6 +26,7 @@ from factask.batch import (
 from factask.batch.device import load_backend
 from factask.batch.env import BatchEnv
 from factask.batch.oracle import run_oracle
+from factask.batch.vector import BatchVectorEnv
 from factask.library import get_task
 from factask.model import TaskGraph
 from factask.model.errors import InvalidValueError
@@ -270,15 +271,10 @@ def test_an_arm_batch_holds_its_home_pose_as_cpu_mujoco_does() -> None:
 
 def test_a_pick_and_place_in_lockstep_does_what_the_single_env_does(batch: BatchEnv) -> None:
     batch.reset(seed=SEEDS)
-    factor = batch.graph.factors[0]
-    mover = factor.goal.objects[0]
+    mover = batch.graph.factors[0].goal.objects[0]
     k = batch.object_names.index(mover)
-    half = float(batch.objects[mover].half[2])
-    pos = batch.object_poses()[:, k, :3]
-    target = np.array([batch.solved[w][factor.name].targets(batch.objects)[mover].pos
-                       for w in range(batch.num_envs)])
-    pick = np.c_[pos[:, :2], pos[:, 2] + half, np.zeros(len(SEEDS))]
-    place = np.c_[target[:, :2], target[:, 2] + half, np.zeros(len(SEEDS))]
+    actions = _place_actions(batch)
+    pick, place = actions["pick"], actions["place"]
     pick[1, 2] = 0.2  # world 1 reaches into the air above its block
     result = batch.pick_and_place(pick, place)
     assert result.ok.tolist() == [True, False, True]
@@ -307,3 +303,41 @@ def test_the_oracle_in_lockstep_succeeds_where_the_cpu_oracle_does(batch: BatchE
         assert bool(result.success[w]) == cpu.success, (seed, result.failure[w], cpu.failure)
         assert result.actions[w] == cpu.steps
     assert result.success.all() and result.failure == [None] * len(SEEDS)
+
+
+def _place_actions(batch: BatchEnv) -> dict[str, np.ndarray]:
+    """Each world's block of the task's first factor, from where it is to its target."""
+    factor = batch.graph.factors[0]
+    mover = factor.goal.objects[0]
+    k = batch.object_names.index(mover)
+    half = float(batch.objects[mover].half[2])
+    pos = batch.object_poses()[:, k, :3]
+    target = np.array([batch.solved[w][factor.name].targets(batch.objects)[mover].pos
+                       for w in range(batch.num_envs)])
+    zeros = np.zeros(batch.num_envs)
+    return {"pick": np.c_[pos[:, :2], pos[:, 2] + half, zeros],
+            "place": np.c_[target[:, :2], target[:, 2] + half, zeros]}
+
+
+def test_the_vector_env_steps_rewards_terminates_and_autoresets() -> None:
+    env = BatchVectorEnv(small_task(), 2, device="cpu")
+    obs, info = env.reset(seed=4)
+    assert env.observation_space.contains(obs) and info["seeds"].tolist() == [4, 5]
+    single = FactaskEnv(small_task())
+    assert env.single_action_space == single.action_space
+    actions = _place_actions(env.batch)
+    actions["pick"][1, 2] = 0.2  # world 1 grasps nothing
+    obs, reward, terminated, truncated, info = env.step(actions)
+    assert np.allclose(reward, [1.0, 0.0]) and terminated.tolist() == [True, False]
+    assert not truncated.any() and info["action_ok"].tolist() == [True, False]
+    # World 0 starts again (reward 0, no flags) while world 1 acts.
+    before = env.batch.seeds.copy()
+    obs, reward, terminated, truncated, info = env.step(_place_actions(env.batch))
+    assert env.batch.seeds[0] != before[0] and env.batch.seeds[1] == before[1]
+    assert reward[0] == 0.0 and not terminated[0] and not truncated[0]
+    assert terminated[1] and math.isclose(float(reward[1]), 1.0)
+    assert env.observation_space.contains(obs)
+    with pytest.raises(InvalidValueError):
+        env.step({"pick": actions["pick"]})
+    env.close()
+    single.close()

@@ -8,6 +8,7 @@
 * :mod:`factask.batch.suction`, :mod:`factask.batch.primitive` — the suction grasp
   per world; one pick-and-place per world in lockstep.
 * :mod:`factask.batch.oracle` — the single env's oracle in every world, in lockstep.
+* :mod:`factask.batch.vector` — the batch as a gymnasium ``VectorEnv``.
 * :mod:`factask.batch.checks` — each relation's vectorised check (NumPy over worlds),
   :mod:`factask.batch.status` — the whole task's status per world.
 
@@ -25,8 +26,9 @@ from factask.batch.primitive import BatchActionResult
 from factask.batch.scene import BatchScene
 from factask.batch.status import BatchTaskStatus, check_task_batch
 from factask.batch.targets import BatchTargets
+from factask.batch.vector import BatchVectorEnv
 
 __all__ = ["BATCH_CHECKS", "BatchActionResult", "BatchBackendMissing", "BatchEnv",
            "BatchEpisodeResult", "BatchFactorStatus", "BatchScene", "BatchTargets",
-           "BatchTaskStatus", "DeviceUnavailableError", "check_factor_batch",
+           "BatchTaskStatus", "BatchVectorEnv", "DeviceUnavailableError", "check_factor_batch",
            "check_task_batch", "make_batch", "resolve_device", "run_oracle"]

@@ -148,6 +148,8 @@ def pick_and_place(batch: BatchEnv, pick: np.ndarray, place: np.ndarray,
             raise InvalidValueError(f"{name} must be {w} x 4 finite numbers, got {a.shape}")
     acted = np.ones(w, dtype=bool) if worlds is None else np.asarray(worlds, dtype=bool)
     reasons: list[str | None] = [None] * w
+    if not acted.any():
+        return BatchActionResult(np.zeros(w, dtype=bool), reasons, acted, 0)
     steps = 0
     batch.suction_off(acted)
 
