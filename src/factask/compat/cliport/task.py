@@ -3,7 +3,7 @@
 It keeps what task code reads and writes (attributes, ``goals`` as CLIPort's
 8-tuples, ``lang_goals``) and implements the helpers that only compute or record
 (``add_goal``, ``get_random_pose``, ``fill_template``, ...). Helpers that need a
-running PyBullet world (the oracle, rewards, images, piles, ropes) raise
+running PyBullet world (the oracle, rewards) raise
 :class:`~factask.compat.cliport.errors.Unsupported` naming the call.
 
 Randomness: ``get_random_pose``/``get_random_size`` draw from the load's seeded
