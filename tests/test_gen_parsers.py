@@ -242,3 +242,9 @@ def test_a_size_taller_than_the_workspace_breaks_the_variables_schema() -> None:
                 "color": "green", "count": 1, "initial": {"type": "table"}}
     problems = schema_problems({"variables": [variable]}, SCHEMAS["variables"])
     assert problems == ["variables.0.size.2: 0.75 is greater than the maximum of 0.3"]
+
+
+def test_a_text_field_ending_in_a_newline_is_refused() -> None:
+    # Python's ``$`` matches before a final newline; JSON Schema's does not.
+    answer = {"subtasks": [{"name": "place_it", "description": "ok\n"}]}
+    assert schema_problems(answer, SCHEMAS["subtask_outline"])

@@ -16,6 +16,7 @@ the relation classes), so a schema never drifts from the model it feeds.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -309,7 +310,6 @@ def schema_problems(data: Any, schema: Mapping[str, Any], limit: int = 12) -> li
     Returns:
         The problems (empty: the answer follows the schema).
     """
-    from jsonschema import Draft202012Validator
 
     out: list[str] = []
 
@@ -324,11 +324,31 @@ def schema_problems(data: Any, schema: Mapping[str, Any], limit: int = 12) -> li
         message = error.message if len(error.message) < 240 else error.message[:237] + "..."
         out.append(f"{path}: {message}")
 
-    for error in Draft202012Validator(schema).iter_errors(data):
+    for error in _validator()(schema).iter_errors(data):
         report(error)
         if len(out) >= limit:
             break
     return out[:limit]
+
+
+def _strict_pattern(validator: Any, pattern: str, instance: Any, schema: Any) -> Any:
+    """``pattern`` as JSON Schema (ECMA-262) means it: Python's ``$`` also matches
+    before a final newline, which let ``"text\\n"`` through a text field."""
+    if not validator.is_type(instance, "string"):
+        return
+    from jsonschema import ValidationError
+
+    found = re.search(pattern, instance)
+    anchored = pattern.endswith("$") and not pattern.endswith("\\$")
+    if found is None or (anchored and found.end() != len(instance)):
+        yield ValidationError(f"{instance!r} does not match {pattern!r}")
+
+
+def _validator() -> Any:
+    """Draft 2020-12 with :func:`_strict_pattern`."""
+    from jsonschema import Draft202012Validator, validators
+
+    return validators.extend(Draft202012Validator, {"pattern": _strict_pattern})
 
 
 def _branch_errors(error: Any) -> list[Any]:
