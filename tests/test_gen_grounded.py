@@ -227,3 +227,18 @@ def test_a_warm_request_to_llama_cpp_samples_from_every_grammar_valid_token() ->
         cold, warm = server.requests
     assert "min_p" not in cold and cold.get("top_p") in (None, 1.0)
     assert warm["top_p"] == 1.0 and warm["min_p"] == 0.0 and warm["top_k"] == 0
+
+
+def test_a_grounded_subtask_goal_follows_the_words_and_has_no_coordinates() -> None:
+    from factask.model.variables import StateVariable
+
+    planned = [StateVariable(name="yellow_cylinder", kind="cylinder", color="yellow"),
+               StateVariable(name="blue_zone", kind="zone", color="blue")]
+    schema = grounded.goal_answer(planned, f"{PROPOSAL} move it into the zone")
+    good = {"goal": {"type": "in_zone", "objects": ["yellow_cylinder"], "zone": "blue_zone"},
+            "description": "d"}
+    assert schema_problems(good, schema) == []
+    posed = {"goal": {"type": "at_pose", "objects": ["yellow_cylinder"],
+                      "poses": [{"x": 0.5, "y": 0.0, "z": None, "yaw_deg": 0}],
+                      "frame": None, "check_yaw": False}, "description": "d"}
+    assert schema_problems(posed, schema)

@@ -295,6 +295,25 @@ def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
     return chosen[0] if len(chosen) == 1 else {"anyOf": chosen}
 
 
+def goal_answer(variables: Sequence[StateVariable], text: str) -> Schema:
+    """Approach 1, step 3, grounded: one subtask's goal over its variables.
+
+    Args:
+        variables: The subtask's planned variables.
+        text: The proposal and the subtask's description: the relations their
+            words name are the only goal types allowed (when any is named and fits).
+
+    Returns:
+        ``{"goal": ..., "description": ...}`` with the goal as in
+        :func:`compact_graph_schema` (no coordinates, no object its own anchor,
+        no group of one).
+    """
+    kinds = {v.name: v.kind for v in variables}
+    counts = {v.name: v.count for v in variables}
+    return ss.obj({"goal": _goal(kinds, named_relations(text), counts),
+                   "description": ss.text(GROUNDED_TEXT)})
+
+
 def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> list[str]:
     """What makes a grounded graph's goals another (or no) task: a named object no
     goal uses, a row, circle or stack of fewer than two objects.
@@ -440,6 +459,6 @@ def plan_bound(variables: Sequence[StateVariable]) -> int:
 
 __all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "GROUP_RELATIONS", "MAX_EXTRA",
            "OBJECT_KINDS", "RELATION_WORDS", "applies", "compact_example", "compact_examples",
-           "compact_graph_schema", "expand_graph", "factor_names", "goal_problems",
+           "compact_graph_schema", "expand_graph", "factor_names", "goal_answer", "goal_problems",
            "graph_schema", "grounded_variables", "mention_variable", "movable",
            "named_relations", "plan_bound", "relation_over", "variables_answer"]

@@ -293,7 +293,9 @@ class Generator(StepRunner):
         factors: list[SubtaskFactor] = []
         for sub in plan.subtasks:
             scope_vars = closure([by_name[n] for n in sub.variables], by_name)
-            schema = ss.goal_answer(_kinds([by_name[n] for n in sub.variables]))
+            planned = [by_name[n] for n in sub.variables]
+            schema = grounded.goal_answer(planned, f"{desc} {sub.description}") \
+                if self.grounded else ss.goal_answer(_kinds(planned))
 
             def prompt(lv: PromptLevel, sub: Any = sub, scope_vars: Any = scope_vars,
                        schema: Any = schema) -> str:
