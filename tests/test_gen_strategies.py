@@ -105,6 +105,11 @@ def test_a_repeated_answer_stops_the_step_early() -> None:
     assert "repeats an earlier one" in result.steps[1].feedback
     assert "repeated an earlier answer twice" in result.steps[-1].feedback
     assert result.level_reached == "none"
+    # The try after a repeat does not show the model its answers (a small model
+    # copies what it sees); the feedback is in the one user message.
+    roles = [m["role"] for m in server.requests[2]["messages"]]
+    assert roles == ["system", "user"]
+    assert "repeats an earlier one" in server.requests[2]["messages"][1]["content"]
 
 
 def test_infeasible_layout_gets_runtime_feedback_then_repair() -> None:

@@ -251,10 +251,17 @@ class StepRunner:
             if repeats >= MAX_REPEATS:
                 break
             if attempt < last:
-                messages = [*messages, {"role": "assistant", "content": reply.text},
-                            {"role": "user", "content": render(
-                                "feedback", step=step, attempt=attempt + 1,
-                                max_attempts=last + 1, feedback=cut_feedback(feedback))}]
+                note = render("feedback", step=step, attempt=attempt + 1,
+                              max_attempts=last + 1, feedback=cut_feedback(feedback))
+                if repeated:
+                    # A small model copies an answer it can see, at any temperature:
+                    # after a repeat the answers leave the conversation; the feedback
+                    # stays, with the first prompt.
+                    messages = [messages[0], {"role": "user", "content":
+                                              f"{messages[1]['content']}\n\n{note}"}]
+                else:
+                    messages = [*messages, {"role": "assistant", "content": reply.text},
+                                {"role": "user", "content": note}]
         if best is None:
             return Outcome(None, "none", False, feedback)
         return Outcome(best[1], best[2], False, best[3])
