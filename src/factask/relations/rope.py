@@ -260,7 +260,7 @@ def run_yaw(points: np.ndarray, k: int) -> float:
 def rope_slot_order(targets: Mapping[str, int], n: int,
                     distance: Mapping[str, float], far_end: float = 0.5,
                     bend: Mapping[str, float] | None = None,
-                    kink_deg: float = 60.0, near: float = 0.04) -> str:
+                    kink_deg: float = 90.0, near: float = 0.04) -> str:
     """The segment to place next.
 
     1. The one for the run's first slot, then the one for its last (pulling the

@@ -46,7 +46,7 @@ from factask.scene.objects import SceneObject, top_z
 from factask.sim.low_carry import ROPE_LIFT, CarryAction
 
 #: A segment turned more than this (degrees) from the run's direction is a fold...
-KINK_DEG = 60.0
+KINK_DEG = 90.0
 #: Straightening one segment this often is enough (its neighbours hold it turned).
 MAX_FOLD_FIXES = 2
 #: ... when it lies within this (m) of where it is aimed (farther off, it is merely
