@@ -256,3 +256,24 @@ def align_rope_cross_zone() -> TaskGraph:
         "Align the rope across the diagonal of the green zone marked on the tabletop.",
         _on_side(use("lay_rope_along", rope=rope, line=zone), "diagonal"),
     )
+
+
+@register("push-piles-into-letter")
+def push_piles_into_letter() -> TaskGraph:
+    # The letter L on the table, as two bars: the stem across the table at the far
+    # side, the foot from the stem's end towards the robot. One pile per bar, each
+    # pushed along its own band (+x), so no push crosses the other bar.
+    stem_y, foot_y = 0.06, -0.06
+    stem = var("stem_zone", "zone", "green", (0.06, 0.2, 0.001), initial=at(0.68, stem_y),
+               description="the stem of the letter L")
+    foot = var("foot_zone", "zone", "green", (0.14, 0.06, 0.001),
+               initial=at(0.58, foot_y), description="the foot of the letter L")
+    stem_pile = _pile("red", 10, initial=region(PILE_X, (stem_y + 0.02, stem_y + 0.08)))
+    foot_pile = _pile("blue", 10, initial=region(PILE_X, (foot_y - 0.08, foot_y - 0.02)))
+    return assemble(
+        "push-piles-into-letter",
+        "Push the piles of small blocks into the letter L marked on the tabletop: the red "
+        "pile into its stem, the blue pile into its foot.",
+        use("push_pile_into_zone", prefix="stem", objects=[stem_pile], zone=stem),
+        use("push_pile_into_zone", prefix="foot", objects=[foot_pile], zone=foot),
+    )
