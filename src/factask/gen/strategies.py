@@ -258,8 +258,7 @@ class Generator(StepRunner):
             if compact:
                 k = min(lv.examples, self.n_examples)
                 # The grammar holds the answer to the schema: the prompt shows its
-                # outline only (a third of the tokens; prompt processing dominates
-                # a call on a CPU).
+                # outline only (prompt processing dominates a call on a CPU).
                 return render("one_shot_grounded", task_name=task, task_description=desc,
                               mentions=mentions_text(f"{desc} {task}"),
                               examples=grounded.compact_examples(query, k, task),
