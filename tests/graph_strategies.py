@@ -8,6 +8,8 @@ are normalised.
 
 from __future__ import annotations
 
+import itertools
+
 from hypothesis import strategies as st
 
 from factask.model import (
@@ -113,7 +115,16 @@ def task_graphs(draw: st.DrawFn, prefix: str = "", max_factors: int = 5) -> Task
                       support=draw(st.sampled_from(kinds["support"] + movable_supports)))
         elif rtype == "stack":
             base = draw(st.one_of(st.none(), st.sampled_from(movable_supports or [None])))
-            goal = Stack(objects=objs, base=base)
+            # An ell carries only an ell no larger than itself: ells go on top,
+            # the larger first.
+            by_name = {v.name: v for v in variables}
+            objs = sorted(objs, key=lambda n: (by_name[n].kind == "ell",
+                                               -by_name[n].extents[0], -by_name[n].extents[1]))
+            ells = [by_name[n].extents for n in objs if by_name[n].kind == "ell"]
+            if all(hi[0] <= lo[0] and hi[1] <= lo[1] for lo, hi in itertools.pairwise(ells)):
+                goal = Stack(objects=objs, base=base)
+            else:  # two ells neither of which fits on the other
+                goal = Row(objects=objs)
         elif rtype == "row":
             goal = Row(objects=objs, spacing=draw(st.one_of(st.none(), st.just(0.06))))
         elif rtype == "circle":
