@@ -84,29 +84,8 @@ def low_pick_and_place(robot: SuctionRobot, pick: Pose, place: Pose, lift: float
     Returns:
         The result; failures come back as ``ok=False`` with a reason.
     """
-    # The same books as SuctionRobot.pick_and_place keeps.
-    robot._steps = 0
-    robot._max_steps = max_steps
-    robot._on_step = on_step
-    robot._callback_every = max(1, callback_every)
-    robot._health.rebase()
-    grasped: int | None = None
-    try:
-        robot._check_health()
-        if robot._aborted:
-            robot._recover()
-        robot._aborted = False
-        grasped = _run(robot, pick, place, lift)
-        robot._check_health()
-    except PrimitiveAbort as abort:
-        robot._aborted = True
-        if robot.gripper.held is not None:
-            grasped = robot.gripper.held
-        robot.gripper.release()
-        return PrimitiveResult(False, abort.reason, robot._steps, grasped)
-    finally:
-        robot._on_step = None
-    return PrimitiveResult(True, None, robot._steps, grasped)
+    return robot.execute(lambda: _run(robot, pick, place, lift), on_step, max_steps,
+                         callback_every)
 
 
 def _carry(robot: SuctionRobot, goal: np.ndarray, yaw0: float, yaw1: float) -> None:

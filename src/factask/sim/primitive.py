@@ -240,6 +240,26 @@ class SuctionRobot(ABC):
             The result; failures (nothing to grasp, unreachable pose, physics
             blow-up, step limit) come back as ``ok=False`` with a reason, never raised.
         """
+        return self.execute(lambda: self._run(pick, place), on_step, max_steps, callback_every)
+
+    def execute(self, body: Callable[[], int | None],
+                on_step: Callable[[], None] | None = None,
+                max_steps: int = DEFAULT_MAX_STEPS,
+                callback_every: int = DEFAULT_CALLBACK_EVERY) -> PrimitiveResult:
+        """Run one primitive's motions with the books every primitive keeps: the
+        step budget and callback, the health watch, recovery after an aborted one,
+        and on an abort the suction let go.
+
+        Args:
+            body: The motions; returns the grasped body (or None), raises
+                :class:`PrimitiveAbort` to fail.
+            on_step: Called every ``callback_every`` physics steps.
+            max_steps: Physics-step budget; exceeding it fails the primitive.
+            callback_every: Physics steps between ``on_step`` calls.
+
+        Returns:
+            The result; an abort comes back as ``ok=False`` with its reason.
+        """
         self._steps = 0
         self._max_steps = max_steps
         self._on_step = on_step
@@ -251,7 +271,7 @@ class SuctionRobot(ABC):
             if self._aborted:
                 self._recover()
             self._aborted = False
-            grasped = self._run(pick, place)
+            grasped = body()
             self._check_health()
         except PrimitiveAbort as abort:
             self._aborted = True

@@ -28,7 +28,6 @@ from factask.sim.primitive import (
     DEFAULT_CALLBACK_EVERY,
     DEFAULT_MAX_STEPS,
     GUARDED_SPEED,
-    PrimitiveAbort,
     PrimitiveResult,
     SuctionRobot,
 )
@@ -110,26 +109,13 @@ def push(robot: SuctionRobot, start: Pose, end: Pose,
         The result (``grasped_body`` always None); failures (unreachable pose,
         physics blow-up, step limit) come back as ``ok=False`` with a reason.
     """
-    # The same books as SuctionRobot.pick_and_place keeps.
-    robot._steps = 0
-    robot._max_steps = max_steps
-    robot._on_step = on_step
-    robot._callback_every = max(1, callback_every)
-    robot._health.rebase()
-    try:
-        robot._check_health()
-        if robot._aborted:
-            robot._recover()
-        robot._aborted = False
+    a, b = np.asarray(start.pos, dtype=float), np.asarray(end.pos, dtype=float)
+
+    def body() -> None:
         robot.gripper.release()
-        _run_push(robot, np.asarray(start.pos, dtype=float), np.asarray(end.pos, dtype=float))
-        robot._check_health()
-    except PrimitiveAbort as abort:
-        robot._aborted = True
-        return PrimitiveResult(False, abort.reason, robot._steps, None)
-    finally:
-        robot._on_step = None
-    return PrimitiveResult(True, None, robot._steps, None)
+        _run_push(robot, a, b)
+
+    return robot.execute(body, on_step, max_steps, callback_every)
 
 
 def _run_push(robot: SuctionRobot, start: np.ndarray, end: np.ndarray) -> None:
