@@ -81,3 +81,23 @@ def test_a_generated_graph_lacking_a_named_object_gets_that_feedback() -> None:
     assert result.level_reached == "completion" and "red" in DEMO_PROPOSAL
     assert any("red_block: kind block" in m["content"] for m in
                server.requests[-1]["messages"] if m["role"] == "user")
+
+
+def test_a_later_phrase_naming_a_kind_again_refers_back() -> None:
+    # The task name's words after the description, and "the sphere" after "a blue
+    # sphere": the same object, not a second one every goal would have to use.
+    assert _names("Pick up a blue sphere and place it into an open container. "
+                  "insert sphere into container") == [
+        ("blue_ball", "ball", "blue", 1), ("container", "container", None, 1)]
+    # A coloured member of an uncoloured group named before it.
+    assert _names("stack six blocks on the pallet; a red block at the bottom") == [
+        ("blocks", "block", None, 6), ("pallet", "pallet", None, 1)]
+    # Distinct colours of one kind stay distinct objects.
+    assert _names("put the red block in the green zone, then the blue block on it") == [
+        ("red_block", "block", "red", 1), ("green_zone", "zone", "green", 1),
+        ("blue_block", "block", "blue", 1)]
+
+
+def test_plural_names_follow_english_endings() -> None:
+    assert _names("three boxes and two blocks") == [
+        ("boxes", "box", None, 3), ("blocks", "block", None, 2)]

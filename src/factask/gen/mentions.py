@@ -78,6 +78,11 @@ def _kind_of(word: str) -> tuple[str | None, bool]:
     return None, False
 
 
+def _plural(stem: str) -> str:
+    """``red_block`` -> ``red_blocks``, ``box`` -> ``boxes``."""
+    return f"{stem}es" if stem.endswith(("s", "x", "z", "ch", "sh")) else f"{stem}s"
+
+
 def mentions(proposal: str) -> list[Mention]:
     """The objects ``proposal`` names, in order, each once.
 
@@ -85,6 +90,13 @@ def mentions(proposal: str) -> list[Mention]:
     before it: ``three red blocks``; ``red and green zones`` names a red zone and
     a green zone; ``six red and blue blocks`` three of each. A plural without a
     count counts 2 (per colour).
+
+    A later phrase naming a kind already named refers back, it names no new
+    object: an uncoloured one ("a blue sphere ... the sphere", or the task
+    name's words after its description), and a coloured one after an
+    uncoloured group of that kind ("six blocks ... a red block at the bottom":
+    one of the six). Read as new objects, these would be declared twice and
+    every grounded goal would have to use the copy.
 
     Args:
         proposal: The task proposal (any text; only its words are read).
@@ -98,12 +110,16 @@ def mentions(proposal: str) -> list[Mention]:
         kind, plural = _kind_of(word)
         if kind is None:
             continue
+        earlier = [m for m in found.values() if m.kind == kind]
         colors: list[str] = []
         j = i - 1
         while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or") and colors)):
             if words[j] in COLOR_NAMES:
                 colors.insert(0, words[j])
             j -= 1
+        if earlier and (not colors or any(m.color is None and m.count > 1
+                                           for m in earlier)):
+            continue  # a reference to an object already named (see above)
         before = words[j] if j >= 0 else ""
         total = int(before) if before.isdigit() else NUMBER_WORDS.get(before, 0)
         for color in colors or [None]:
@@ -115,8 +131,8 @@ def mentions(proposal: str) -> list[Mention]:
                 count = total or (2 if plural else 1)
             count = min(count, MAX_COUNT)
             stem = f"{color}_{kind}" if color else kind
-            name = f"{stem}s" if count > 1 else stem
-            if stem in found or f"{stem}s" in found:
+            name = _plural(stem) if count > 1 else stem
+            if stem in found or _plural(stem) in found:
                 continue
             found[name] = Mention(name, kind, color, count)
             if len(found) >= MAX_MENTIONS:
