@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 from hypothesis import given, settings
@@ -82,6 +83,19 @@ def test_grounding_needs_a_movable_named_object() -> None:
     assert grounded.applies(mentions("place three blocks in a row"))
 
 
+def test_grounding_needs_a_goal_over_the_named_objects() -> None:
+    # One block and nothing to anchor it on: no relation fits (the GenSim task
+    # block-insertion); its empty goal took llama.cpp's server down.
+    found = mentions("block-insertion: put the L shape block in the L shape hole")
+    assert [m.name for m in found] == ["block"] and not grounded.applies(found)
+    with pytest.raises(ValueError):
+        grounded.compact_graph_schema(found)
+    from factask.model.variables import StateVariable
+
+    lone = grounded.goal_answer([StateVariable(name="block", kind="block")], "in the hole")
+    assert lone["properties"]["goal"].get("anyOf")  # the ungrounded goal (coordinates)
+
+
 @settings(max_examples=40, deadline=None)
 @given(st.lists(st.tuples(st.sampled_from(sorted(COLOR_NAMES)),
                           st.sampled_from(["block", "cylinder", "ball", "zone", "bowl"])),
@@ -90,8 +104,22 @@ def test_grounded_schemas_turn_into_a_llama_cpp_grammar(pairs) -> None:
     llama_grammar = pytest.importorskip("llama_cpp.llama_grammar")
     proposal = " and ".join(f"the {c} {k}" for c, k in pairs)
     found = mentions(proposal)
-    for schema in (grounded.variables_answer(found), grounded.graph_schema("t", found)):
-        assert "root" in llama_grammar.json_schema_to_gbnf(json.dumps(schema))
+    from factask.gen.step_schemas import empty_choices
+    from factask.model.variables import StateVariable
+
+    goal = grounded.goal_answer([StateVariable(name=m.name, kind=m.kind, count=m.count)
+                                 for m in found], proposal)
+    # Nothing movable: no goal is possible, and the step makes no call (see below).
+    assert bool(empty_choices(goal)) == (not grounded.movable(found))
+    schemas = [grounded.variables_answer(found)] + ([goal] if grounded.movable(found) else [])
+    if grounded.applies(found):
+        schemas += [grounded.compact_graph_schema(found, proposal),
+                    grounded.graph_schema("t", found)]
+    for schema in schemas:
+        gbnf = llama_grammar.json_schema_to_gbnf(json.dumps(schema))
+        assert "root" in gbnf
+        # A rule with nothing on its right side: llama.cpp's parser rejects it.
+        assert not re.search(r"::=[ \t]*$", gbnf, re.MULTILINE), gbnf
 
 
 COMPACT = {"variables": [{"name": "yellow_cylinder", "initial": {"type": "table"}},
@@ -242,3 +270,36 @@ def test_a_grounded_subtask_goal_follows_the_words_and_has_no_coordinates() -> N
                       "poses": [{"x": 0.5, "y": 0.0, "z": None, "yaw_deg": 0}],
                       "frame": None, "check_yaw": False}, "description": "d"}
     assert schema_problems(posed, schema)
+
+
+def test_a_step_whose_schema_admits_no_answer_makes_no_call() -> None:
+    from factask.gen import step_schemas as ss
+    from factask.gen.fragments import plan_problems
+    from factask.gen.schemas import SubtaskPlan
+    from factask.gen.steps import StepRunner
+    from factask.model.variables import StateVariable
+
+    only_a_zone = ss.goal_answer({"green_zone": "zone"})
+    assert ss.empty_choices(only_a_zone) == ["$.properties.goal.anyOf"]
+    assert ss.empty_choices(ss.goal_answer({"b": "block", "z": "zone"})) == []
+
+    class NoCalls:
+        def complete(self, *args, **kwargs):
+            raise AssertionError("a schema with no possible answer was sent")
+
+    runner = StepRunner(NoCalls(), max_repairs=2)  # type: ignore[arg-type]
+    from factask.gen.results import GenerationResult
+
+    runner._result = GenerationResult(approach="variables-first", proposal="p", task="t")
+    out = runner.ask("subtask_goal:s", lambda lv: "p", only_a_zone, "goal_answer",
+                     lambda text: (None, "none", "unused"))
+    assert not out.ok and out.value is None and "nothing to choose" in out.feedback
+    assert [r.step for r in runner._result.steps] == ["subtask_goal:s"]
+    # The plan that would lead there is fed back instead.
+    variables = [StateVariable(name="red_block", kind="block"),
+                 StateVariable(name="green_zone", kind="zone")]
+    plan = SubtaskPlan.model_validate({"subtasks": [
+        {"name": "mark", "description": "d", "variables": ["green_zone"], "initial_setup": ""},
+        {"name": "place", "description": "d", "variables": ["red_block", "green_zone"],
+         "initial_setup": ""}]})
+    assert [(p.node, p.field) for p in plan_problems(plan, variables)] == [("mark", "variables")]

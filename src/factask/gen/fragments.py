@@ -12,7 +12,14 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from factask.gen.schemas import AnswerError, GoalAnswer, SubtaskDesign, format_problems
+from factask.gen import step_schemas as ss
+from factask.gen.schemas import (
+    AnswerError,
+    GoalAnswer,
+    SubtaskDesign,
+    SubtaskPlan,
+    format_problems,
+)
 from factask.model.errors import GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
@@ -115,4 +122,29 @@ def merge_problems(design: SubtaskDesign,
             problems.append(Problem(v.name, "", f"defined differently by subtask {where!r} "
                                     f"({'; '.join(diff)})",
                                     "repeat it exactly, leave it out, or use a new name"))
+    return problems
+
+
+def plan_problems(plan: SubtaskPlan, variables: list[StateVariable]) -> list[Problem]:
+    """What a schema cannot check in a subtask plan: unique subtask names, none
+    named like a variable, only declared variables, and in each subtask something a
+    goal relation can move (else its goal step has no possible answer)."""
+    names = [v.name for v in variables]
+    problems: list[Problem] = []
+    seen: set[str] = set()
+    for s in plan.subtasks:
+        if s.name in seen:
+            problems.append(Problem(s.name, "name", "two subtasks have this name", "rename one"))
+        if s.name in names:
+            problems.append(Problem(s.name, "name", "a variable has this name",
+                                    "rename the subtask"))
+        seen.add(s.name)
+        for v in s.variables:
+            if v not in names:
+                problems.append(Problem(s.name, "variables", f"unknown variable {v!r}",
+                                        f"use only {names}"))
+        kinds = {v.name: v.kind for v in variables if v.name in s.variables}
+        if kinds and not ss.goal_schema(kinds)["anyOf"]:
+            problems.append(Problem(s.name, "variables", "no goal relation can move any of "
+                                    "these variables", "add the object the subtask moves"))
     return problems

@@ -110,8 +110,12 @@ def movable(found: Sequence[Mention]) -> list[Mention]:
 
 
 def applies(found: Sequence[Mention]) -> bool:
-    """Whether grounding applies: the proposal names at least one movable object."""
-    return bool(movable(found))
+    """Whether grounding applies: the proposal names at least one movable object
+    and some goal relation can be written over the named objects alone ("put the
+    block in the hole" names one block and nothing a relation can anchor on)."""
+    kinds = {m.name: m.kind for m in found}
+    return bool(movable(found)) and _goal(kinds, None, {m.name: m.count for m in found}) \
+        is not None
 
 
 def grounded_variables(found: Sequence[Mention], extra: int = MAX_EXTRA) -> Schema:
@@ -286,12 +290,17 @@ def named_relations(proposal: str) -> set[str]:
 
 
 def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
-          counts: dict[str, int] | None = None) -> Schema:
+          counts: dict[str, int] | None = None) -> Schema | None:
+    """The goal's schema over ``kinds``: the ``wanted`` relations that fit, else every
+    one that fits; None when none does (an empty ``anyOf`` is no schema: llama.cpp's
+    grammar parser fails on it and its server goes down)."""
     options = {r: s for r in RELATION_TYPES if r not in COORDINATE_RELATIONS
                and (s := relation_over(r, kinds, counts)) is not None}
     named = {r: s for r, s in options.items() if r in (wanted or ())}
     chosen = [b for s in (named or options).values() for b in s.get("anyOf", [s])
               if "properties" in b]
+    if not chosen:
+        return None
     return chosen[0] if len(chosen) == 1 else {"anyOf": chosen}
 
 
@@ -306,12 +315,15 @@ def goal_answer(variables: Sequence[StateVariable], text: str) -> Schema:
     Returns:
         ``{"goal": ..., "description": ...}`` with the goal as in
         :func:`compact_graph_schema` (no coordinates, no object its own anchor,
-        no group of one).
+        no group of one); the ungrounded goal schema when no such relation fits
+        (a lone block: only coordinates can place it).
     """
     kinds = {v.name: v.kind for v in variables}
     counts = {v.name: v.count for v in variables}
-    return ss.obj({"goal": _goal(kinds, named_relations(text), counts),
-                   "description": ss.text(GROUNDED_TEXT)})
+    goal = _goal(kinds, named_relations(text), counts)
+    if goal is None:
+        return ss.goal_answer(kinds)
+    return ss.obj({"goal": goal, "description": ss.text(GROUNDED_TEXT)})
 
 
 def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> list[str]:
@@ -364,15 +376,16 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "") -> Schema
         per movable one.
     """
     kinds = {m.name: m.kind for m in found}
+    goal = _goal(kinds, named_relations(proposal), {m.name: m.count for m in found})
+    if goal is None:
+        raise ValueError("no goal relation fits the named objects alone (see applies())")
     most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
     items = [ss.obj({"name": {"const": m.name}, "initial": _placement(m.name, kinds)})
              for m in found]
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},
-        "factors": ss.array(ss.obj({"goal": _goal(kinds, named_relations(proposal),
-                                                   {m.name: m.count for m in found})}),
-                            1, most),
+        "factors": ss.array(ss.obj({"goal": goal}), 1, most),
     })
 
 

@@ -387,6 +387,26 @@ def _json_type_matches(instance: Any, json_type: Any) -> bool:
     return isinstance(instance, wanted)
 
 
+def empty_choices(schema: Any, path: str = "$") -> list[str]:
+    """Where a schema offers no choice at all (an empty ``anyOf`` or ``enum``: a goal
+    over variables none of which a relation can move). No answer can follow such a
+    schema, and llama.cpp's grammar parser fails on it (its server goes down).
+
+    Returns:
+        The JSON paths of the empty choices (empty: none).
+    """
+    if isinstance(schema, list):
+        return [p for i, item in enumerate(schema) for p in empty_choices(item, f"{path}[{i}]")]
+    if not isinstance(schema, Mapping):
+        return []
+    found = [f"{path}.{key}" for key in ("anyOf", "enum")
+             if isinstance(schema.get(key), list) and not schema[key]]
+    for key, value in schema.items():
+        if isinstance(value, (Mapping, list)):
+            found += empty_choices(value, f"{path}.{key}")
+    return found
+
+
 def all_step_schemas(task_name: str = "demo-task") -> dict[str, Schema]:
     """Every step's schema with sample arguments (for tests and docs)."""
     scope = {"red_block": "block", "green_zone": "zone"}
@@ -396,7 +416,8 @@ def all_step_schemas(task_name: str = "demo-task") -> dict[str, Schema]:
             "assembly": graph_schema(task_name)}
 
 
-__all__ = ["MAX_TEXT", "NAME_REGEX", "TEXT_PATTERN", "all_step_schemas", "factor_schema",
+__all__ = ["MAX_TEXT", "NAME_REGEX", "TEXT_PATTERN", "all_step_schemas", "empty_choices",
+           "factor_schema",
            "goal_answer", "goal_schema", "graph_schema", "name", "placement_schema",
            "relation_schema", "schema_problems", "subtask_design", "subtask_outline",
            "subtask_plan", "text", "variable_schema", "variables_answer"]

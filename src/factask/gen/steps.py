@@ -36,7 +36,7 @@ from factask.gen.memory import SubtaskMemory, SubtaskMemoryError
 from factask.gen.prompts import render, schema_skeleton, schema_text
 from factask.gen.results import AttemptRecord, GenerationResult
 from factask.gen.schemas import AnswerError, read_json, several_objects_note
-from factask.gen.step_schemas import schema_problems
+from factask.gen.step_schemas import empty_choices, schema_problems
 from factask.gen.verify import Level, Verifier, at_least, level_index
 from factask.model.errors import FactaskError, InvalidValueError
 from factask.model.graph import TaskGraph
@@ -195,6 +195,13 @@ class StepRunner:
             LLMError: any other failure of the call.
         """
         max_tokens = self._max_tokens(step)
+        empty = empty_choices(schema)
+        if empty:  # no answer can follow it: no call (and no grammar the server fails on)
+            feedback = (f"No answer can follow the schema of step {step}: nothing to choose "
+                        f"at {', '.join(empty[:3])} (e.g. a goal over objects none of which "
+                        "can be moved).")
+            self._record(AttemptRecord(step, first_attempt, False, "none", feedback))
+            return Outcome(None, "none", False, feedback)
 
         def build(level: PromptLevel) -> list[dict[str, str]]:
             system = render("system_compact" if level.compact_vocabulary else "system")

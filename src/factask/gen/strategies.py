@@ -34,6 +34,7 @@ from factask.gen.fragments import (
     fragment,
     make_factor,
     merge_problems,
+    plan_problems,
     vars_json,
 )
 from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
@@ -54,7 +55,7 @@ from factask.gen.schemas import (
 )
 from factask.gen.steps import Abort, Evaluation, StepCallback, StepRunner, read_strict
 from factask.gen.verify import Level, Verifier, at_least, level_index
-from factask.model.errors import CompositionError, FactaskError, Problem
+from factask.model.errors import CompositionError, FactaskError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
 from factask.model.names import slugify
@@ -381,20 +382,7 @@ class Generator(StepRunner):
 
         def evaluate(text: str) -> Evaluation:
             plan = validate_answer(read_strict(text, schema), SubtaskPlan)
-            problems: list[Problem] = []
-            seen: set[str] = set()
-            for s in plan.subtasks:
-                if s.name in seen:
-                    problems.append(Problem(s.name, "name", "two subtasks have this name",
-                                            "rename one"))
-                if s.name in names:
-                    problems.append(Problem(s.name, "name", "a variable has this name",
-                                            "rename the subtask"))
-                seen.add(s.name)
-                for v in s.variables:
-                    if v not in names:
-                        problems.append(Problem(s.name, "variables", f"unknown variable {v!r}",
-                                                f"use only {names}"))
+            problems = plan_problems(plan, variables)
             if problems:
                 return None, "none", ("The subtask plan has problems:\n"
                                       + format_problems(problems))
