@@ -120,3 +120,25 @@ def test_generate_end_to_end_with_the_local_model(tmp_path) -> None:
     assert "1 call(s) (0 cached)" in res.output
     assert "Traceback" not in res.output
     assert res.exit_code == 1 or out.exists()
+
+
+def test_a_server_that_died_is_started_again_before_the_next_request() -> None:
+    import os
+    import signal
+
+    with LocalLlamaServer() as srv:
+        assert not srv.revive()  # running: nothing to do
+        before = srv.count_messages(MSGS)
+        assert srv._proc is not None
+        os.kill(srv._proc.pid, signal.SIGKILL)  # as a grammar its parser rejects did
+        srv._proc.wait(timeout=10)
+        client = _client(srv, "llama_cpp")
+        client.before_call = srv.revive
+        assert srv.count_messages(MSGS) == before  # revived by the count
+        assert srv.restarts == 1 and len(srv.deaths) == 1
+        os.kill(srv._proc.pid, signal.SIGKILL)
+        srv._proc.wait(timeout=10)
+        reply = client.complete(MSGS, schema=SCHEMA, max_tokens=20)  # revived by the call
+        assert json.loads(reply.text)["color"] in ("blue", "red", "green")
+        assert srv.restarts == 2
+    assert not srv.revive()  # stopped on purpose: not started again

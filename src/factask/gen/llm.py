@@ -252,6 +252,8 @@ class LLMClient:
             ``token_counter``).
         on_abandon: Called after a call timed out (the local server restarts, so
             the request the client gave up on stops generating).
+        before_call: Called before every call that goes out (the local server is
+            started again if it died, :meth:`factask.gen.local.LocalLlamaServer.revive`).
         seconds_per_token: Slowest expected generation speed (the local model on
             CPU): a request's timeout is at least ``30 + max_tokens * this`` plus
             the prompt's tokens at a tenth of it.
@@ -270,6 +272,7 @@ class LLMClient:
                  wire_model: str | None = None, context: int | None = None,
                  counter: TokenCounter | None = None,
                  on_abandon: Callable[[], None] | None = None,
+                 before_call: Callable[[], object] | None = None,
                  seconds_per_token: float = 0.0,
                  prompt_budget: int | None = None) -> None:
         self.config = config
@@ -284,6 +287,7 @@ class LLMClient:
         self._context_known = self._context is not None
         self._counter = counter
         self.on_abandon = on_abandon
+        self.before_call = before_call
         self.seconds_per_token = seconds_per_token
         self.prompt_budget = prompt_budget
         self._lock = threading.Lock()
@@ -422,6 +426,8 @@ class LLMClient:
         delays = [*backoff_delays(self.config.num_retries), None]
         error: LLMError | None = None
         for delay in delays:
+            if self.before_call is not None:
+                self.before_call()
             try:
                 return litellm.completion(**kwargs)
             except Exception as exc:  # litellm maps every provider error onto its own types

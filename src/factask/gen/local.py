@@ -242,6 +242,8 @@ class LocalLlamaServer:
         self._proc: subprocess.Popen[bytes] | None = None
         self._log: IO[bytes] | None = None
         self.restarts = 0
+        #: The end of the log of each server that died under us (why, for the report).
+        self.deaths: list[str] = []
 
     # --------------------------------------------------------------- lifecycle
     @property
@@ -333,6 +335,17 @@ class LocalLlamaServer:
         self.restarts += 1
         self.start()
 
+    def revive(self) -> bool:
+        """Start the server again if it died (a request it could not serve -- a
+        grammar its parser rejects -- can take the process down): one bad request
+        then costs one answer, not every later one of the run. Returns whether it
+        was restarted; does nothing before the first start or after :meth:`stop`."""
+        if self._proc is None or self.running:
+            return False
+        self.deaths.append(self.log_tail())
+        self.restart()
+        return True
+
     def __enter__(self) -> LocalLlamaServer:
         return self.start()
 
@@ -345,11 +358,13 @@ class LocalLlamaServer:
 
     # ------------------------------------------------------------------ tokens
     def count_text(self, text: str) -> int:
-        """Tokens of ``text`` in the model's own tokenizer (the server counts them).
+        """Tokens of ``text`` in the model's own tokenizer (the server counts them;
+        a server that died is started again first, :meth:`revive`).
 
         Raises:
             LocalModelError: the server did not answer with a count.
         """
+        self.revive()
         body = json.dumps({"input": text, "model": self.alias}).encode()
         req = urllib.request.Request(f"http://127.0.0.1:{self.port}/extras/tokenize/count",
                                      data=body, headers={"Content-Type": "application/json"})

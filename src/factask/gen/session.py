@@ -98,7 +98,8 @@ def open_client(config: LLMConfig, cache: ResponseCache | None = None,
         local = replace(config, api_base=server.url, context=server.n_ctx)
         yield LLMClient(local, cache, wire_model=f"openai/{server.alias}",
                         context=server.n_ctx, counter=server.count_messages,
-                        on_abandon=server.restart, seconds_per_token=LOCAL_SECONDS_PER_TOKEN,
+                        on_abandon=server.restart, before_call=server.revive,
+                        seconds_per_token=LOCAL_SECONDS_PER_TOKEN,
                         prompt_budget=LOCAL_PROMPT_BUDGET)
     finally:
         server.stop()
