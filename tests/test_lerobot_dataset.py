@@ -14,10 +14,11 @@ from typer.testing import CliRunner
 
 import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
 from factask.cli import app
+from factask.datasets.control_frames import FLOATING_COMMAND_NAMES, default_control_fps
 from factask.datasets.replay import compare_states, render_states, resimulate
 from factask.datasets.shards import CollectConfig, CollectError, collect
 from factask.datasets.splits import MAX_VAL_EPISODES, TEST_START, split_of_seed, split_seeds
-from factask.datasets.states import read_states
+from factask.datasets.states import StatesFileError, read_states
 from factask.model.errors import InvalidValueError
 from factask.sim.cameras import ravens_cameras
 
@@ -119,3 +120,62 @@ def test_collect_refuses_a_finished_dataset(dataset: Path) -> None:
     config = CollectConfig(tasks=TASKS, episodes=2, image_size=SIZE, shard_size=1)
     with pytest.raises(CollectError, match="already holds a dataset"):
         collect(config, dataset, workers=1)
+
+
+@pytest.fixture(scope="module")
+def control_dataset(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    root = tmp_path_factory.mktemp("ctl") / "demo"
+    config = CollectConfig(tasks=("align-box-corner",), episodes=1, image_size=SIZE,
+                           fps=default_control_fps(), frames="control")
+    assert collect(config, root, workers=1).episodes_kept == 1
+    return root
+
+
+def test_control_frames_carry_the_low_level_command(control_dataset: Path) -> None:
+    """One frame per command sample at the command rate: the format-only reader checks
+    timestamps, frame and episode indices; the frames agree with the states file."""
+    ds = load_dataset(control_dataset)
+    info, frames = ds["info"], ds["frames"]
+    assert info["fps"] == default_control_fps() == 50
+    feats = info["features"]
+    assert feats["action"]["names"] == FLOATING_COMMAND_NAMES
+    assert feats["action.primitive"]["shape"] == [8] and "decision_index" in feats
+    states = read_states(control_dataset / ds["episodes"][0]["factask/states_path"])
+    n = len(states.control_step)
+    assert info["total_frames"] == n > 10 * states.steps
+    assert np.array_equal(frames["decision_index"], states.control_step)
+    assert np.allclose(frames["action.primitive"], states.actions[states.control_step])
+    # The floating cup reaches its command: each frame's command is the next frame's tip.
+    assert np.allclose(frames["action"][:-1], frames["observation.state"][1:], atol=1e-6)
+    assert np.allclose(frames["observation.state"], states.control_tip, atol=1e-6)
+    # Rewards land on each decision's last sample and add up to the episode's total.
+    assert frames["next.done"][-1] and not frames["next.done"][:-1].any()
+    assert frames["next.total_reward"][-1] >= 0.99
+    assert frames["next.reward"].sum() == pytest.approx(
+        frames["next.total_reward"][-1] - (frames["next.total_reward"][0]
+                                           - frames["next.reward"][0]), abs=1e-5)
+    last = np.append(frames["decision_index"][1:] != frames["decision_index"][:-1], True)
+    assert not frames["next.reward"][~last].any()
+
+
+def test_control_frames_video_matches_the_states_and_replays(control_dataset: Path) -> None:
+    ds = load_dataset(control_dataset)
+    states = read_states(control_dataset / ds["episodes"][0]["factask/states_path"])
+    front = ravens_cameras(*SIZE)[:1]
+    rendered = render_states(states, front, control=True)["front"]
+    decoded = episode_video(ds, "observation.images.front", 0)
+    assert decoded.shape == rendered.shape
+    mse = float(np.mean((decoded.astype(float) - rendered.astype(float)) ** 2))
+    assert 10 * np.log10(255.0 ** 2 / max(mse, 1e-9)) > 30.0
+    # Rendering at every sample while recording left the physics as it was.
+    assert compare_states(states, resimulate(states)) == []
+
+
+def test_control_frames_refuse_another_rate(tmp_path: Path, dataset: Path) -> None:
+    config = CollectConfig(tasks=("align-box-corner",), episodes=1, image_size=None, fps=10,
+                           frames="control")
+    with pytest.raises(CollectError, match="50 per second"):
+        collect(config, tmp_path / "x", workers=1)
+    with pytest.raises(StatesFileError, match="--frames control"):
+        render_states(read_states(dataset / "states" / "episode_000000.npz"),
+                      ravens_cameras(*SIZE)[:1], control=True)

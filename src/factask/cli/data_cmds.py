@@ -49,8 +49,13 @@ def collect(
                              "resumes when started again with the same options)."),
     size: str = typer.Option("160x120", "--size", help=SIZE_HELP),
     no_video: bool = typer.Option(False, "--no-video", help="Record no camera video."),
-    fps: int = typer.Option(1, "--fps", min=1, max=60, help="Frames per second of "
-                            "timestamps and videos (one frame per pick-and-place)."),
+    fps: int | None = typer.Option(None, "--fps", min=1, max=60, help="Frames per second "
+                                   "of timestamps and videos (default: 1 for decision "
+                                   "frames, the command rate (50) for control frames)."),
+    frames: str = typer.Option("decision", "--frames", help="'decision': a frame per "
+                               "pick-and-place, action = its pick and place; 'control': a "
+                               "frame per low-level command sample (50 Hz), action = the "
+                               "command, with the decision's pick and place beside it."),
     keep_failed: bool = typer.Option(False, "--keep-failed", help="Keep failed episodes."),
     workers: int = typer.Option(0, "--workers", "-w", min=0, max=256,
                                 help="Worker processes (0: the machine's cores)."),
@@ -61,6 +66,8 @@ def collect(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON summary, nothing else."),
 ) -> None:
     """Record oracle demonstrations as a LeRobot v3.0 dataset, with a states file per episode."""
+    from factask.datasets.control_frames import FRAME_MODES, default_control_fps
+    from factask.datasets.lerobot import DEFAULT_FPS
     from factask.datasets.shards import CollectConfig, plan_shards
     from factask.datasets.shards import collect as run_collect
     from factask.datasets.splits import SPLITS
@@ -77,9 +84,13 @@ def collect(
     if not names:
         raise _fail("give task names or --suite all")
     image_size = None if no_video else parse_size(size)
+    if frames not in FRAME_MODES:
+        raise _fail(f"--frames {frames!r}: use one of {', '.join(FRAME_MODES)}")
+    if fps is None:
+        fps = default_control_fps() if frames == "control" else DEFAULT_FPS
     config = CollectConfig(tasks=tuple(names), episodes=episodes, split=split, robot=robot,
                            image_size=image_size, fps=fps, keep_failed=keep_failed,
-                           shard_size=shard_size)
+                           shard_size=shard_size, frames=frames)
     total = len(plan_shards(config))
     progress = Progress(TextColumn("[bold]shards"), BarColumn(), MofNCompleteColumn(),
                         TimeElapsedColumn(), console=err_console, disable=as_json,

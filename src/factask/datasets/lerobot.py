@@ -18,6 +18,11 @@ Per frame: ``observation.state`` (suction tip pose, suction), ``observation.envi
 ``episode_index``, ``index``, ``task_index``. Videos are H.264 (yuv420p); frame k of a
 file has presentation time k / fps, so an episode spans [from_timestamp, to_timestamp)
 of its file.
+
+With control frames (:mod:`factask.datasets.control_frames`) a frame is one sample of
+the low-level command stream: ``action`` is the low-level command, and two more
+features carry the decision each frame belongs to: ``action.primitive`` (its pick and
+place) and ``decision_index``.
 """
 
 from __future__ import annotations
@@ -73,6 +78,10 @@ class LeRobotWriter:
         robot_type: Recorded in info.json.
         data_mb: Size target of a data file (MB).
         video_mb: Size target of a video file (MB).
+        action_names: Names of ``action`` (default: the pick and place); control frames
+            name the low-level command here.
+        control: Frames are control samples: adds ``action.primitive`` and
+            ``decision_index``.
 
     Raises:
         DatasetWriteError: a dataset is already there, an odd image size, bad fps.
@@ -81,8 +90,11 @@ class LeRobotWriter:
     def __init__(self, root: Path, cameras: dict[str, tuple[int, int]], env_width: int,
                  factor_width: int, fps: int = DEFAULT_FPS, robot_type: str | None = None,
                  data_mb: float = DATA_FILES_SIZE_IN_MB,
-                 video_mb: float = VIDEO_FILES_SIZE_IN_MB) -> None:
+                 video_mb: float = VIDEO_FILES_SIZE_IN_MB,
+                 action_names: list[str] | None = None, control: bool = False) -> None:
         self.root = Path(root)
+        self.action_names = list(action_names or ACTION_NAMES)
+        self.control = control
         if (self.root / "meta" / "info.json").exists():
             raise DatasetWriteError(f"{self.root} already holds a dataset (fix: give a new "
                                     "output folder)")
@@ -125,7 +137,14 @@ class LeRobotWriter:
         env[:, :ep.environment_state.shape[1]] = ep.environment_state
         fac = np.zeros((n, self.factor_width), np.float32)
         fac[:, :ep.factor_rewards.shape[1]] = ep.factor_rewards
-        return {
+        extra: dict[str, np.ndarray] = {}
+        if self.control:
+            if ep.primitive is None or ep.decision is None:
+                raise DatasetWriteError(f"episode of {ep.task!r} (seed {ep.seed}) was not "
+                                        "recorded with control frames")
+            extra = {"action.primitive": ep.primitive.astype(np.float32),
+                     "decision_index": ep.decision.astype(np.int64)}
+        return extra | {
             "observation.state": ep.state.astype(np.float32),
             "observation.environment_state": env,
             "action": ep.action.astype(np.float32),
@@ -149,7 +168,8 @@ class LeRobotWriter:
             if f["dtype"] == "string":
                 arrays.append(pa.array(values, pa.string()))
             elif f["shape"] == [1]:
-                arrays.append(pa.array(np.asarray(values, dtype=f["dtype"])))
+                # (n,) or (n, 1): a task of one factor has factor rewards one wide.
+                arrays.append(pa.array(np.asarray(values, dtype=f["dtype"]).reshape(-1)))
             else:
                 flat = np.asarray(values, dtype=f["dtype"]).reshape(-1)
                 arrays.append(pa.FixedSizeListArray.from_arrays(pa.array(flat), f["shape"][0]))
@@ -169,6 +189,9 @@ class LeRobotWriter:
             raise DatasetWriteError(f"task {ep.task!r} has more objects or factors than "
                                     "the dataset was sized for")
         n = ep.length
+        if ep.action.shape[1:] != (len(self.action_names),):
+            raise DatasetWriteError(f"episode of {ep.task!r}: action width "
+                                    f"{ep.action.shape[1:]} for {len(self.action_names)} names")
         for cam, frames in ep.images.items():
             if len(frames) != n:
                 raise DatasetWriteError(f"camera {cam!r}: {len(frames)} images for {n} frames")
@@ -205,7 +228,7 @@ class LeRobotWriter:
         feats: dict[str, dict[str, Any]] = {
             "observation.state": _vec("float32", len(STATE_NAMES), STATE_NAMES),
             "observation.environment_state": _vec("float32", self.env_width),
-            "action": _vec("float32", len(ACTION_NAMES), ACTION_NAMES),
+            "action": _vec("float32", len(self.action_names), self.action_names),
             "next.reward": _vec("float32", 1),
             "next.total_reward": _vec("float32", 1),
             "next.factor_rewards": _vec("float32", self.factor_width),
@@ -213,6 +236,9 @@ class LeRobotWriter:
             "next.success": _vec("bool", 1),
             "language_goal": _vec("string", 1),
         }
+        if self.control:
+            feats["action.primitive"] = _vec("float32", len(ACTION_NAMES), ACTION_NAMES)
+            feats["decision_index"] = _vec("int64", 1)
         for cam, (h, w) in self.cameras.items():
             feats[image_key(cam)] = {
                 "dtype": "video", "shape": [h, w, 3], "names": ["height", "width", "channels"],

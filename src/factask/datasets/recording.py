@@ -1,8 +1,10 @@
 """Record one episode: per-frame state, action, rewards, language, camera images, states.
 
-A frame is one decision: the observation *before* an action, the action, and what it
-led to (LeRobot's ``next.*`` convention). An episode of T actions has T frames; the
-states file holds T + 1 states (the last one after the final action).
+By default a frame is one decision: the observation *before* an action, the action, and
+what it led to (LeRobot's ``next.*`` convention). An episode of T actions has T frames;
+the states file holds T + 1 states (the last one after the final action). With
+``frames="control"`` a frame is one sample of the low-level command stream instead
+(:mod:`factask.datasets.control_frames`).
 """
 
 from __future__ import annotations
@@ -13,6 +15,14 @@ from typing import Any
 
 import numpy as np
 
+from factask.datasets.control_frames import (
+    ControlStream,
+    DecisionRows,
+    FrameModeError,
+    check_frame_mode,
+    control_columns,
+    control_fps,
+)
 from factask.datasets.states import EpisodeStates, snapshot
 from factask.model.errors import FactaskError
 from factask.model.tolerances import SUCCESS_REWARD
@@ -50,6 +60,9 @@ class EpisodeRecord:
     states: EpisodeStates
     failure: str | None = None
     factor_names: list[str] = field(default_factory=list)
+    #: Control frames only: each frame's decision pick and place (n, 8), its index (n,).
+    primitive: np.ndarray | None = None
+    decision: np.ndarray | None = None
 
     @property
     def length(self) -> int:
@@ -74,7 +87,8 @@ def _current_goal(env: FactaskEnv, info: dict[str, Any]) -> str:
 
 
 def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
-                   policy: PolicyFactory = oracle_policy) -> EpisodeRecord:
+                   policy: PolicyFactory = oracle_policy, frames: str = "decision",
+                   fps: int | None = None) -> EpisodeRecord:
     """Run one episode and record it.
 
     Args:
@@ -82,10 +96,21 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         seed: Reset seed.
         rig: Cameras to record (None: no images).
         policy: Makes the episode's policy (default: the oracle).
+        frames: "decision" (a frame per action) or "control" (a frame per sample of
+            the low-level command stream, with camera images at each sample).
+        fps: Control frames only: the dataset's fps, which must be the stream's rate.
 
     Returns:
         The record; a layout or physics failure ends it early (``failure`` says why).
+
+    Raises:
+        FrameModeError: an unknown ``frames``, or an ``fps`` that is not the stream's rate.
     """
+    check_frame_mode(frames)
+    control = frames == "control"
+    if control and fps is not None and fps != control_fps(env.model.opt.timestep):
+        raise FrameModeError(f"control frames come at {control_fps(env.model.opt.timestep)} "
+                             f"per second, not {fps} (fix: leave --fps out)")
     failure: str | None = None
     obs: dict[str, np.ndarray] = {}
     try:
@@ -99,15 +124,26 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
     images: dict[str, list[np.ndarray]] = {c.name: [] for c in rig.cameras} if rig else {}
     snaps = [snapshot(env.data)]
     actions: list[np.ndarray] = []
-    stream: dict[str, list[Any]] = {"step": [], "time": [], "ctrl": [], "tip": []}
+    stream = ControlStream()
+    decisions = DecisionRows()
 
     def sample() -> None:
         # The low-level command stream, every few physics steps while an action runs.
-        stream["step"].append(len(actions))
-        stream["time"].append(float(env.data.time))
-        stream["ctrl"].append(env.data.ctrl.copy())
+        stream.step.append(len(actions))
+        stream.time.append(float(env.data.time))
+        stream.ctrl.append(env.data.ctrl.copy())
         tip = env.robot.ee_pose()
-        stream["tip"].append([*tip.to_list(), 1.0 if env.robot.grasped() is not None else 0.0])
+        stream.tip.append([*tip.to_list(), 1.0 if env.robot.grasped() is not None else 0.0])
+        if control:
+            _, _, mocap_pos, mocap_quat = snapshot(env.data)
+            stream.qpos.append(env.data.qpos.copy())
+            stream.mocap_pos.append(mocap_pos)
+            stream.mocap_quat.append(mocap_quat)
+            poses = env.object_poses()
+            stream.objects.append(np.concatenate([poses[o].to_list()
+                                                  for o in env.object_names] or [[]]))
+            for cam in images:
+                images[cam].append(rig.rgb(env.data, cam))  # type: ignore[union-attr]
 
     env.frame_callback = sample
     failure = failure or info.get("failure")
@@ -116,12 +152,14 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         if action is None:
             break
         goal = _current_goal(env, info)
-        for cam in images:
+        for cam in images if not control else ():
             images[cam].append(rig.rgb(env.data, cam))  # type: ignore[union-attr]
         vec = np.concatenate([np.asarray(action["pick"], float),
                               np.asarray(action["place"], float)])
         rows["state"].append(np.concatenate([obs["ee_pose"], obs["suction"]]))
         rows["env"].append(obs["object_poses"].reshape(-1))
+        decisions.total_before.append(float(info.get("total_reward", 0.0)))
+        decisions.factors_before.append([info.get("factors", {}).get(n, 0.0) for n in names])
         obs, reward, terminated, truncated, info = env.step(action)
         rows["action"].append(vec)
         rows["reward"].append(reward)
@@ -135,6 +173,8 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         if terminated or truncated:
             break
     env.frame_callback = None
+    decisions.total_after, decisions.factors_after = rows["total"], rows["factors"]
+    decisions.goal, decisions.done = rows["goal"], rows["done"]
     final = float(info.get("total_reward", 0.0))
     t = len(actions)
     n_env = 7 * len(env.object_names)
@@ -143,18 +183,9 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         shape = (t,) if width is None else (t, width)
         return np.asarray(rows[key], dtype=dtype).reshape(shape)
 
-    states = EpisodeStates(
-        mjcf=env.scene.xml, graph=env.graph.to_json(indent=None), robot=env.robot_kind,
-        seed=seed, qpos=np.stack([s[0] for s in snaps]), qvel=np.stack([s[1] for s in snaps]),
-        mocap_pos=np.stack([s[2] for s in snaps]), mocap_quat=np.stack([s[3] for s in snaps]),
-        actions=np.asarray(actions, dtype=np.float64).reshape(t, 8),
-        control_step=np.asarray(stream["step"], np.int32),
-        control_time=np.asarray(stream["time"], np.float64),
-        control=np.asarray(stream["ctrl"], np.float64).reshape(
-            len(stream["ctrl"]), env.model.nu),
-        control_tip=np.asarray(stream["tip"], np.float64).reshape(-1, 8))
+    states = _episode_states(env, seed, snaps, actions, stream)
     shapes = {c.name: (c.height, c.width, 3) for c in rig.cameras} if rig else {}
-    return EpisodeRecord(
+    record = EpisodeRecord(
         task=env.graph.name, instruction=env.graph.description or env.graph.name, seed=seed,
         success=final >= SUCCESS_REWARD, final_reward=final,
         state=arr("state", len(STATE_NAMES)), environment_state=arr("env", n_env),
@@ -164,9 +195,37 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         images={k: (np.stack(v) if v else np.zeros((0, *shapes[k]), np.uint8))
                 for k, v in images.items()},
         states=states, failure=failure, factor_names=names)
+    if control:
+        cols = control_columns(stream, decisions, actions, arm=env.model.nu > 0,
+                               env_width=n_env, n_factors=len(names))
+        record.state, record.environment_state = cols["state"], cols["environment_state"]
+        record.action, record.primitive, record.decision = (
+            cols["action"], cols["primitive"], cols["decision"])
+        record.reward, record.total_reward = cols["reward"], cols["total_reward"]
+        record.factor_rewards, record.done = cols["factor_rewards"], cols["done"]
+        record.goal = cols["goal"]
+    return record
+
+
+def _episode_states(env: FactaskEnv, seed: int, snaps: list[tuple[np.ndarray, ...]],
+                    actions: list[np.ndarray], stream: ControlStream) -> EpisodeStates:
+    m, n = env.model, len(stream.step)
+    return EpisodeStates(
+        mjcf=env.scene.xml, graph=env.graph.to_json(indent=None), robot=env.robot_kind,
+        seed=seed, qpos=np.stack([s[0] for s in snaps]), qvel=np.stack([s[1] for s in snaps]),
+        mocap_pos=np.stack([s[2] for s in snaps]), mocap_quat=np.stack([s[3] for s in snaps]),
+        actions=np.asarray(actions, dtype=np.float64).reshape(len(actions), 8),
+        control_step=np.asarray(stream.step, np.int32),
+        control_time=np.asarray(stream.time, np.float64),
+        control=np.asarray(stream.ctrl, np.float64).reshape(n, m.nu),
+        control_tip=np.asarray(stream.tip, np.float64).reshape(-1, 8),
+        control_qpos=np.asarray(stream.qpos, np.float64).reshape(-1, m.nq),
+        control_mocap_pos=np.asarray(stream.mocap_pos, np.float64).reshape(-1, m.nmocap, 3),
+        control_mocap_quat=np.asarray(stream.mocap_quat, np.float64).reshape(-1, m.nmocap, 4))
 
 
 def record_episodes(env: FactaskEnv, seeds: Sequence[int], rig: CameraRig | None = None,
-                    policy: PolicyFactory = oracle_policy) -> list[EpisodeRecord]:
+                    policy: PolicyFactory = oracle_policy, frames: str = "decision",
+                    fps: int | None = None) -> list[EpisodeRecord]:
     """:func:`record_episode` for each seed, on one env."""
-    return [record_episode(env, s, rig, policy) for s in seeds]
+    return [record_episode(env, s, rig, policy, frames, fps) for s in seeds]

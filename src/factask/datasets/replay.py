@@ -55,24 +55,33 @@ def compare_states(a: EpisodeStates, b: EpisodeStates) -> list[str]:
 
 
 def render_states(states: EpisodeStates, cameras: Sequence[CameraSpec],
-                  steps: Sequence[int] | None = None) -> dict[str, np.ndarray]:
+                  steps: Sequence[int] | None = None,
+                  control: bool = False) -> dict[str, np.ndarray]:
     """Images of recorded states from the stored MJCF.
 
     Args:
         states: The episode's states.
         cameras: The cameras (any pose, intrinsics and size).
-        steps: State indices (default: 0 .. T - 1, the frames of the dataset).
+        steps: State indices (default: every frame of the dataset: 0 .. T - 1, or every
+            control sample with ``control``).
+        control: Render the control samples' states (a ``--frames control`` dataset)
+            instead of the states before each decision.
 
     Returns:
         Camera name -> (len(steps), height, width, 3) uint8.
+
+    Raises:
+        StatesFileError: ``control`` for a file without per-sample states.
     """
     model = mujoco.MjModel.from_xml_string(states.mjcf)
     data = mujoco.MjData(model)
-    steps = list(range(states.steps)) if steps is None else list(steps)
+    count = len(states.control_step) if control else states.steps
+    steps = list(range(count)) if steps is None else list(steps)
+    apply = states.apply_control if control else states.apply
     with CameraRig(model, tuple(cameras), np.full(model.ngeom, -1)) as rig:
         out: dict[str, list[np.ndarray]] = {c.name: [] for c in cameras}
         for t in steps:
-            states.apply(model, data, t)
+            apply(model, data, t)
             for c in cameras:
                 out[c.name].append(rig.rgb(data, c.name))
     return {k: (np.stack(v) if v else np.zeros((0, c.height, c.width, 3), np.uint8))

@@ -22,6 +22,11 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from factask.datasets.control_frames import (
+    check_frame_mode,
+    command_names,
+    default_control_fps,
+)
 from factask.datasets.lerobot import (
     DATA_FILES_SIZE_IN_MB,
     DEFAULT_FPS,
@@ -59,6 +64,9 @@ class CollectConfig:
         shard_size: Seeds per shard.
         data_mb: Size target of one data parquet file (LeRobot's default 100 MB).
         video_mb: Size target of one MP4 file (LeRobot's default 200 MB).
+        frames: "decision" (a frame per pick-and-place) or "control" (a frame per
+            low-level command sample; ``fps`` must then be the command rate,
+            :func:`~factask.datasets.control_frames.control_fps`).
     """
 
     tasks: tuple[str, ...]
@@ -71,6 +79,7 @@ class CollectConfig:
     shard_size: int = DEFAULT_SHARD_SIZE
     data_mb: float = DATA_FILES_SIZE_IN_MB
     video_mb: float = VIDEO_FILES_SIZE_IN_MB
+    frames: str = "decision"
 
 
 @dataclass(frozen=True)
@@ -138,7 +147,7 @@ def run_shard(shard: Shard, config: CollectConfig, shard_dir: str) -> str:
     if config.image_size is not None:
         rig = CameraRig(env.model, ravens_cameras(*config.image_size), env.scene.geom_object)
     try:
-        records = record_episodes(env, shard.seeds, rig)
+        records = record_episodes(env, shard.seeds, rig, frames=config.frames, fps=config.fps)
     finally:
         if rig is not None:
             rig.close()
@@ -189,12 +198,18 @@ def collect(config: CollectConfig, root: Path, workers: int | None = None,
         The summary.
 
     Raises:
-        CollectError: the folder holds a finished dataset or another run's shards.
+        CollectError: the folder holds a finished dataset or another run's shards, or
+            control frames at another fps than the command rate.
+        FrameModeError: an unknown frame mode.
         ParallelError: ``ray_address`` without Ray installed.
     """
     root = Path(root)
     if (root / "meta" / "info.json").exists():
         raise CollectError(f"{root} already holds a dataset (fix: give a new output folder)")
+    check_frame_mode(config.frames)
+    if config.frames == "control" and config.fps != default_control_fps():
+        raise CollectError(f"control frames come at {default_control_fps()} per second, not "
+                           f"{config.fps} (fix: fps={default_control_fps()}, or leave --fps out)")
     shard_dir = root / SHARD_DIR
     _check_plan(shard_dir, config)
     shards = plan_shards(config)
@@ -225,9 +240,11 @@ def merge_shards(config: CollectConfig, root: Path, shards: Sequence[Shard]) -> 
     if config.image_size is not None:
         w, h = config.image_size
         cameras = {name: (h, w) for name in ("front", "left", "right")}
+    control = config.frames == "control"
     writer = LeRobotWriter(root, cameras, env_width, factor_width, fps=config.fps,
                            robot_type=config.robot, data_mb=config.data_mb,
-                           video_mb=config.video_mb)
+                           video_mb=config.video_mb, control=control,
+                           action_names=command_names(config.robot) if control else None)
     kept_seeds: list[int] = []
     try:
         for shard in shards:

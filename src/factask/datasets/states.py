@@ -11,7 +11,11 @@ One ``.npz`` per episode (``states/episode_XXXXXX.npz`` beside the dataset) with
   ``control_step`` (n,) the action it belongs to, ``control_time`` (n,) simulated
   seconds, ``control`` (n, nu) the actuator commands (``data.ctrl``; the arm's joint
   targets, empty for the mocap cup), ``control_tip`` (n, 8) the suction tip's pose
-  (x y z, quaternion w x y z) and suction on.
+  (x y z, quaternion w x y z) and suction on;
+* with control frames (``factask collect --frames control``) also the state at each
+  sample, to re-render the dataset's video frames: ``control_qpos`` (n, nq),
+  ``control_mocap_pos`` (n, nmocap, 3), ``control_mocap_quat`` (n, nmocap, 4); empty
+  (0 rows) otherwise.
 """
 
 from __future__ import annotations
@@ -27,6 +31,8 @@ from factask.model.errors import FactaskError
 
 #: Version of the states file layout.
 STATES_VERSION = 1
+#: Per-sample states, written only with control frames (files without them read empty).
+_CONTROL_STATES = ("control_qpos", "control_mocap_pos", "control_mocap_quat")
 
 
 class StatesFileError(FactaskError, ValueError):
@@ -50,6 +56,9 @@ class EpisodeStates:
     control_time: np.ndarray = field(default_factory=lambda: np.zeros(0))
     control: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
     control_tip: np.ndarray = field(default_factory=lambda: np.zeros((0, 8)))
+    control_qpos: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    control_mocap_pos: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3)))
+    control_mocap_quat: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 4)))
 
     @property
     def steps(self) -> int:
@@ -63,6 +72,22 @@ class EpisodeStates:
         if model.nmocap:
             data.mocap_pos[:] = self.mocap_pos[t]
             data.mocap_quat[:] = self.mocap_quat[t]
+        mujoco.mj_forward(model, data)
+
+    def apply_control(self, model: mujoco.MjModel, data: mujoco.MjData, k: int) -> None:
+        """Put control sample ``k``'s positions into ``data`` and compute them.
+
+        Raises:
+            StatesFileError: the file holds no per-sample states (decision frames).
+        """
+        if k >= len(self.control_qpos):
+            raise StatesFileError(f"no state for control sample {k}: the episode has "
+                                  f"{len(self.control_qpos)} (recorded with --frames control?)")
+        data.qpos[:] = self.control_qpos[k]
+        data.qvel[:] = 0.0
+        if model.nmocap:
+            data.mocap_pos[:] = self.control_mocap_pos[k]
+            data.mocap_quat[:] = self.control_mocap_quat[k]
         mujoco.mj_forward(model, data)
 
 
@@ -82,7 +107,9 @@ def write_states(path: Path, states: EpisodeStates) -> None:
             seed=np.int64(states.seed), qpos=states.qpos, qvel=states.qvel,
             mocap_pos=states.mocap_pos, mocap_quat=states.mocap_quat, actions=states.actions,
             control_step=states.control_step, control_time=states.control_time,
-            control=states.control, control_tip=states.control_tip)
+            control=states.control, control_tip=states.control_tip,
+            control_qpos=states.control_qpos, control_mocap_pos=states.control_mocap_pos,
+            control_mocap_quat=states.control_mocap_quat)
     os.replace(tmp, path)
 
 
@@ -103,7 +130,8 @@ def read_states(path: Path) -> EpisodeStates:
                 seed=int(z["seed"]), qpos=z["qpos"], qvel=z["qvel"],
                 mocap_pos=z["mocap_pos"], mocap_quat=z["mocap_quat"], actions=z["actions"],
                 control_step=z["control_step"], control_time=z["control_time"],
-                control=z["control"], control_tip=z["control_tip"])
+                control=z["control"], control_tip=z["control_tip"],
+                **{k: z[k] for k in _CONTROL_STATES if k in z.files})
     except (OSError, KeyError, ValueError) as exc:
         if isinstance(exc, StatesFileError):
             raise

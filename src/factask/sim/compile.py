@@ -44,6 +44,8 @@ from factask.sim.robot import attach_robot
 from factask.sim.robots import ROBOT_NAMES
 from factask.sim.rope import add_rope_links, add_rope_links_mjcf
 
+#: Physics timestep (s) of a compiled scene unless asked otherwise.
+DEFAULT_TIMESTEP = 0.002
 #: Largest timestep (s) that keeps the contacts of small objects stable.
 MAX_TIMESTEP = 0.01
 #: Earth's gravity (m/s^2), straight down.
@@ -270,7 +272,8 @@ def _scene_plans(graph: TaskGraph) -> tuple[list[SceneObject], list[ObjectPlan],
     return objects, plans, markers
 
 
-def build_mjcf(graph: TaskGraph, timestep: float = 0.002) -> tuple[Any, list[SceneObject]]:
+def build_mjcf(graph: TaskGraph, timestep: float = DEFAULT_TIMESTEP
+               ) -> tuple[Any, list[SceneObject]]:
     """The MJCF tree of a graph's scene without a robot (``dm_control.mjcf``).
 
     This is the export path: :func:`compile_graph` builds the same bodies through
@@ -314,7 +317,8 @@ def build_mjcf(graph: TaskGraph, timestep: float = 0.002) -> tuple[Any, list[Sce
     return root, objects
 
 
-def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float = 0.002,
+def build_spec(graph: TaskGraph, robot: str | None = "floating",
+               timestep: float = DEFAULT_TIMESTEP,
                validate: bool = True) -> tuple[mujoco.MjSpec, list[SceneObject], list[BodyHandles],
                           list[BodyHandles]]:
     """Build (not compile) the ``mujoco.MjSpec`` of a graph's scene.
@@ -351,7 +355,7 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating", timestep: float
 
 
 def compile_graph(graph: TaskGraph, robot: str | None = "floating",
-                  timestep: float = 0.002, *, validate: bool = True) -> CompiledScene:
+                  timestep: float = DEFAULT_TIMESTEP, *, validate: bool = True) -> CompiledScene:
     """Compile a task graph into a MuJoCo model (through ``mujoco.MjSpec``).
 
     Args:
