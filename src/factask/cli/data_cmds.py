@@ -67,7 +67,7 @@ def collect(
 ) -> None:
     """Record oracle demonstrations as a LeRobot v3.0 dataset, with a states file per episode."""
     from factask.datasets.control_frames import FRAME_MODES, default_control_fps
-    from factask.datasets.lerobot import DEFAULT_FPS
+    from factask.datasets.layout import DEFAULT_FPS
     from factask.datasets.shards import CollectConfig, plan_shards
     from factask.datasets.shards import collect as run_collect
     from factask.datasets.splits import SPLITS

@@ -35,22 +35,21 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from factask.datasets.layout import (
+    CHUNKS_SIZE,
+    CODEBASE_VERSION,
+    DATA_FILES_SIZE_IN_MB,
+    DATA_PATH,
+    DEFAULT_FPS,
+    EPISODES_PATH,
+    TASKS_PATH,
+    VIDEO_FILES_SIZE_IN_MB,
+    VIDEO_PATH,
+)
 from factask.datasets.lerobot_files import RollingParquet, RollingVideo, RunningStats
 from factask.datasets.recording import ACTION_NAMES, STATE_NAMES, EpisodeRecord
 from factask.model.errors import FactaskError
 from factask.model.tolerances import SUCCESS_REWARD
-
-CODEBASE_VERSION = "v3.0"
-DATA_PATH = "data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"
-VIDEO_PATH = "videos/{video_key}/chunk-{chunk_index:03d}/file-{file_index:03d}.mp4"
-EPISODES_PATH = "meta/episodes/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"
-TASKS_PATH = "meta/tasks.parquet"
-#: LeRobot's defaults: files per chunk folder, size targets of data and video files.
-CHUNKS_SIZE = 1000
-DATA_FILES_SIZE_IN_MB = 100
-VIDEO_FILES_SIZE_IN_MB = 200
-#: Default frames per second: one frame per pick-and-place decision, shown at 1 Hz.
-DEFAULT_FPS = 1
 
 
 class DatasetWriteError(FactaskError, ValueError):

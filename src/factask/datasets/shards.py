@@ -27,12 +27,7 @@ from factask.datasets.control_frames import (
     command_names,
     default_control_fps,
 )
-from factask.datasets.lerobot import (
-    DATA_FILES_SIZE_IN_MB,
-    DEFAULT_FPS,
-    VIDEO_FILES_SIZE_IN_MB,
-    LeRobotWriter,
-)
+from factask.datasets.layout import DATA_FILES_SIZE_IN_MB, DEFAULT_FPS, VIDEO_FILES_SIZE_IN_MB
 from factask.datasets.parallel import run_jobs
 from factask.datasets.recording import EpisodeRecord
 from factask.datasets.splits import split_seeds
@@ -234,6 +229,8 @@ def collect(config: CollectConfig, root: Path, workers: int | None = None,
 
 def merge_shards(config: CollectConfig, root: Path, shards: Sequence[Shard]) -> CollectSummary:
     """Merge written shards, in plan order, into the dataset at ``root``."""
+    from factask.datasets.lerobot import LeRobotWriter  # pyarrow: not in the workers
+
     shard_dir = root / SHARD_DIR
     env_width, factor_width = _widths(config)
     cameras: dict[str, tuple[int, int]] = {}

@@ -25,7 +25,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from factask.model.errors import FactaskError
-from factask.sim.assets import MARKER_GROUP
+from factask.sim.parts import MARKER_GROUP
 
 #: Ravens' image size (width, height) and intrinsics (fx, fy, cx, cy) in pixels.
 RAVENS_SIZE = (640, 480)

@@ -27,7 +27,7 @@ import numpy as np
 
 from factask.model.errors import FactaskError
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
-from factask.sim.assets import MARKER_GROUP, OFFSCREEN_SIZE, TOP_CAMERA
+from factask.sim.parts import MARKER_GROUP, OFFSCREEN_SIZE, TOP_CAMERA
 
 #: Default image size (width, height) in pixels.
 DEFAULT_SIZE = (320, 240)
