@@ -1,7 +1,9 @@
 """The floating suction cup: a mocap body moved along minimum-time tool paths.
 
-Fast mode: no arm dynamics, the command is applied exactly every step. Its tool
-limits are a UR arm's (:data:`~factask.sim.primitive.TOOL_SPEED` ...).
+Fast mode: no arm dynamics, the command is applied exactly every step. Being an
+abstract robot (no arm whose joints bound it), it moves faster than a UR arm's
+tool (:data:`FLOATING_SPEED` ...); guarded descents, pushes and low carries keep
+the speeds every robot shares.
 """
 
 from __future__ import annotations
@@ -14,16 +16,9 @@ import numpy as np
 
 from factask.geometry import wrap_angle
 from factask.sim.motion import Profile, blend, constant_speed, profile
-from factask.sim.primitive import (
-    CLEARANCE,
-    TOOL_ACCEL,
-    TOOL_SPEED,
-    YAW_ACCEL,
-    YAW_RATE,
-    SuctionRobot,
-)
+from factask.sim.primitive import CLEARANCE, SuctionRobot
 from factask.sim.robots import RobotError
-from factask.sim.suction import find_id
+from factask.sim.suction import WELD_SOLREF, find_id
 
 #: State parts one control row of :meth:`FloatingSuctionRobot._play` writes.
 _MOCAP_STATE = int(mujoco.mjtState.mjSTATE_MOCAP_POS | mujoco.mjtState.mjSTATE_MOCAP_QUAT)
@@ -31,12 +26,37 @@ _MOCAP_STATE = int(mujoco.mjtState.mjSTATE_MOCAP_POS | mujoco.mjtState.mjSTATE_M
 FLOATING_BODY = "suction_cup_body"
 #: Floating cup home: above the robot base, out of the workspace (m).
 FLOATING_HOME = (0.1, 0.0, 0.45)
+#: Tool limits of the floating cup's free moves (transfers, lifts): speed (m/s),
+#: acceleration (m/s^2), yaw rate (rad/s), yaw acceleration (rad/s^2). Three times
+#: a UR arm's tool speed, 40 m/s^2 instead of 12: nothing bounds a mocap body; what
+#: bounds these is the held object, which trails the cup by its speed times
+#: :data:`WELD_LAG` (3 cm at 3 m/s, measured; the corners allow for it) and, held
+#: 5 cm off the axis, feels 0.05 x 120 = 6 m/s^2 tangential and 0.05 x (4 pi)^2 =
+#: 8 m/s^2 centripetal at the yaw limits. Transfers take 0.54 s per pick-and-place
+#: instead of 1.19 at a UR arm's tool limits (3 quick tasks).
+FLOATING_SPEED = 3.0
+FLOATING_ACCEL = 40.0
+FLOATING_YAW_RATE = 4 * math.pi
+FLOATING_YAW_ACCEL = 120.0
+#: Time (s) by which a held object trails the cup while it moves: the suction weld
+#: is a critically damped spring (:data:`~factask.sim.suction.WELD_SOLREF`: time
+#: constant tau, damping ratio zeta), and such a spring follows a steady motion
+#: 2 zeta tau behind (measured: 11, 21, 31 mm at 1, 2, 3 m/s).
+WELD_LAG = 2 * WELD_SOLREF[1] * WELD_SOLREF[0]
+
+
+def corner_overlap(accel: float) -> float:
+    """Overlap (s) of two blended moves such that the corner is cut by at most
+    CLEARANCE, the held object included: in the last ``T`` seconds of a move the
+    cup covers ``accel T^2 / 2`` and the object trails by ``WELD_LAG accel T``."""
+    return math.sqrt(WELD_LAG**2 + 2 * CLEARANCE / accel) - WELD_LAG
 
 
 def _tool_profile(a: np.ndarray, b: np.ndarray) -> Profile:
     """Minimum-time profile of a tool move between (x, y, z, yaw) points."""
     delta = np.array([float(np.linalg.norm(b[:3] - a[:3])), abs(float(b[3] - a[3]))])
-    return profile(delta, np.array([TOOL_SPEED, YAW_RATE]), np.array([TOOL_ACCEL, YAW_ACCEL]))
+    return profile(delta, np.array([FLOATING_SPEED, FLOATING_YAW_RATE]),
+                   np.array([FLOATING_ACCEL, FLOATING_YAW_ACCEL]))
 
 
 class FloatingSuctionRobot(SuctionRobot):
@@ -75,8 +95,7 @@ class FloatingSuctionRobot(SuctionRobot):
         pts = [np.array([*self._cmd_pos, self._cmd_yaw])]
         pts += [np.array([*p, y]) for p, y in points]
         profiles = [_tool_profile(a, b) for a, b in itertools.pairwise(pts)]
-        overlap = math.sqrt(2 * CLEARANCE / TOOL_ACCEL)
-        return self._rows(blend(pts, profiles, overlap, self.dt))
+        return self._rows(blend(pts, profiles, corner_overlap(FLOATING_ACCEL), self.dt))
 
     def _line(self, goal: np.ndarray, yaw: float, speed: float) -> np.ndarray:
         start = np.array([*self._cmd_pos, self._cmd_yaw])

@@ -35,8 +35,9 @@ from factask.model.errors import FactaskError
 from factask.sim.health import HealthWatch
 from factask.sim.suction import REST_RADIUS, TIP_SITE, SuctionGripper, find_id
 
-#: Tool limits of the floating cup: speed (m/s), acceleration (m/s^2), yaw rate
-#: (rad/s) and yaw acceleration (rad/s^2) -- a UR arm's tool moves at up to 1 m/s.
+#: A UR arm's tool limits: speed (m/s), acceleration (m/s^2), yaw rate (rad/s) and
+#: yaw acceleration (rad/s^2) -- its tool moves at up to 1 m/s. (The floating cup,
+#: an abstract robot, has its own: :data:`~factask.sim.floating_cup.FLOATING_SPEED`.)
 TOOL_SPEED = 1.0
 TOOL_ACCEL = 12.0
 YAW_RATE = 2 * math.pi
