@@ -13,6 +13,7 @@ import importlib.util
 import math
 import sys
 
+import gymnasium as gym
 import mujoco
 import numpy as np
 import pytest
@@ -32,6 +33,7 @@ from factask.model import TaskGraph
 from factask.model.errors import InvalidValueError
 from factask.sim.env import FactaskEnv, ResetNeededError
 from factask.sim.episode import run_episode
+from factask.sim.observations import decode_text
 
 pytestmark = pytest.mark.xdist_group("warp")
 if importlib.util.find_spec("mujoco_warp") is None or importlib.util.find_spec("warp") is None:
@@ -341,3 +343,31 @@ def test_the_vector_env_steps_rewards_terminates_and_autoresets() -> None:
         env.step({"pick": actions["pick"]})
     env.close()
     single.close()
+
+
+def test_make_vec_with_an_id_gives_the_batch_with_the_ids_spaces() -> None:
+    """gymnasium.make_vec takes the ids' vector entry point by default; its spaces are
+    the id's env's (state mode) batched; sync mode still gives single envs."""
+    gid = "factask/put-block-in-bowl-v0"
+    env = gym.make_vec(gid, num_envs=2, device="cpu")
+    single = gym.make(gid)
+    try:
+        assert isinstance(env.unwrapped, BatchVectorEnv) and env.num_envs == 2
+        assert env.single_observation_space == single.observation_space
+        assert env.single_action_space == single.action_space
+        obs, _ = env.reset(seed=4)
+        assert env.observation_space.contains(obs)
+        one, _ = single.reset(seed=4)
+        assert decode_text(obs["instruction"][0]) == decode_text(one["instruction"])
+        assert decode_text(obs["goal"][1]) == decode_text(single.reset(seed=5)[0]["goal"]) != ""
+        obs, _, terminated, _, _ = env.step(_place_actions(env.unwrapped.batch))
+        assert terminated.all() and np.allclose(obs["factor_progress"], 1.0)
+        assert [decode_text(g) for g in obs["goal"]] == ["", ""]
+    finally:
+        env.close()
+        single.close()
+    with pytest.raises(InvalidValueError, match="vectorization_mode"):
+        gym.make_vec(gid, num_envs=2, device="cpu", obs_mode="rgbd")
+    sync = gym.make_vec(gid, num_envs=2, vectorization_mode="sync")
+    assert sync.single_observation_space == single.observation_space
+    sync.close()

@@ -5,6 +5,12 @@ nothing of MuJoCo loads until ``gymnasium.make``)::
 
     env = gymnasium.make("factask/stack-block-pyramid-v0", robot="arm", obs_mode="rgbd")
 
+Each id also has a ``vector_entry_point``, the batched backend (:mod:`factask.batch`,
+the ``gpu`` extra): ``gymnasium.make_vec(id, num_envs=N)`` gives a
+:class:`~factask.batch.vector.BatchVectorEnv` (gymnasium takes a ``vector_entry_point``
+when no ``vectorization_mode`` is named); ``vectorization_mode="sync"`` or ``"async"``
+gives gymnasium's wrappers around N single envs instead (no extra needed).
+
 :func:`make` takes a library name, a gymnasium id, a :class:`TaskGraph`, a graph
 JSON file or a CLIPort task file (``FILE.py[:Class]``, user code: it is executed).
 """
@@ -55,6 +61,7 @@ def register_envs() -> list[str]:
         gid = env_id(name)
         if gid not in registry:
             register(id=gid, entry_point="factask.registration:make_env",
+                     vector_entry_point="factask.registration:make_vector_env",
                      kwargs={"task": name})
         ids.append(gid)
     return ids
@@ -127,6 +134,39 @@ def make_env(task: str | Path | TaskGraph, robot: str = "floating", obs_mode: st
     except FactaskError:
         env.close()
         raise
+
+
+def make_vector_env(num_envs: int, task: str | Path | TaskGraph, robot: str = "floating",
+                    obs_mode: str = "state", device: str | None = None,
+                    **kwargs: Any) -> gym.vector.VectorEnv:
+    """``num_envs`` worlds of a task on the batched backend (the ids' vector entry point).
+
+    Args:
+        num_envs: Worlds.
+        task: Library name or id, :class:`TaskGraph`, graph JSON or CLIPort file.
+        robot: "floating" (the batched pick-and-place moves the floating cup only).
+        obs_mode: "state" (the only mode the batch observes so far).
+        device: "cpu", "cuda", "cuda:N" or None (a GPU if there is one, else the CPU).
+        **kwargs: Passed to :class:`~factask.batch.env.BatchEnv` (``nconmax``, ...).
+
+    Returns:
+        A :class:`~factask.batch.vector.BatchVectorEnv`.
+
+    Raises:
+        InvalidValueError: another robot or observation mode.
+        BatchBackendMissing: the ``gpu`` extra is not installed (or use
+            ``vectorization_mode="sync"`` / ``"async"``).
+        DeviceUnavailableError: a GPU asked for that is not there.
+    """
+    from factask.batch.vector import BatchVectorEnv
+    from factask.model.errors import InvalidValueError
+
+    if obs_mode != "state" or robot != "floating":
+        raise InvalidValueError(
+            f"the batched vector env runs robot 'floating' in obs_mode 'state', not robot "
+            f"{robot!r} in {obs_mode!r} (fix: make_vec(..., vectorization_mode='sync' or "
+            "'async') for the single env's robots and modes)")
+    return BatchVectorEnv(resolve_task(task), num_envs, device=device, **kwargs)
 
 
 def make(task: str | Path | TaskGraph, **kwargs: Any) -> gym.Env:

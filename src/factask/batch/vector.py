@@ -1,18 +1,21 @@
 """The batch as a gymnasium ``VectorEnv``: the single env's spaces, one action per world.
 
 :class:`BatchVectorEnv` wraps a :class:`~factask.batch.env.BatchEnv` (floating cup)
-so that a vectorised policy sees what it sees from ``num_envs`` copies of
-:class:`~factask.sim.env.FactaskEnv`: the same observation and action spaces
-(batched), an action = one suction pick-and-place per world (run in lockstep), the
-reward = each world's change of total reward, ``terminated`` on success or a physics
-failure, ``truncated`` when the world's action budget is spent. Finished worlds
-reset on the next step (gymnasium's ``NEXT_STEP`` autoreset: that step returns
+so that a vectorised policy sees what it sees from ``num_envs`` copies of the
+gymnasium id's env (``gymnasium.make("factask/<task>-v0")``, state mode): the same
+observation and action spaces (batched; the state keys with ``factor_progress``,
+``instruction`` and ``goal``), an action = one suction pick-and-place per world (run
+in lockstep), the reward = each world's change of total reward, ``terminated`` on
+success or a physics failure, ``truncated`` when the world's action budget is spent.
+Finished worlds reset on the next step (gymnasium's ``NEXT_STEP`` autoreset: that step returns
 their first observation, reward 0, neither flag) from fresh seeds drawn from the
 seed given to :meth:`BatchVectorEnv.reset`.
 
-Not yet: the gymnasium ids' ``vector_entry_point`` (``gym.make_vec("factask/<task>-v0",
-vectorization_mode="vector_entry_point")``), pushes and low carries, observation
-modes other than ``state``.
+The gymnasium ids' ``vector_entry_point`` makes it:
+``gymnasium.make_vec("factask/<task>-v0", num_envs=N, device="cpu")``
+(:func:`factask.registration.make_vector_env`).
+
+Not yet: pushes and low carries, observation modes other than ``state``.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from gymnasium.vector.utils import batch_space
 from factask.batch.env import BatchEnv, make_batch
 from factask.model.errors import InvalidValueError
 from factask.model.graph import TaskGraph
+from factask.sim.observations import ObservationWrapper, encode_text
 
 
 class BatchVectorEnv(VectorEnv):
@@ -48,7 +52,10 @@ class BatchVectorEnv(VectorEnv):
         self.batch: BatchEnv = make_batch(task, num_envs, device=device, **kwargs)
         self.num_envs = self.batch.num_envs
         single = self.batch.cpu_env
-        self.single_observation_space = single.observation_space
+        # The state-mode wrapper of the id's env: its space and its goal rule, per world.
+        self._language = ObservationWrapper(single)
+        self._instruction = encode_text(self._language.instruction)
+        self.single_observation_space = self._language.observation_space
         self.single_action_space = single.action_space
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
@@ -75,8 +82,9 @@ class BatchVectorEnv(VectorEnv):
         self._autoreset[mask] = False
         status = self.batch.status()
         self._total[mask] = status.reward[mask]
-        return obs, {"total_reward": status.reward, "success": status.success,
-                     "seeds": self.batch.seeds.copy()}
+        return self._observe(obs, status), {"total_reward": status.reward,
+                                            "success": status.success,
+                                            "seeds": self.batch.seeds.copy()}
 
     def step(self, actions: dict[str, np.ndarray]
              ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray,
@@ -112,7 +120,19 @@ class BatchVectorEnv(VectorEnv):
         self._autoreset = terminated | truncated
         info = {"total_reward": status.reward, "success": status.success,
                 "action_ok": result.ok, "failure": failures, "actions": self._actions.copy()}
-        return self.batch.observe(), reward, terminated, truncated, info
+        return self._observe(self.batch.observe(), status), reward, terminated, truncated, info
+
+    def _observe(self, obs: dict[str, np.ndarray], status: Any) -> dict[str, np.ndarray]:
+        """The batch's state keys with each world's factor progress, instruction, goal."""
+        names = list(status.factor_names)
+        order = [names.index(n) for n in self._language.factor_names]
+        goals = [encode_text(self._language.current_goal(
+            {"satisfied": dict(zip(names, row.tolist(), strict=True))}))
+            for row in status.satisfied]
+        return obs | {
+            "factor_progress": np.clip(status.progress[:, order], 0.0, 1.0).astype(np.float64),
+            "instruction": np.repeat(self._instruction[None], self.num_envs, axis=0),
+            "goal": np.stack(goals)}
 
     def close_extras(self, **kwargs: Any) -> None:
         """Release the batch's single env."""
