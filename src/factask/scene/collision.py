@@ -33,6 +33,7 @@ from factask.scene.objects import (
     SceneObject,
     bottom_z,
     floor_thickness,
+    floor_top_z,
     footprint_corners,
     footprint_corners_batch,
     footprint_points,
@@ -293,16 +294,24 @@ def table_spots(rng: np.random.Generator, k: int) -> list[tuple[np.ndarray, floa
 # ===================================================== questions before a move
 def resting_on(name: str, objects: Mapping[str, SceneObject],
                poses: Mapping[str, Pose]) -> list[str]:
-    """Free objects resting directly on top of ``name``, highest first."""
+    """Free objects resting directly on top of ``name``, highest first; for a free
+    receptacle also what lies inside it (carried along, a loose thing slides and
+    tips over under the carry's accelerations: it comes out first)."""
     me = objects[name]
     top = top_z(me, poses[name])
     mine = footprint_corners(me, poses[name])
+    hollow = placement_area(me, poses[name]) if me.spec.receptacle and not me.fixed else None
+    floor = floor_top_z(me, poses[name])
     out = []
     for other, obj in objects.items():
         if other == name or obj.fixed or not obj.collides:
             continue
-        if abs(bottom_z(obj, poses[other]) - top) < REST_EPS and obb_overlaps(
-                mine, footprint_corners(obj, poses[other]))[0, 0]:
+        bottom = bottom_z(obj, poses[other])
+        on_top = abs(bottom - top) < REST_EPS and bool(obb_overlaps(
+            mine, footprint_corners(obj, poses[other]))[0, 0])
+        inside = hollow is not None and floor - REST_EPS < bottom < top and bool(
+            hollow.contains(poses[other].pos[None, :2])[0])
+        if on_top or inside:
             out.append(other)
     return sorted(out, key=lambda o: -poses[o].pos[2])
 
@@ -310,7 +319,8 @@ def resting_on(name: str, objects: Mapping[str, SceneObject],
 def occupying(name: str, target: Pose, objects: Mapping[str, SceneObject],
               poses: Mapping[str, Pose], keep: Iterable[str] = ()) -> list[str]:
     """Free objects (other than ``name`` and ``keep``) in the space ``name`` takes at
-    ``target``."""
+    ``target``. A free receptacle whose hollow holds that space (inside its walls,
+    above its floor) does not occupy it: it is where ``name`` goes."""
     kept = set(keep)
     me = objects[name]
     lo, hi = target.pos[2] - me.half[2], target.pos[2] + me.half[2]
@@ -320,8 +330,16 @@ def occupying(name: str, target: Pose, objects: Mapping[str, SceneObject],
         if other == name or other in kept or obj.fixed or not obj.collides:
             continue
         p = poses[other]
-        if bottom_z(obj, p) < hi - REST_EPS and top_z(obj, p) > lo + REST_EPS and \
-                obb_overlaps(corners, footprint_corners(obj, p))[0, 0]:
+        if obj.spec.receptacle and lo >= floor_top_z(obj, p) - REST_EPS and bool(
+                placement_area(obj, p).contains(corners).all()):
+            continue
+        if not (bottom_z(obj, p) < hi - REST_EPS and top_z(obj, p) > lo + REST_EPS):
+            continue
+        if me.is_round and obj.is_round:  # two disks: their boxes' corners are air
+            if float(np.linalg.norm(target.pos[:2] - p.pos[:2])) < \
+                    footprint_radius(me) + footprint_radius(obj) - 0.002:
+                out.append(other)
+        elif obb_overlaps(corners, footprint_corners(obj, p))[0, 0]:
             out.append(other)
     return out
 

@@ -39,9 +39,10 @@ from factask.relations.pile_in_zone import PileInZone
 from factask.relations.rope import RopeAlong
 from factask.relations.status import MAX_TILT_DEG, FactorStatus
 from factask.scene.collision import occupying, parking_spot, resting_on
-from factask.scene.objects import SPHERE_KINDS, SceneObject, top_z
+from factask.scene.objects import SPHERE_KINDS, SceneObject
 from factask.sim.env import FactaskEnv
 from factask.sim.low_carry import CarryAction
+from factask.sim.pick_points import pick_and_place_points
 from factask.sim.push_oracle import PushAction, plan_push
 from factask.sim.rope_oracle import MAX_FOLD_FIXES, plan_rope_carry
 
@@ -113,9 +114,9 @@ class Oracle:
         # symmetry: a box set down askew can hit its neighbours.
         symmetry = obj.symmetry_deg or yaw_symmetry_deg(obj.kind, obj.size)
         place_yaw = _yaw_toward(target.yaw, pick_yaw, symmetry)
-        pick = np.array([current.pos[0], current.pos[1], top_z(obj, current), pick_yaw])
-        place = np.array([target.pos[0], target.pos[1], target.pos[2] + obj.half[2],
-                          place_yaw])
+        # At the top centre, or on the rim of a receptacle (sim.pick_points).
+        pick, place = pick_and_place_points(obj, current, target, pick_yaw, place_yaw,
+                                            self.env.objects, self.env.object_poses())
         return OracleAction(pick, place, obj.name, factor, purpose)
 
     def _move_away(self, name: str, poses: dict[str, Pose], factor: str,
