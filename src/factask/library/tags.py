@@ -3,8 +3,9 @@
 Most tags are read off the graph, so they cannot drift from what a task does:
 its family (declared at registration), how many movable objects it has, which
 relations its goals use, whether it is sequenced, has milestones, distractors or
-objects that start stacked or inside, where it comes from (Ravens/CLIPort, GenSim
-or factask's own) and whether its tallest structure needs the arm's reach.
+objects that start stacked or inside, whether it moves a receptacle, where it
+comes from (Ravens/CLIPort, GenSim or factask's own) and whether its tallest
+structure needs the arm's reach.
 Authors add tags the graph cannot tell with ``register(..., tags=[...])``.
 """
 
@@ -19,6 +20,7 @@ from importlib import resources
 from factask.library.builders import EXTRA_TAGS, FAMILIES
 from factask.library.templates import TEMPLATES
 from factask.model import TaskGraph
+from factask.model.kinds import kind_spec
 
 #: A structure whose top is at least this high above the table (m) counts as
 #: needing the arm's reach: an arm must lift over it and place at that height
@@ -93,6 +95,10 @@ def graph_tags(graph: TaskGraph) -> list[str]:
         tags.append("starts-stacked")
     if "inside" in starts:
         tags.append("starts-inside")
+    kinds = {v.name: v.kind for v in graph.variables}
+    if any(kind_spec(kinds[o]).receptacle for f in graph.factors for o in f.goal.objects
+           if o in kinds):
+        tags.append("moves-receptacle")  # a bowl or container carried by its rim
     if structure_height(graph) >= REACH_HEIGHT - 1e-9:
         tags.append("needs-arm-reach")
     return tags

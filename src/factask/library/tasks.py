@@ -21,6 +21,7 @@ from factask.library import (  # noqa: F401
     catalog_gensim_lines,
     catalog_gensim_matching,
     catalog_gensim_packing,
+    catalog_gensim_receptacles,
     catalog_gensim_sorting,
     catalog_gensim_stacking,
     catalog_placing,

@@ -32,8 +32,10 @@ from factask.model import (
     TemplateSlot,
 )
 
-# Kinds a suction gripper can pick and that stay where they are put.
-PICKABLE = ["block", "box", "cylinder", "ball", "ell"]
+# Kinds a suction gripper can pick and that stay where they are put; a free bowl or
+# container is taken by its rim (factask.sim.pick_points).
+MOVABLE_RECEPTACLES = ["bowl", "container"]
+PICKABLE = ["block", "box", "cylinder", "ball", "ell", *MOVABLE_RECEPTACLES]
 # Kinds that can carry something on their flat top (columns, layers, decks).
 STACKABLE = ["block", "box", "cylinder"]
 # Kinds usable as the footprint of an ``in_zone`` goal.
@@ -189,7 +191,8 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="align_to_corner",
         description="Align a corner of the {objects} with the {corner} marker.",
-        slots=[_objects("the object to align", ["box", "block", "cylinder", "ball"]),
+        slots=[_objects("the object to align",
+                        ["box", "block", "cylinder", "ball", *MOVABLE_RECEPTACLES]),
                _slot("corner", "the L-shaped corner marker", ["corner"])],
         factors=[SubtaskFactor(
             name="corner",
