@@ -293,7 +293,7 @@ class SuctionRobot(ABC):
             self.gripper.release()
         up = np.array([0.0, 0.0, 1.0])
         # Transfer to just above the pick, then a guarded descent to the first contact.
-        self._transfer(pick.pos + APPROACH_HEIGHT * up, pick_yaw)
+        self._transfer(self._approach(pick.pos, held=False), pick_yaw)
         if self._descend(pick.pos - PICK_OVERSHOOT * up, pick_yaw, held=False):
             self._hold_here()
         if not self.suction_on():
@@ -302,7 +302,7 @@ class SuctionRobot(ABC):
         grasped = self.gripper.held
         assert grasped is not None
         # Carry to just above the place pose, then a guarded descent until it rests.
-        self._transfer(place.pos + APPROACH_HEIGHT * up, place_yaw)
+        self._transfer(self._approach(place.pos, held=True), place_yaw)
         if not self.gripper.held_in_contact() and self._descend(place.pos, place_yaw, held=True):
             self._hold_here()
         self._settle()
@@ -338,6 +338,24 @@ class SuctionRobot(ABC):
         points.append((np.asarray(goal, dtype=float), yaw))
         self._follow(self._path(points))
         self._settle()
+
+    def _approach(self, target: np.ndarray, held: bool) -> np.ndarray:
+        """Where the transfer to ``target`` ends: APPROACH_HEIGHT above it, less what
+        the clearance below that point leaves free (less GUARD_SLACK), never below
+        ``target``.
+
+        The guarded descent would play that part untested anyway (:meth:`_descend`);
+        as the end of the transfer it costs a few steps of its deceleration instead
+        of a crawl at GUARDED_SPEED. The gap is measured before the transfer, with
+        the solids where they are then (only the held object moves meanwhile).
+        """
+        above = np.asarray(target, dtype=float) + np.array([0.0, 0.0, APPROACH_HEIGHT])
+        tip = self.data.site_xpos[self.tip_site].copy()
+        room = (self.gripper.clearance(held, GUARD_MARGIN, move=(tip, above)) - GUARD_SLACK
+                - self.gripper.contact_reach)
+        if not math.isfinite(room) or room <= 0.0:
+            return above
+        return above - np.array([0.0, 0.0, min(room, APPROACH_HEIGHT)])
 
     def _descend(self, goal: np.ndarray, yaw: float, held: bool) -> bool:
         """Guarded straight move down to (goal, yaw) at GUARDED_SPEED until the cup

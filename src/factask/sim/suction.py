@@ -328,7 +328,8 @@ class SuctionGripper:
         return (np.clip(tc - reach, 0.0, 1.0), np.clip(tc + reach, 0.0, 1.0),
                 centre[keep, 2] + half[keep, 2])
 
-    def clearance(self, held: bool, margin: float) -> float:
+    def clearance(self, held: bool, margin: float,
+                  move: tuple[np.ndarray, np.ndarray] | None = None) -> float:
         """Vertical gap (m) under the cup (``held`` False) or under the held object:
         from its lowest point down to the highest top of the other solids (objects,
         the table, fixtures) whose world-aligned boxes come within ``margin`` of its
@@ -338,6 +339,9 @@ class SuctionGripper:
         Args:
             held: Measure under the held object (else under the cup geom).
             margin: Sideways distance (m) within which a solid counts as below.
+            move: (the tip now, the tip later): the gap the part would have with
+                the tip there, the solids where they are now; the part's box is
+                then widened to the square that holds it at any yaw about the tip.
 
         Returns:
             The gap (negative when something is already level with it; -inf when
@@ -365,6 +369,12 @@ class SuctionGripper:
             c = d.geom_xpos[self.cup_geom] + cup_rot @ self._cup_c
             h = np.abs(cup_rot) @ self._cup_h
             lo, hi = c - h, c + h
+        if move is not None:
+            now, later = (np.asarray(p, dtype=float) for p in move)
+            reach = float(np.linalg.norm(np.maximum(np.abs(lo[:2] - now[:2]),
+                                                    np.abs(hi[:2] - now[:2]))))
+            lo = np.array([later[0] - reach, later[1] - reach, lo[2] + later[2] - now[2]])
+            hi = np.array([later[0] + reach, later[1] + reach, hi[2] + later[2] - now[2]])
         near = (~mine & (centre[:, 0] + half[:, 0] >= lo[0] - margin)
                 & (centre[:, 0] - half[:, 0] <= hi[0] + margin)
                 & (centre[:, 1] + half[:, 1] >= lo[1] - margin)
