@@ -221,6 +221,7 @@ def test_suction_grasps_lifts_and_lets_go_per_world(batch: BatchEnv) -> None:
     assert held.tolist() == [True, False, True]
     assert batch.held_objects() == ["blue_block", None, "blue_block"]
     assert batch.observe()["suction"][:, 0].tolist() == [1.0, 0.0, 1.0]
+    _assert_device_observation_is_the_hosts(batch)
     assert batch.scene().held[:, block].tolist() == [True, False, True]
     lifted = touch.copy()
     lifted[:, 2] += 0.1
@@ -238,6 +239,42 @@ def test_suction_grasps_lifts_and_lets_go_per_world(batch: BatchEnv) -> None:
     assert batch.held_objects() == [None, None, "blue_block"]
     batch.reset(seed=SEEDS)
     assert batch.held_objects() == [None, None, None]
+
+
+def _assert_device_observation_is_the_hosts(batch: BatchEnv) -> None:
+    host, device = batch.observe(), batch.observe_device()
+    assert set(device) == set(host)
+    for key, value in host.items():
+        assert np.allclose(device[key].numpy(), value, atol=2e-6), key
+
+
+def test_observations_and_rewards_are_device_arrays_shared_without_a_copy(
+        batch: BatchEnv) -> None:
+    """DLPack (what wp.to_torch and JAX use) hands the device arrays over as they are:
+    the consumer's view shows the next gather without another conversion."""
+    from factask.batch.interop import status_arrays  # imports Warp: after the skip
+
+    batch.reset(seed=SEEDS)
+    _assert_device_observation_is_the_hosts(batch)
+    device = batch.observe_device()
+    poses, ee = np.from_dlpack(device["object_poses"]), np.from_dlpack(device["ee_pose"])
+    assert poses.ctypes.data == device["object_poses"].ptr
+    assert poses.shape == (len(SEEDS), len(batch.object_names), 7)
+    assert ee.shape == (len(SEEDS), 7)
+    z0 = ee[:, 2].copy()
+    cmd = batch.home_command()
+    cmd[:, 2] -= 0.05
+    batch.step(cmd, substeps=40)
+    batch.observe_device()
+    # The views taken before the step show the new gather: the same memory.
+    assert np.all(ee[:, 2] < z0 - 0.01)
+    assert np.allclose(ee, batch.observe()["ee_pose"], atol=2e-6)
+    assert np.allclose(poses, batch.observe()["object_poses"], atol=2e-6)
+    status = batch.status()
+    arrays = status_arrays(status, batch.device)
+    assert np.array_equal(np.from_dlpack(arrays["reward"]), status.reward.astype(np.float32))
+    assert np.array_equal(arrays["success"].numpy(), status.success)
+    assert arrays["progress"].shape == status.progress.shape
 
 
 def test_no_world_reports_a_physics_failure_and_nan_is_one(batch: BatchEnv) -> None:

@@ -129,6 +129,7 @@ class BatchEnv:
         self._sleep = bool(self.model.opt.enableflags & mujoco.mjtEnableBit.mjENBL_SLEEP)
         self._capture = capture
         self._graph: Any = None
+        self._device_obs: Any = None
         self.seeds = np.full(self.num_envs, -1, dtype=np.int64)
         self.solved: list[dict[str, SolvedFactor]] = [{} for _ in range(self.num_envs)]
         self.initial_layouts: list[dict[str, Pose]] = [{} for _ in range(self.num_envs)]
@@ -319,6 +320,17 @@ class BatchEnv:
         return {"object_poses": self.object_poses(),
                 "ee_pose": np.concatenate([xpos, quat], axis=1).astype(float),
                 "suction": (self.suction.held >= 0).astype(float)[:, None]}
+
+    def observe_device(self) -> dict[str, Any]:
+        """:meth:`observe` gathered on the device: Warp arrays (float32, reused by the next
+        call) that torch, JAX or NumPy take without a copy (``wp.to_torch``, DLPack;
+        :mod:`factask.batch.interop`)."""
+        if self._device_obs is None:
+            from factask.batch.interop import DeviceObservations  # imports Warp
+
+            self._device_obs = DeviceObservations(self, self._free, self._fixed,
+                                                  self._tip_site, self._held_tree)
+        return self._device_obs.observe()
 
     def physics_failures(self) -> list[str | None]:
         """Per world, why its simulation is no longer trustworthy, or None: positions or
