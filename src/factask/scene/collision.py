@@ -175,15 +175,15 @@ class Occupancy:
 
     def _pair_collides(self, obj: SceneObject, pose: Pose, other: _Body,
                        solid_fixtures: bool = False) -> bool:
-        mine = _body(obj, pose, self.clearance)
         if obj.is_round and other.obj.is_round:  # disks: exact, boxes are too coarse
             gap = float(np.linalg.norm(pose.pos[:2] - other.pose.pos[:2]))
             if gap >= footprint_radius(obj) + footprint_radius(other.obj) + self.clearance:
                 return False
+        # The candidate's footprint only for a receptacle pair (the boxes decided the rest).
         if other.obj.is_receptacle:
-            return _receptacle_pair(other, mine, solid_fixtures)
+            return _receptacle_pair(other, _body(obj, pose, self.clearance), solid_fixtures)
         if obj.is_receptacle:
-            return _receptacle_pair(mine, other, solid_fixtures)
+            return _receptacle_pair(_body(obj, pose, self.clearance), other, solid_fixtures)
         return True
 
     def blockers(self, obj: SceneObject, pose: Pose, ignore: Iterable[str] = (),
