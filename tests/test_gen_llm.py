@@ -279,3 +279,19 @@ def test_a_chunked_model_package_is_joined_once_into_the_model_cache(tmp_path, m
     monkeypatch.setitem(local.LOCAL_MODELS, "gone", missing)
     with pytest.raises(local.LocalModelError, match="pip install gone"):
         local.resolve_local("local/gone")
+
+
+def test_the_local_server_takes_the_free_cores_and_keeps_a_prompt_cache() -> None:
+    from factask.gen.local import LOCAL_MODELS, LocalLlamaServer, default_threads
+
+    assert default_threads({}, load=0.1, cores=2) == 2
+    assert default_threads({}, load=1.2, cores=2) == 1
+    assert default_threads({}, load=9.0, cores=2) == 1  # busier than its cores: one thread
+    assert default_threads({"FACTASK_LOCAL_THREADS": "3"}, load=9.0, cores=2) == 3
+    assert default_threads({"FACTASK_LOCAL_THREADS": "x"}, load=0.0, cores=4) == 4
+    server = object.__new__(LocalLlamaServer)  # the command line only, no process
+    server.spec, server.path = LOCAL_MODELS["smollm2-135m"], "m.gguf"
+    server.n_ctx, server.n_threads, server.alias, server.python = 8192, 1, "a", "py"
+    cmd = server.command(1234)
+    assert cmd[cmd.index("--cache") + 1] == "true" and "--cache_size" in cmd
+    assert cmd[cmd.index("--n_threads") + 1] == "1"
