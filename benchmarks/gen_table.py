@@ -4,8 +4,10 @@ Runs ``factask benchmark`` twice on the fixed 55-task research sample
 (``--sample research55``): once with structured output constrained by the
 provider (``--response-format auto``: llama.cpp's grammar for the local model)
 and once unconstrained (``--response-format prompt``: the schema in the prompt
-only). Each run resumes where it stopped. Then it writes, into the run
-directory, ``table.md`` (syntax / runtime / completion, tokens and wall time
+only). Each run resumes where it stopped. The modes take turns, ``--chunk``
+tasks at a time (each turn one ``factask benchmark`` process, one server), so
+a run stopped early still has both modes on the same tasks. Then it writes,
+into the run directory, ``table.md`` (syntax / runtime / completion, tokens and wall time
 per strategy and mode, with the research's GPT-4 numbers) and ``table.png``.
 
 Usage::
@@ -27,21 +29,31 @@ from pathlib import Path
 from typing import Any
 
 MODES = {"constrained": "auto", "unconstrained": "prompt"}
+#: Tasks in the research sample (``factask.evaluation.benchmark.RESEARCH_SAMPLE_SIZE``).
+SAMPLE_SIZE = 55
 RESEARCH = {"one-shot": (95.0, 53.3, 16.7), "variables-first": (96.4, 78.2, 29.1),
             "subtasks-first": (98.3, 90.2, 16.7)}
 
 
-def run_mode(out: Path, mode: str, args: argparse.Namespace, extra: list[str]) -> int:
-    """Run (or resume) one mode's benchmark; returns its exit status."""
+def run_mode(out: Path, mode: str, args: argparse.Namespace, extra: list[str],
+             limit: int | None = None) -> int:
+    """Run (or resume) one mode's benchmark on the first ``limit`` tasks (None: all);
+    returns its exit status."""
     cmd = [sys.executable, "-m", "factask", "benchmark", "--approach", "all",
            "--sample", "research55", "--out", str(out / mode),
            "--response-format", MODES[mode], "--max-repairs", str(args.max_repairs),
            "--episodes", str(args.episodes), "--temperature", "0", "--seed", "0"]
     if args.model:
         cmd += ["--model", args.model]
-    if args.limit:
-        cmd += ["--limit", str(args.limit)]
+    if limit:
+        cmd += ["--limit", str(limit)]
     return subprocess.call(cmd + extra)
+
+
+def turns(total: int, chunk: int) -> list[int]:
+    """The task counts the modes run up to, turn by turn: chunk, 2 chunk, ..., total."""
+    step = max(1, chunk)
+    return [*range(step, total, step), total]
 
 
 def first_step_rates(run: Path) -> dict[str, float]:
@@ -129,12 +141,21 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--max-repairs", type=int, default=1)
     parser.add_argument("--episodes", type=int, default=1)
     parser.add_argument("--modes", default="constrained,unconstrained")
+    parser.add_argument("--chunk", type=int, default=5,
+                        help="tasks per turn of each mode (the modes alternate)")
     args = parser.parse_args(argv)
     summaries: dict[str, dict[str, Any]] = {}
     status = 0
-    for mode in args.modes.split(","):
-        code = run_mode(args.out, mode, args, extra)
-        status = status or code
+    modes = args.modes.split(",")
+    for limit in turns(args.limit or SAMPLE_SIZE, args.chunk):
+        for mode in modes:
+            code = run_mode(args.out, mode, args, extra, limit)
+            status = status or code
+            if code in (2, 3):  # the configuration cannot work: no point going on
+                break
+        if status in (2, 3):
+            break
+    for mode in modes:
         path = args.out / mode / "summary.json"
         if path.exists():
             summaries[mode] = json.loads(path.read_text())
