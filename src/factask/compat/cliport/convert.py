@@ -157,6 +157,9 @@ def _settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int
             # Sunk into the table: factask's asset is taller than the size the author
             # placed it with (a 2 cm pallet hint for a 3.75 cm pallet). The author put
             # it on the table, so does factask; targets on it follow it up.
+            # The author's asset rested on the table with its centre at z: its top
+            # was at 2 z, and targets above that are on it.
+            o.placed_top = 2 * float(o.pos[2])
             o.pos = np.array([o.pos[0], o.pos[1], o.size[2] / 2], dtype=float)
         if bottom > START_ABOVE_TABLE:
             warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "

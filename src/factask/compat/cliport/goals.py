@@ -197,8 +197,12 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             continue
         bottom = float(o.pos[2]) - o.size[2] / 2
         top = bottom if spec.receptacle else bottom + o.size[2]
+        # A target is on it when above its top as the author placed it (a pallet
+        # factask builds taller than the author's size hint still carries the row
+        # the author put 3.5 cm up, and every layer stacked on that row).
+        placed = top if o.placed_top is None else o.placed_top
         fixed.append((float(o.pos[0]), float(o.pos[1]), _half_xy(o.size, yaw_of_xyzw(o.quat)),
-                      top))
+                      top, placed))
     out: dict[tuple[int, int], float] = {}
     done: list[tuple[_Slot, float]] = []
     # In queue order (then the author's z within a goal), as the robot places them:
@@ -211,8 +215,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         done = [(other, z) for other, z in done if other.key[0] == slot.key[0]
                 or not other.objects <= goal_objects[slot.key[0]]]
         support = 0.0
-        for fx, fy, fh, top in fixed:
-            if top <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
+        for fx, fy, fh, top, placed in fixed:
+            if placed <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
                 support = max(support, top)
         for other, z in done:
             if not other.certain:

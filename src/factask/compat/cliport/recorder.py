@@ -61,6 +61,9 @@ class RecordedObject:
         quat: Orientation, x, y, z, w.
         note: Approximation note of the asset mapping ("" if exact).
         random_start: Its pose is one ``get_random_pose`` returned (a random free spot).
+        placed_top: Height of its top as the author placed it, where factask's asset
+            is taller (a sunk asset started on the table): what the author's targets
+            on it are measured against. None: its top.
     """
 
     obj_id: int
@@ -73,6 +76,7 @@ class RecordedObject:
     quat: np.ndarray
     note: str = ""
     random_start: bool = False
+    placed_top: float | None = None
 
 
 @dataclass
