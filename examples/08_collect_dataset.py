@@ -4,11 +4,13 @@ Run: ``python examples/08_collect_dataset.py`` (about half a minute with softwar
 rendering). Writes under ``out/examples/``: ``08_cameras.png`` (Ravens' front, left
 and right cameras, then CLIPort's fused colour and height maps of the same scene),
 ``08_dataset/`` (a LeRobot v3.0 dataset of oracle demonstrations with a states file
-per episode) and ``08_summary.json``.
+per episode), ``08_dataset_control/`` (the same at the control rate: a frame per
+low-level command) and ``08_summary.json``.
 
 The same from the command line::
 
     factask collect place-red-in-green -n 4 --size 160x120 -o out/demo
+    factask collect place-red-in-green -n 4 --frames control --no-video -o out/demo_50hz
     factask replay out/demo --episode 0 --video out/replay.mp4
     factask eval-policy oracle place-red-in-green -n 4 --workers 1
 """
@@ -23,6 +25,7 @@ import imageio.v3 as iio
 import numpy as np
 
 import factask  # registers the gymnasium ids factask/<task>-v0
+from factask.datasets.control_frames import default_control_fps
 from factask.datasets.replay import compare_states, resimulate
 from factask.datasets.shards import CollectConfig, collect
 from factask.datasets.states import read_states
@@ -66,6 +69,16 @@ info = json.loads((root / "meta" / "info.json").read_text())
 print(f"{summary.episodes_kept} episodes, {info['total_frames']} frames, "
       f"features: {sorted(info['features'])}")
 
+# %% The same demonstrations at the control rate: a frame per low-level command (50 Hz)
+control_root = OUT / "08_dataset_control"
+shutil.rmtree(control_root, ignore_errors=True)
+control = collect(CollectConfig(tasks=(TASK,), episodes=1, image_size=None,
+                                fps=default_control_fps(), frames="control"),
+                  control_root, workers=1)
+control_info = json.loads((control_root / "meta" / "info.json").read_text())
+print(f"control frames: {control.frames} at {control_info['fps']} fps, action = "
+      f"{control_info['features']['action']['names']}, beside action.primitive")
+
 # %% Replay episode 0 from its states file: the physics is deterministic, bit for bit
 states = read_states(root / "states" / "episode_000000.npz")
 differences = compare_states(states, resimulate(states))
@@ -80,5 +93,6 @@ for policy in ("oracle", "random"):
           f"[{score.success_at_end_ci[0]:.0%}, {score.success_at_end_ci[1]:.0%}]")
 
 (OUT / "08_summary.json").write_text(json.dumps(
-    {"collect": summary.to_dict(), "replay_identical": not differences, "scores": scores},
+    {"collect": summary.to_dict(), "control_frames": control.frames,
+     "replay_identical": not differences, "scores": scores},
     indent=2))

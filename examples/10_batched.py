@@ -49,6 +49,12 @@ elapsed = time.perf_counter() - t0
 print(f"100 steps of {batch.num_envs} worlds in {elapsed:.2f} s "
       f"({100 * batch.num_envs / elapsed:,.0f} world steps/s on {batch.device})")
 
+# %% The observation as device arrays: torch (wp.to_torch) or JAX take them via DLPack
+device_obs = batch.observe_device()
+view = np.from_dlpack(device_obs["ee_pose"])  # NumPy on the CPU device: no copy
+print("tip poses on the device:", view.shape, "same memory:",
+      view.ctypes.data == device_obs["ee_pose"].ptr)
+
 # %% One pick-and-place per world, in lockstep: every block to its bowl
 factor = batch.graph.factors[0]
 mover = factor.goal.objects[0]  # the block the task moves
