@@ -132,11 +132,12 @@ def test_tasks_fit_the_workspace_and_the_oracle(graphs: dict[str, TaskGraph]) ->
     area = (WORKSPACE_X[1] - WORKSPACE_X[0]) * (WORKSPACE_Y[1] - WORKSPACE_Y[0])
     for name, g in graphs.items():
         # Piles and ropes are pushed or dragged as a whole, not carried one object per
-        # action: the budget counts the objects a suction oracle carries (twelve: GenSim's
-        # largest rigid tasks sort twelve blocks).
+        # action: the budget counts the objects a suction oracle carries (sixteen: GenSim's
+        # largest rigid task stacks sixteen blocks; its reset took 0.2 s and an mj_step
+        # 51 us at rest, against 41-49 us for twelve objects).
         carried = sum(v.count for v in g.variables
                       if not v.is_fixed and v.kind not in ("pile", "rope"))
-        assert carried <= 12, name
+        assert carried <= 16, name
         footprint = 0.0
         for v in g.variables:
             sx, sy, sz = v.extents

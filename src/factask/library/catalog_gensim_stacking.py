@@ -20,7 +20,7 @@ from factask.library.builders import (
     use,
     var,
 )
-from factask.library.conventions import BLOCK, CORNER, FIVE
+from factask.library.conventions import BLOCK, CORNER, FIVE, FOUR
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
@@ -212,10 +212,11 @@ def build_cylinder_structure() -> TaskGraph:
                                                         (0.04, 0.04, 0.04)), base=base))
 
 
-def _two_one_pyramid(color: str, zone: StateVariable,
+def _two_one_pyramid(color: str, zone: StateVariable | list[StateVariable],
                      after: Sequence[TaskGraph] = ()) -> list[TaskGraph]:
-    """A pyramid of two blocks in a row on ``zone`` (a zone, pallet or container) and
-    one bridging them, begun after the fragments ``after``."""
+    """A pyramid of two blocks in a row on ``zone`` (a zone, pallet or container; or
+    two variables: in the gap between them) and one bridging them, begun after the
+    fragments ``after``."""
     base = var(f"{color}_base_blocks", "block", color, BLOCK, count=2)
     top = var(f"{color}_top_block", "block", color, BLOCK)
     return [use("align_along_line", objects=base, line=zone, after=after),
@@ -360,4 +361,37 @@ def color_sequenced_pyramid_packing() -> TaskGraph:
     return assemble("color-sequenced-pyramid-packing",
                     "Sort twelve cubes by colour onto four pallets and stack each colour on its "
                     "pallet as a pyramid: two cubes at the base, one on top.", fragments)
+
+
+
+@register("block-pyramid-with-limited-space", family="structures")
+def block_pyramid_with_limited_space() -> TaskGraph:
+    # Zones just large enough for a pyramid's base (the "limited space"), in a
+    # triangle; the yellow pyramid stands in their centre, in the gap between the
+    # red and the blue zone (GenSim's code sets goals for the other nine only).
+    zones = {c: var(f"{c}_zone", "zone", c, PAIR_ZONE, initial=at(x, y),
+                    description=f"the {c} zone")
+             for c, x, y in (("red", 0.42, 0.22), ("blue", 0.42, -0.22), ("green", 0.66, 0.0))}
+    return assemble("block-pyramid-with-limited-space",
+                    "Sort the twelve blocks by colour: build a pyramid of two blocks with one "
+                    "on top in each zone (red, green, blue) of its colour, and a smaller "
+                    "yellow pyramid in the centre of the zones.",
+                    *(_two_one_pyramid(c, z) for c, z in zones.items()),
+                    _two_one_pyramid("yellow", [zones["red"], zones["blue"]]))
+
+
+@register("Four-corner-pyramid-challenge", family="stacking")
+def four_corner_pyramid_challenge() -> TaskGraph:
+    # "From bottom to top red, blue, green, yellow": a column of four in each zone
+    # (as color-coordinated-cylinder-pyramid reads one bottom-to-top sequence).
+    corners = ((0.33, 0.38), (0.33, -0.38), (0.67, 0.38), (0.67, -0.38))
+    columns = []
+    for k, (x, y) in enumerate(corners, start=1):
+        zone = var(f"zone_{k}", "zone", "gray", (0.12, 0.12, 0.001), initial=at(x, y),
+                   description=f"the zone in corner {k}")
+        columns.append(use("stack_on_base", layers=colored("block", FOUR, BLOCK,
+                                                           suffix=f"block_{k}"), base=zone))
+    return assemble("Four-corner-pyramid-challenge",
+                    "In each of the four zones in the corners of the table, stack a red, a "
+                    "blue, a green and a yellow block, from bottom to top.", columns)
 

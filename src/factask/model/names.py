@@ -15,8 +15,9 @@ INSTANCE_SEPARATOR = "__"
 #: Pattern of variable, factor, slot and template names: snake_case identifiers.
 #: A double underscore is reserved (it separates a variable from an instance index).
 NAME_PATTERN = r"^[a-z][a-z0-9_]{0,63}$"
-#: Pattern of task names: kebab-case as in GenSim's task list (snake_case accepted).
-TASK_NAME_PATTERN = r"^[a-z0-9][a-z0-9_-]{0,99}$"
+#: Pattern of task names: kebab-case as in GenSim's task list (snake_case accepted;
+#: capitals too: the list spells one ``Four-corner-pyramid-challenge``).
+TASK_NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_-]{0,99}$"
 
 
 def _no_double_underscore(value: str) -> str:
