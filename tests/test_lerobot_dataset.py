@@ -14,7 +14,13 @@ from typer.testing import CliRunner
 
 import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
 from factask.cli import app
-from factask.datasets.control_frames import FLOATING_COMMAND_NAMES, default_control_fps
+from factask.datasets.control_frames import (
+    FLOATING_COMMAND_NAMES,
+    ControlStream,
+    DecisionRows,
+    control_columns,
+    default_control_fps,
+)
 from factask.datasets.replay import compare_states, render_states, resimulate
 from factask.datasets.shards import CollectConfig, CollectError, collect
 from factask.datasets.splits import MAX_VAL_EPISODES, TEST_START, split_of_seed, split_seeds
@@ -179,3 +185,11 @@ def test_control_frames_refuse_another_rate(tmp_path: Path, dataset: Path) -> No
     with pytest.raises(StatesFileError, match="--frames control"):
         render_states(read_states(dataset / "states" / "episode_000000.npz"),
                       ravens_cameras(*SIZE)[:1], control=True)
+
+
+def test_an_episode_without_samples_has_no_control_frames() -> None:
+    """A reset that failed: no decision, no sample; an arm's command is still 7 wide."""
+    cols = control_columns(ControlStream(), DecisionRows(), [], nu=6, env_width=14,
+                           n_factors=2)
+    assert cols["action"].shape == (0, 7) and cols["environment_state"].shape == (0, 14)
+    assert cols["factor_rewards"].shape == (0, 2) and cols["goal"] == []

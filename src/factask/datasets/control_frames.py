@@ -114,14 +114,14 @@ class DecisionRows:
 
 
 def control_columns(stream: ControlStream, rows: DecisionRows, actions: Sequence[np.ndarray],
-                    arm: bool, env_width: int, n_factors: int) -> dict[str, Any]:
+                    nu: int, env_width: int, n_factors: int) -> dict[str, Any]:
     """The per-frame arrays of a control-frame episode (see the module docstring).
 
     Args:
         stream: The sampled stream (with ``objects``).
         rows: One entry per decision.
         actions: Each decision's pick and place (8,).
-        arm: The robot has actuators (command = ``ctrl``); else the floating cup.
+        nu: The robot's actuators (the command is ``ctrl``); 0: the floating cup.
         env_width: 7 x the task's objects.
         n_factors: Factors of the task.
 
@@ -132,8 +132,8 @@ def control_columns(stream: ControlStream, rows: DecisionRows, actions: Sequence
     n = len(stream.step)
     dec = np.asarray(stream.step, np.int64).reshape(n)
     tip = np.asarray(stream.tip, np.float64).reshape(n, 8)
-    command = (np.concatenate([np.asarray(stream.ctrl, np.float64).reshape(n, -1),
-                               tip[:, 7:]], axis=1) if arm else tip)
+    command = (np.concatenate([np.asarray(stream.ctrl, np.float64).reshape(n, nu),
+                               tip[:, 7:]], axis=1) if nu else tip)
     # The command in force at the next sample; the last frame holds its own.
     action = np.concatenate([command[1:], command[-1:]]) if n else command
     last_of_decision = np.append(dec[1:] != dec[:-1], True) if n else np.zeros(0, bool)

@@ -196,7 +196,7 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
                 for k, v in images.items()},
         states=states, failure=failure, factor_names=names)
     if control:
-        cols = control_columns(stream, decisions, actions, arm=env.model.nu > 0,
+        cols = control_columns(stream, decisions, actions, nu=int(env.model.nu),
                                env_width=n_env, n_factors=len(names))
         record.state, record.environment_state = cols["state"], cols["environment_state"]
         record.action, record.primitive, record.decision = (
