@@ -27,6 +27,7 @@ from factask.library.tags import matches_tags, reuse_stats, task_tags
 from factask.model import (
     CompositionError,
     On,
+    StartInside,
     StartOn,
     TaskGraph,
     compose,
@@ -224,6 +225,26 @@ def test_bridge_decks_rest_on_two_pillars(graphs: dict[str, TaskGraph]) -> None:
         span = deck.goal.objects[0]
         assert g.variable(span).extents[0] >= 0.12, name
         assert deck.name in g.factor_order()[1:]
+
+
+def test_stacked_receptacles_start_nested_and_are_unstacked_before_sorting(
+    graphs: dict[str, TaskGraph],
+) -> None:
+    for name in ("container-block-sorting", "color-coordinated-block-bowl-sorting"):
+        g = graphs[name]
+        hosts = [v for v in g.variables if v.kind in ("container", "bowl")]
+        assert len(hosts) == 4 and not any(v.is_fixed for v in hosts), name
+        nested = [v for v in hosts if isinstance(v.initial, StartInside)]
+        assert len(nested) == 2, name
+        for inner in nested:  # each fits inside its host with room for the cup's rim
+            outer = g.variable(inner.initial.container)
+            assert outer.extents[0] - inner.extents[0] >= 0.04, name
+        unstack, *sort = g.factor_order()
+        assert g.factor(unstack).goal.type == "row" and len(sort) == 4, name
+        assert all(g.factor(f).goal.type == "inside" and unstack in g.factor(f).after
+                   for f in sort), name
+    assert "moves-receptacle" in task_tags("move-bowl-from-pallet-to-corner",
+                                           graphs["move-bowl-from-pallet-to-corner"])
 
 
 def test_sequenced_tasks_chain_their_factors(graphs: dict[str, TaskGraph]) -> None:
