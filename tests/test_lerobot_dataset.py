@@ -193,3 +193,19 @@ def test_an_episode_without_samples_has_no_control_frames() -> None:
                            n_factors=2)
     assert cols["action"].shape == (0, 7) and cols["environment_state"].shape == (0, 14)
     assert cols["factor_rewards"].shape == (0, 2) and cols["goal"] == []
+
+
+def test_collect_cli_takes_control_frames(tmp_path: Path) -> None:
+    out = tmp_path / "ctl"
+    args = ["collect", "align-box-corner", "-n", "1", "--no-video", "--workers", "1",
+            "--frames", "control", "-o", str(out), "--json"]
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 0, result.output
+    info = json.loads((out / "meta" / "info.json").read_text())
+    assert info["fps"] == default_control_fps() and "action.primitive" in info["features"]
+    assert info["factask"]["collect"]["frames"] == "control"
+    bad = CliRunner().invoke(app, [*args[:-3], "-o", str(tmp_path / "bad"), "--fps", "10"])
+    assert bad.exit_code != 0 and "50 per second" in bad.output
+    bad = CliRunner().invoke(app, ["collect", "align-box-corner", "--frames", "steps", "-o",
+                                   str(tmp_path / "bad2")])
+    assert bad.exit_code != 0 and "decision, control" in bad.output
