@@ -92,6 +92,14 @@ def worker_startup() -> tuple[float, float]:
     return first, float(out.split()[-1])
 
 
+def autogroup_enabled() -> bool:
+    """Whether Linux groups processes by session for CPU fairness (autogroup)."""
+    try:
+        return Path("/proc/sys/kernel/sched_autogroup_enabled").read_text().strip() == "1"
+    except OSError:
+        return False
+
+
 def calibrated_episodes(task: str, size: tuple[int, int] | None, seconds: float) -> int:
     """Episodes for about ``seconds`` of one warm worker's recording (at least 8)."""
     probe = 3
@@ -135,6 +143,10 @@ def main() -> None:
     sizes = [(160, 120), (320, 240)] if args.quick else [(160, 120), (320, 240), (640, 480)]
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"task {args.task}, {os.cpu_count()} cores, load average {load:.1f} before the runs")
+    if autogroup_enabled():
+        print("the kernel's autogroup scheduling is on: this session's processes (both "
+              "workers) share one session's fair share of the CPUs while other sessions "
+              "are busy, whatever their nice values")
     first, importing = worker_startup()
     print(f"a spawned worker: {first:.2f} s to its first job, {importing:.2f} s of it importing")
     print(f"{'workers':>7} {'video':>9} {'episodes':>8} {'ep/min':>8} {'steady':>8} "
