@@ -166,11 +166,11 @@ def corner_block_challenge() -> TaskGraph:
 def color_coordinated_block_tower() -> TaskGraph:
     colors = ("red", "blue", "green")
     stands = [var(f"{c}_stand", "stand", c, (0.07, 0.07, 0.005)) for c in colors]
-    towers = [use("stack_on_base", layers=var(f"{c}_blocks", "block", c, BLOCK, count=3),
+    towers = [use("stack_on_base", layers=var(f"{c}_blocks", "block", c, BLOCK, count=5),
                   base=s) for c, s in zip(colors, stands, strict=True)]
     return assemble("color-coordinated-block-tower",
-                    "Stack the blocks onto three stands by colour: a red, a blue and a green "
-                    "tower of three blocks each (GenSim: five each; see docs/library.md).",
+                    "Stack the fifteen blocks onto three stands by colour: a red, a blue and a "
+                    "green tower of five blocks each.",
                     towers)
 
 
