@@ -72,6 +72,10 @@ class ArmSuctionRobot(SuctionRobot):
         arm: DH parameters of the arm in the model.
     """
 
+    #: The servos end a transfer's descent up to 4 mm below the command (measured:
+    #: 116 transfers of 6 library tasks, median 1.2 mm); 5 mm kept.
+    overshoot = 0.005
+
     def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, arm: DHArm = DEFAULT_ARM):
         super().__init__(model, data)
         joints = [find_id(model, mujoco.mjtObj.mjOBJ_JOINT, n) for n in JOINT_NAMES]

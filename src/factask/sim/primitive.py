@@ -147,6 +147,10 @@ class SuctionRobot(ABC):
         self._health = HealthWatch(data)
         self._aborted = False
 
+    #: How far (m) the tip may end a transfer below its command: a transfer stops
+    #: this much higher than the clearance below would allow (none for a mocap).
+    overshoot = 0.0
+
     # ----- robot-specific hooks -----
 
     @abstractmethod
@@ -341,8 +345,8 @@ class SuctionRobot(ABC):
 
     def _approach(self, target: np.ndarray, held: bool) -> np.ndarray:
         """Where the transfer to ``target`` ends: APPROACH_HEIGHT above it, less what
-        the clearance below that point leaves free (less GUARD_SLACK), never below
-        ``target``.
+        the clearance below that point leaves free (less GUARD_SLACK and the
+        robot's :attr:`overshoot`), never below ``target``.
 
         The guarded descent would play that part untested anyway (:meth:`_descend`);
         as the end of the transfer it costs a few steps of its deceleration instead
@@ -352,7 +356,7 @@ class SuctionRobot(ABC):
         above = np.asarray(target, dtype=float) + np.array([0.0, 0.0, APPROACH_HEIGHT])
         tip = self.data.site_xpos[self.tip_site].copy()
         room = (self.gripper.clearance(held, GUARD_MARGIN, move=(tip, above)) - GUARD_SLACK
-                - self.gripper.contact_reach)
+                - self.overshoot - self.gripper.contact_reach)
         if not math.isfinite(room) or room <= 0.0:
             return above
         return above - np.array([0.0, 0.0, min(room, APPROACH_HEIGHT)])
