@@ -9,9 +9,11 @@ import numpy as np
 import pytest
 
 from factask.geometry import Pose
+from factask.library import get_task
 from factask.model.kinds import WALL_THICKNESS
 from factask.scene.collision import occupying, resting_on
 from factask.scene.objects import SceneObject
+from factask.sim.episode import run_episode
 from factask.sim.pick_points import CUP_GAP, grasp_offset, pick_and_place_points, takes_by_rim
 from factask.sim.suction import CUP_RADIUS
 
@@ -106,3 +108,9 @@ def test_round_objects_occupy_by_their_disks() -> None:
     assert occupying("a", target, {"a": a, "b": b}, {"a": pa, "b": pb}) == []
     near = Pose.from_xyz_yaw(0.4 + 0.05, 0.05, 0.025)
     assert occupying("a", near, {"a": a, "b": b}, {"a": pa, "b": pb}) == ["b"]
+
+
+def test_the_oracle_carries_a_bowl_by_its_rim_into_the_corner() -> None:
+    # At the top centre the cup would find only air over the bowl's floor.
+    r = run_episode(get_task("move-bowl-from-pallet-to-corner"), 0, robot="floating")
+    assert r.success and r.steps == 1, r.failure
