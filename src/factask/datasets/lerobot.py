@@ -51,6 +51,9 @@ from factask.datasets.recording import ACTION_NAMES, STATE_NAMES, EpisodeRecord
 from factask.model.errors import FactaskError
 from factask.model.tolerances import SUCCESS_REWARD
 
+#: Images per step of the running image statistics.
+STATS_FRAMES = 16
+
 
 class DatasetWriteError(FactaskError, ValueError):
     """A dataset that cannot be written as asked (bad size, mismatched episode)."""
@@ -209,8 +212,10 @@ class LeRobotWriter:
         for cam, frames in ep.images.items():
             key = image_key(cam)
             v_chunk, v_file, t0, t1 = self._videos[cam].write(frames)
-            if n:
-                self._stats[key].add(frames.reshape(-1, 3) / 255.0)
+            # A few frames at a time: a control-frame episode has hundreds of images,
+            # whose pixels as float64 at once would take hundreds of MB.
+            for k in range(0, n, STATS_FRAMES):
+                self._stats[key].add(frames[k:k + STATS_FRAMES].reshape(-1, 3) / 255.0)
             row.update({f"videos/{key}/chunk_index": v_chunk, f"videos/{key}/file_index": v_file,
                         f"videos/{key}/from_timestamp": t0, f"videos/{key}/to_timestamp": t1})
         row.update({"meta/episodes/chunk_index": 0, "meta/episodes/file_index": 0,
