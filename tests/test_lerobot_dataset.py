@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from lerobot_v3_reader import episode_video, load_dataset
+from lerobot_v3_reader import decode_video, episode_video, load_dataset
 from typer.testing import CliRunner
 
 import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
@@ -175,6 +175,14 @@ def test_control_frames_video_matches_the_states_and_replays(control_dataset: Pa
     assert 10 * np.log10(255.0 ** 2 / max(mse, 1e-9)) > 30.0
     # Rendering at every sample while recording left the physics as it was.
     assert compare_states(states, resimulate(states)) == []
+    # factask replay re-renders every command sample, at the command rate.
+    out = control_dataset.parent / "replay.mp4"
+    result = CliRunner().invoke(app, ["replay", str(control_dataset), "--video", str(out),
+                                      "--size", "64x48", "--json"])
+    assert result.exit_code == 0 and json.loads(result.output)["identical"], result.output
+    frames, times = decode_video(out)
+    assert len(frames) == len(states.control_step)
+    assert np.allclose(np.diff(times), 1 / default_control_fps())
 
 
 def test_control_frames_refuse_another_rate(tmp_path: Path, dataset: Path) -> None:

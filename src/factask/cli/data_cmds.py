@@ -118,7 +118,8 @@ def replay(
     dataset: Path = typer.Argument(..., help="A dataset folder written by factask collect."),
     episode: int = typer.Option(0, "--episode", "-e", min=0, help="Episode index."),
     video: Path | None = typer.Option(None, "--video", help="Re-render the episode's frames "
-                                      "into this .mp4 (front, left, right side by side)."),
+                                      "into this .mp4 (front, left, right side by side; "
+                                      "every command sample of a --frames control dataset)."),
     size: str = typer.Option("320x240", "--size", help=SIZE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object, nothing else."),
 ) -> None:
@@ -139,12 +140,16 @@ def replay(
     differences = compare_states(states, resimulate(states))
     written = None
     if video is not None:
+        from factask.datasets.control_frames import default_control_fps
         from factask.sim.cameras import ravens_cameras
         from factask.sim.render import VideoRecorder
 
+        # A control-frame episode holds a state per command sample: its video at that rate.
+        control = len(states.control_qpos) > 0
         frames = render_states(states, ravens_cameras(*parse_size(size)),
-                               steps=range(states.steps + 1))
-        with VideoRecorder(video, fps=2) as rec:
+                               steps=None if control else range(states.steps + 1),
+                               control=control)
+        with VideoRecorder(video, fps=default_control_fps() if control else 2) as rec:
             for row in zip(*frames.values(), strict=True):
                 rec.append(np.concatenate(row, axis=1))
         written = str(video)
