@@ -59,9 +59,13 @@ def _nested_pairs(kind: str, colors: Sequence[str]) -> list[StateVariable]:
 def _unstack_and_sort(name: str, description: str, kind: str) -> TaskGraph:
     receptacles = _nested_pairs(kind, FOUR)
     unstack = use("build_row", objects=receptacles)
+    # The blocks start in the near half too: the row, kept clear of the receptacles'
+    # starts only, then lies beyond them, not beside a block it could just touch (a
+    # receptacle hangs from its rim less steadily than a block from its centre).
+    blocks = colored("block", FOUR, BLOCK, initial=NEAR_HALF)
     return assemble(name, description, unstack,
                     [use("put_in_container", objects=b, container=r, after=[unstack])
-                     for b, r in zip(colored("block", FOUR, BLOCK), receptacles, strict=True)])
+                     for b, r in zip(blocks, receptacles, strict=True)])
 
 
 @register("container-block-sorting", family="sorting")
