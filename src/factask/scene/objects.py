@@ -284,9 +284,11 @@ def points_in_rect(
 
 
 # ---------------------------------------------------------------- receptacles
-def floor_thickness(obj: SceneObject) -> float:
-    """Thickness of a receptacle's floor (0 for a floorless fixture and non-receptacles)."""
-    return WALL_THICKNESS if obj.kind in FLOORED_RECEPTACLES else 0.0
+def floor_thickness(obj: SceneObject | str) -> float:
+    """Thickness of a receptacle's floor (0 for a floorless fixture and non-receptacles);
+    ``obj`` is a scene object or a kind name."""
+    kind = obj if isinstance(obj, str) else obj.kind
+    return WALL_THICKNESS if kind in FLOORED_RECEPTACLES else 0.0
 
 
 def inner_half_xy(obj: SceneObject) -> np.ndarray:

@@ -23,6 +23,7 @@ from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
 from factask.model.kinds import kind_spec
 from factask.model.tolerances import Z_TOLERANCE
 from factask.relations import TargetPose
+from factask.scene.objects import floor_thickness
 
 #: Footprints closer than this to merely touching do not support each other, metres.
 OVERLAP_SHRINK = 0.002
@@ -196,13 +197,13 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         if o.obj_id in moved or not spec.collides:
             continue
         bottom = float(o.pos[2]) - o.size[2] / 2
-        top = bottom if spec.receptacle else bottom + o.size[2]
+        top = bottom + (floor_thickness(o.kind) if spec.receptacle else o.size[2])
         # A target is on it when above its top as the author placed it (a pallet
         # factask builds taller than the author's size hint still carries the row
         # the author put 3.5 cm up, and every layer stacked on that row).
         placed = top if o.placed_top is None else o.placed_top
         fixed.append((float(o.pos[0]), float(o.pos[1]), _half_xy(o.size, yaw_of_xyzw(o.quat)),
-                      top, placed))
+                      top, placed, spec.receptacle))
     out: dict[tuple[int, int], float] = {}
     done: list[tuple[_Slot, float]] = []
     # In queue order (then the author's z within a goal), as the robot places them:
@@ -214,10 +215,11 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         # Earlier targets whose objects this goal moves again are vacated.
         done = [(other, z) for other, z in done if other.key[0] == slot.key[0]
                 or not other.objects <= goal_objects[slot.key[0]]]
-        support = 0.0
-        for fx, fy, fh, top, placed in fixed:
-            if placed <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh):
-                support = max(support, top)
+        support, on_floor = 0.0, True
+        for fx, fy, fh, top, placed, receptacle in fixed:
+            if (placed <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh)
+                    and top > support):
+                support, on_floor = top, receptacle
         for other, z in done:
             if not other.certain:
                 # A goal with more targets than objects fills the ones the robot
@@ -234,10 +236,14 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
                 below = (other.key[0] < slot.key[0] and other.z <= slot.z + Z_TOLERANCE
                          and abs(slot.x - other.x) < other.half[0]
                          and abs(slot.y - other.y) < other.half[1])
-            if below:
-                support = max(support, z + other.height / 2)
+            if below and z + other.height / 2 > support:
+                support, on_floor = z + other.height / 2, False
         z_rest = support + slot.height / 2
-        out[slot.key] = z_rest
+        # A target on the table or on a receptacle's floor is reported as resting on
+        # the table: its height is left to the checker, which finds the floor (and
+        # no explicit z makes a tight fit in a container collide with its wall).
+        # What stands on it is measured from where it really rests.
+        out[slot.key] = slot.height / 2 if on_floor else z_rest
         done.append((slot, z_rest))
     return out
 
