@@ -295,3 +295,21 @@ def test_the_local_server_takes_the_free_cores_and_keeps_a_prompt_cache() -> Non
     cmd = server.command(1234)
     assert cmd[cmd.index("--cache") + 1] == "true" and "--cache_size" in cmd
     assert cmd[cmd.index("--n_threads") + 1] == "1"
+
+
+def test_the_llama_cpp_form_sends_a_grammar_whose_strings_hold_no_control_characters() -> None:
+    pytest.importorskip("llama_cpp")
+    from factask.gen.providers import llama_grammar
+
+    schema = {"type": "object", "properties": {"text": {"type": "string", "maxLength": 30}},
+              "required": ["text"], "additionalProperties": False}
+    grammar = llama_grammar(schema)
+    assert grammar is not None
+    char = next(line for line in grammar.splitlines() if line.startswith("char ::="))
+    assert char.startswith('char ::= [^"\\\\\\x7F\\x00-\\x1F] |'), char
+    with LoopbackServer(lambda request: '{"text": "ok"}') as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     response_format="llama_cpp", num_retries=0, timeout=10))
+        client.complete(MSGS, schema=schema)
+    sent = server.requests[-1]
+    assert sent["grammar"] == grammar and "response_format" not in sent

@@ -59,6 +59,7 @@ from factask.gen.providers import (
     FORM_CHOICES,
     StructuredForm,
     import_litellm,
+    llama_grammar,
     response_format_param,
     structured_form,
 )
@@ -351,6 +352,8 @@ class LLMClient:
         seed_ = cfg.seed if seed is None else int(seed)
         params = {**cfg.cache_params(), "temperature": temp, "seed": seed_,
                   "max_tokens": limit, "response_format": self.form}
+        if self.form == "llama_cpp":  # answers under the looser grammar are not reused
+            params["grammar"] = "json-strings"
         key = ResponseCache.key(cfg.model, msgs, params, schema)
         if self.cache is not None:
             hit = self.cache.get(key)
@@ -391,7 +394,10 @@ class LLMClient:
             # every grammar-valid token instead.
             kwargs["top_p"] = 1.0
             kwargs["extra_body"] = {"min_p": 0.0, "top_k": 0}
-        fmt = response_format_param(self.form, schema, schema_name)
+        grammar = llama_grammar(schema) if self.form == "llama_cpp" and schema else None
+        fmt = None if grammar else response_format_param(self.form, schema, schema_name)
+        if grammar:  # our grammar: strings without control characters (providers)
+            kwargs["extra_body"] = {**kwargs.get("extra_body", {}), "grammar": grammar}
         if fmt is not None:
             kwargs["response_format"] = fmt
         response = self._call(kwargs)

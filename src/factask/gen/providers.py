@@ -91,6 +91,29 @@ def response_format_param(form: StructuredForm, schema: Mapping[str, Any] | None
             "json_schema": {"name": name, "schema": dict(schema), "strict": False}}
 
 
+#: llama-cpp-python's converter lets a JSON string hold any character but ``"`` and
+#: ``\\`` -- raw newlines and other control characters too, which JSON forbids:
+#: SmolLM2 wrote a newline inside a description and the answer did not parse.
+_LOOSE_CHAR = 'char ::= [^"\\\\] |'
+_JSON_CHAR = 'char ::= [^"\\\\\\x7F\\x00-\\x1F] |'
+
+
+def llama_grammar(schema: Mapping[str, Any]) -> str | None:
+    """The GBNF grammar of a step's schema for a llama.cpp server: llama-cpp-python's
+    own converter (on :func:`for_llama_grammar`'s schema), with strings that cannot
+    hold control characters. None where llama-cpp-python is not installed here (the
+    server then converts the schema itself, from ``response_format``)."""
+    try:
+        from llama_cpp.llama_grammar import json_schema_to_gbnf
+    except ImportError:
+        return None
+    import json
+
+    gbnf = json_schema_to_gbnf(json.dumps(for_llama_grammar(schema)))
+    return "\n".join(_JSON_CHAR + line[len(_LOOSE_CHAR):] if line.startswith(_LOOSE_CHAR)
+                     else line for line in gbnf.splitlines())
+
+
 def for_llama_grammar(schema: Any) -> Any:
     """The schema as llama.cpp's grammar converter should see it.
 
