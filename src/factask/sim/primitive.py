@@ -344,9 +344,9 @@ class SuctionRobot(ABC):
         self._settle()
 
     def _approach(self, target: np.ndarray, held: bool) -> np.ndarray:
-        """Where the transfer to ``target`` ends: APPROACH_HEIGHT above it, less what
-        the clearance below that point leaves free (less GUARD_SLACK and the
-        robot's :attr:`overshoot`), never below ``target``.
+        """Where the transfer to ``target`` ends: APPROACH_HEIGHT above it; for a
+        pick (``held`` False) less what the clearance below that point leaves free
+        (less GUARD_SLACK and the robot's :attr:`overshoot`), never below ``target``.
 
         The guarded descent would play that part untested anyway (:meth:`_descend`);
         as the end of the transfer it costs a few steps of its deceleration instead
@@ -354,6 +354,13 @@ class SuctionRobot(ABC):
         the solids where they are then (only the held object moves meanwhile).
         """
         above = np.asarray(target, dtype=float) + np.array([0.0, 0.0, APPROACH_HEIGHT])
+        if held:
+            # A carried object hangs from a compliant weld: after a fast move over it
+            # still trails and tilts (a 5 cm box's low corner about 1 cm below where
+            # a rigid hold puts it), so its gap is not the measured one. Lowering the
+            # end here tipped a column of boxes it arrived over (CLIPort example
+            # stack_boxes_column); the place keeps its APPROACH_HEIGHT.
+            return above
         tip = self.data.site_xpos[self.tip_site].copy()
         room = (self.gripper.clearance(held, GUARD_MARGIN, move=(tip, above)) - GUARD_SLACK
                 - self.overshoot - self.gripper.contact_reach)
