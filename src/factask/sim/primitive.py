@@ -18,6 +18,9 @@ steps, contacts only during guarded moves (and there only once the clearance
 below allows one: :meth:`SuctionRobot._descend`).
 
 Everything runs in simulated time (``mujoco.mj_step``); nothing reads the clock.
+
+(A little over 500 lines: the phases share one robot's commanded state and
+budgets, and splitting them would spread that state over modules.)
 """
 
 from __future__ import annotations
