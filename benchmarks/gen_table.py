@@ -56,10 +56,11 @@ def turns(total: int, chunk: int) -> list[int]:
     return [*range(step, total, step), total]
 
 
-def first_step_rates(run: Path) -> dict[str, float]:
+def first_step_rates(run: Path, tasks: set[str] | None = None) -> dict[str, float]:
     """Per strategy: the fraction of generations whose first step (``one_shot``,
     ``variables``, ``subtask_outline``) passed at once -- the step a schema
-    constraint helps most, before any later step can fail."""
+    constraint helps most, before any later step can fail. Only ``tasks`` count
+    (None: every task in the file), as in the summary's rates."""
     seen: dict[str, list[bool]] = {}
     latest: dict[tuple[str, str], dict[str, Any]] = {}
     path = run / "results.jsonl"
@@ -68,7 +69,8 @@ def first_step_rates(run: Path) -> dict[str, float]:
             record = json.loads(line)
         except ValueError:
             continue
-        latest[(record.get("approach", ""), record.get("task", ""))] = record
+        if tasks is None or record.get("task") in tasks:
+            latest[(record.get("approach", ""), record.get("task", ""))] = record
     for (approach, _), record in latest.items():
         steps = record.get("steps") or []
         if record.get("status") != "done" or not steps:
@@ -161,7 +163,10 @@ def main(argv: list[str] | None = None) -> int:
             summaries[mode] = json.loads(path.read_text())
     if not summaries:
         return status or 1
-    firsts = {mode: first_step_rates(args.out / mode) for mode in summaries}
+    from factask.evaluation.benchmark import default_tasks_path, load_tasks, research_sample
+
+    names = {t.name for t in research_sample(load_tasks(default_tasks_path()))[:args.limit]}
+    firsts = {mode: first_step_rates(args.out / mode, names) for mode in summaries}
     text = table(summaries, firsts)
     (args.out / "table.md").write_text(text + "\n")
     model = next(iter(summaries.values())).get("model", "?")
