@@ -34,7 +34,7 @@ from pydantic import ValidationError
 from factask.gen import step_schemas as ss
 from factask.gen.examples import library_task_examples, render_examples
 from factask.gen.mentions import Mention
-from factask.model.errors import FactaskError
+from factask.model.errors import FactaskError, InvalidValueError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph
 from factask.model.kinds import ASSET_KINDS, kind_spec
@@ -378,7 +378,8 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "") -> Schema
     kinds = {m.name: m.kind for m in found}
     goal = _goal(kinds, named_relations(proposal), {m.name: m.count for m in found})
     if goal is None:
-        raise ValueError("no goal relation fits the named objects alone (see applies())")
+        raise InvalidValueError("no goal relation fits the named objects alone "
+                                "(check applies() first)")
     most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
     items = [ss.obj({"name": {"const": m.name}, "initial": _placement(m.name, kinds)})
              for m in found]

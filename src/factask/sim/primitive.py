@@ -19,8 +19,8 @@ below allows one: :meth:`SuctionRobot._descend`).
 
 Everything runs in simulated time (``mujoco.mj_step``); nothing reads the clock.
 
-(A little over 500 lines: the phases share one robot's commanded state and
-budgets, and splitting them would spread that state over modules.)
+Why one file of a little over 500 lines: the phases share one robot's commanded
+state and budgets; splitting them would spread that state over modules.
 """
 
 from __future__ import annotations
