@@ -16,7 +16,14 @@ import numpy as np
 
 from factask.geometry import wrap_angle
 from factask.sim.motion import Profile, blend, constant_speed, profile
-from factask.sim.primitive import CLEARANCE, SuctionRobot
+from factask.sim.primitive import (
+    CLEARANCE,
+    TOOL_ACCEL,
+    TOOL_SPEED,
+    YAW_ACCEL,
+    YAW_RATE,
+    SuctionRobot,
+)
 from factask.sim.robots import RobotError
 from factask.sim.suction import WELD_SOLREF, find_id
 
@@ -52,11 +59,20 @@ def corner_overlap(accel: float) -> float:
     return math.sqrt(WELD_LAG**2 + 2 * CLEARANCE / accel) - WELD_LAG
 
 
-def _tool_profile(a: np.ndarray, b: np.ndarray) -> Profile:
+#: (speed, yaw rate) and (acceleration, yaw acceleration) of the cup's free moves;
+#: holding a rope's segment, a UR arm's tool limits: the rest of the rope hangs on
+#: connect constraints and whips when its segment is jerked at 40 m/s^2 (a CLIPort
+#: bead chain missed its line within the action budget).
+_FREE_LIMITS = (np.array([FLOATING_SPEED, FLOATING_YAW_RATE]),
+                np.array([FLOATING_ACCEL, FLOATING_YAW_ACCEL]))
+_LINKED_LIMITS = (np.array([TOOL_SPEED, YAW_RATE]), np.array([TOOL_ACCEL, YAW_ACCEL]))
+
+
+def _tool_profile(a: np.ndarray, b: np.ndarray,
+                  limits: tuple[np.ndarray, np.ndarray] = _FREE_LIMITS) -> Profile:
     """Minimum-time profile of a tool move between (x, y, z, yaw) points."""
     delta = np.array([float(np.linalg.norm(b[:3] - a[:3])), abs(float(b[3] - a[3]))])
-    return profile(delta, np.array([FLOATING_SPEED, FLOATING_YAW_RATE]),
-                   np.array([FLOATING_ACCEL, FLOATING_YAW_ACCEL]))
+    return profile(delta, *limits)
 
 
 class FloatingSuctionRobot(SuctionRobot):
@@ -94,8 +110,9 @@ class FloatingSuctionRobot(SuctionRobot):
     def _path(self, points: list[tuple[np.ndarray, float]]) -> np.ndarray:
         pts = [np.array([*self._cmd_pos, self._cmd_yaw])]
         pts += [np.array([*p, y]) for p, y in points]
-        profiles = [_tool_profile(a, b) for a, b in itertools.pairwise(pts)]
-        return self._rows(blend(pts, profiles, corner_overlap(FLOATING_ACCEL), self.dt))
+        limits = _LINKED_LIMITS if self.gripper.holds_linked else _FREE_LIMITS
+        profiles = [_tool_profile(a, b, limits) for a, b in itertools.pairwise(pts)]
+        return self._rows(blend(pts, profiles, corner_overlap(float(limits[1][0])), self.dt))
 
     def _line(self, goal: np.ndarray, yaw: float, speed: float) -> np.ndarray:
         start = np.array([*self._cmd_pos, self._cmd_yaw])

@@ -200,11 +200,21 @@ class SuctionGripper:
                                     dtype=np.int64)
         self._linear_dofs = self.object_dofs.reshape(-1, 6)[:, :3].ravel()
         self._angular_dofs = self.object_dofs.reshape(-1, 6)[:, 3:].ravel()
+        #: Root bodies tied to another by an equality other than the suction weld (a
+        #: rope's segments, linked by connect constraints): a held one drags the rest.
+        self.linked_bodies = frozenset(
+            int(model.body_rootid[_eq_body(model, e, k)])
+            for e in range(model.neq) if e != self.weld for k in (1, 2))
 
     @property
     def held(self) -> int | None:
         """Root body id of the object held, or None."""
         return self._held
+
+    @property
+    def holds_linked(self) -> bool:
+        """True when the object held is linked to others (a rope's segment)."""
+        return self._held is not None and self._held in self.linked_bodies
 
     def touched_objects(self) -> list[int]:
         """Free root bodies whose geoms touch the cup geom now (closest first).
@@ -464,3 +474,11 @@ class SuctionGripper:
         self.data.eq_active[self.weld] = 0
         self.model.eq_obj2id[self.weld] = 0
         self._held = None
+
+
+def _eq_body(model: mujoco.MjModel, eq: int, side: int) -> int:
+    """Body id of side 1 or 2 of equality ``eq`` (a site's body for site-based ones)."""
+    obj = int(model.eq_obj1id[eq] if side == 1 else model.eq_obj2id[eq])
+    if int(model.eq_objtype[eq]) == int(mujoco.mjtObj.mjOBJ_SITE):
+        return int(model.site_bodyid[obj])
+    return max(obj, 0)
