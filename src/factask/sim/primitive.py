@@ -300,7 +300,7 @@ class SuctionRobot(ABC):
             self.gripper.release()
         up = np.array([0.0, 0.0, 1.0])
         # Transfer to just above the pick, then a guarded descent to the first contact.
-        self._transfer(self._approach(pick.pos, held=False), pick_yaw)
+        self._transfer(self._pick_approach(pick.pos), pick_yaw)
         if self._descend(pick.pos - PICK_OVERSHOOT * up, pick_yaw, held=False):
             self._hold_here()
         if not self.suction_on():
@@ -309,7 +309,7 @@ class SuctionRobot(ABC):
         grasped = self.gripper.held
         assert grasped is not None
         # Carry to just above the place pose, then a guarded descent until it rests.
-        self._transfer(self._approach(place.pos, held=True), place_yaw)
+        self._transfer(place.pos + APPROACH_HEIGHT * up, place_yaw)
         if not self.gripper.held_in_contact() and self._descend(place.pos, place_yaw, held=True):
             self._hold_here()
         self._settle()
@@ -346,26 +346,23 @@ class SuctionRobot(ABC):
         self._follow(self._path(points))
         self._settle()
 
-    def _approach(self, target: np.ndarray, held: bool) -> np.ndarray:
-        """Where the transfer to ``target`` ends: APPROACH_HEIGHT above it; for a
-        pick (``held`` False) less what the clearance below that point leaves free
-        (less GUARD_SLACK and the robot's :attr:`overshoot`), never below ``target``.
+    def _pick_approach(self, target: np.ndarray) -> np.ndarray:
+        """Where the transfer to a pick at ``target`` ends: APPROACH_HEIGHT above it,
+        less what the clearance below the cup there leaves free (less GUARD_SLACK and
+        the robot's :attr:`overshoot`), never below ``target``.
 
         The guarded descent would play that part untested anyway (:meth:`_descend`);
         as the end of the transfer it costs a few steps of its deceleration instead
         of a crawl at GUARDED_SPEED. The gap is measured before the transfer, with
-        the solids where they are then (only the held object moves meanwhile).
+        the solids where they are then. A place keeps its APPROACH_HEIGHT: a carried
+        object hangs from a compliant weld and, after a fast move over, still trails
+        and tilts (a 5 cm box's low corner about 1 cm below a rigid hold's), so its
+        measured gap is not its gap; lowering that end tipped a column of boxes
+        (CLIPort example stack_boxes_column).
         """
         above = np.asarray(target, dtype=float) + np.array([0.0, 0.0, APPROACH_HEIGHT])
-        if held:
-            # A carried object hangs from a compliant weld: after a fast move over it
-            # still trails and tilts (a 5 cm box's low corner about 1 cm below where
-            # a rigid hold puts it), so its gap is not the measured one. Lowering the
-            # end here tipped a column of boxes it arrived over (CLIPort example
-            # stack_boxes_column); the place keeps its APPROACH_HEIGHT.
-            return above
         tip = self.data.site_xpos[self.tip_site].copy()
-        room = (self.gripper.clearance(held, GUARD_MARGIN, move=(tip, above)) - GUARD_SLACK
+        room = (self.gripper.clearance(False, GUARD_MARGIN, move=(tip, above)) - GUARD_SLACK
                 - self.overshoot - self.gripper.contact_reach)
         if not math.isfinite(room) or room <= 0.0:
             return above
