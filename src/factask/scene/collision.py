@@ -179,6 +179,14 @@ class Occupancy:
             gap = float(np.linalg.norm(pose.pos[:2] - other.pose.pos[:2]))
             if gap >= footprint_radius(obj) + footprint_radius(other.obj) + self.clearance:
                 return False
+        elif obj.is_round or other.obj.is_round:
+            # A disk and a box: the disk's square meets a turned box's corner where
+            # the disk does not (a ring of blocks round a bowl).
+            disk, disk_pose, box, box_pose = ((obj, pose, other.obj, other.pose) if obj.is_round
+                                              else (other.obj, other.pose, obj, pose))
+            gap = _distance_to_box(disk_pose.pos[:2], box, box_pose)
+            if gap >= footprint_radius(disk) + self.clearance:
+                return False
         # The candidate's footprint only for a receptacle pair (the boxes decided the rest).
         if other.obj.is_receptacle:
             return _receptacle_pair(other, _body(obj, pose, self.clearance), solid_fixtures)
@@ -210,6 +218,12 @@ class Occupancy:
             if not bool(alone.free_mask(obj, [pose])[0]):
                 out.append(name)
         return out
+
+
+def _distance_to_box(point: np.ndarray, box: SceneObject, pose: Pose) -> float:
+    """Distance (m) from an XY point to a box's footprint at ``pose`` (0 inside)."""
+    local = yaw_rotation_2d(-pose.yaw) @ (np.asarray(point, dtype=float) - pose.pos[:2])
+    return float(np.linalg.norm(np.maximum(np.abs(local) - box.half_xy, 0.0)))
 
 
 def _receptacle_pair(rec: _Body, other: _Body, solid_fixtures: bool = False) -> bool:
