@@ -245,6 +245,7 @@ def _zone_variable(goal: RecordedGoal, objects: list[RecordedObject], names: dic
     if regions:
         near = min(regions, key=lambda o: float(np.linalg.norm(o.pos[:2] - zpos[:2])))
         if float(np.linalg.norm(near.pos[:2] - zpos[:2])) <= max(sx, sy) / 2:
+            _check_region_size(near, (sx, sy), names, warn)
             return names[near.obj_id]
     taken = set(names.values()) | {v.name for v in extra}
     name = _unique(f"zone_goal_{goal.index}", taken)
@@ -257,6 +258,35 @@ def _zone_variable(goal: RecordedGoal, objects: list[RecordedObject], names: dic
     warn(f"goal {goal.index}: no recorded zone at {tuple(round(float(c), 3) for c in zpos[:2])}; "
          f"added fixed zone variable {name!r} of size {sx:.3f} x {sy:.3f}")
     return name
+
+
+def _check_region_size(region: RecordedObject, size: tuple[float, float],
+                       names: dict[int, str], warn: Any) -> None:
+    """Give a marker region (a zone: visual only in Ravens) the size of the zone goal
+    that names it.
+
+    Ravens draws ``zone/zone.urdf`` at 0.12 m whatever the task says, and checks the
+    goal against the ``zone_size`` in its params (two 7 cm boxes fit a 15 cm zone,
+    not the drawn 12 cm one). factask's zone is both drawing and check, so it takes
+    the checked size. A region with walls or a top (a pallet, a container) keeps its
+    size: there the object is the check. Two goals that check one marker with
+    different sizes get the larger (a warning says so).
+    """
+    if kind_spec(region.kind).collides:
+        return
+    wanted = (float(size[0]), float(size[1]))
+    resized = region.checked_size
+    if resized is not None:
+        if resized != wanted:
+            wanted = (max(resized[0], wanted[0]), max(resized[1], wanted[1]))
+            warn(f"{names[region.obj_id]}: zone goals check it at different sizes; "
+                 f"using the larger, {wanted[0]:.3f} x {wanted[1]:.3f} m")
+    elif any(abs(a - b) > 1e-4 for a, b in zip(wanted, region.size[:2], strict=True)):
+        warn(f"{names[region.obj_id]}: drawn {region.size[0]:.3f} x {region.size[1]:.3f} m, "
+             f"checked by its zone goal at {wanted[0]:.3f} x {wanted[1]:.3f} m (Ravens' "
+             "zone_size); factask's zone is drawn and checked at the checked size")
+    region.checked_size = wanted
+    region.size = (wanted[0], wanted[1], region.size[2])
 
 
 def _moved_again(goals: list[RecordedGoal]) -> set[int]:

@@ -64,6 +64,8 @@ class RecordedObject:
         placed_top: Height of its top as the author placed it, where factask's asset
             is taller (a sunk asset started on the table): what the author's targets
             on it are measured against. None: its top.
+        checked_size: For a marker region (a zone), the x, y size a zone goal checks
+            it at (Ravens' ``zone_size``), once a goal has named it. None: not yet.
     """
 
     obj_id: int
@@ -77,6 +79,7 @@ class RecordedObject:
     note: str = ""
     random_start: bool = False
     placed_top: float | None = None
+    checked_size: tuple[float, float] | None = None
 
 
 @dataclass
