@@ -37,6 +37,7 @@ from factask.compat.cliport.goals import (
     RecordedGoal,
     read_goals,
     resting_heights,
+    share_targets,
     target_pose,
     zone_poses,
 )
@@ -365,6 +366,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                  "(a zero row of matches); they are left out")
             g.objs = [g.objs[i] for i in rows]
             g.matches = g.matches[rows, :]
+        share_targets(g, warn)
     goal_objects = {o.obj_id for g in goals for o in g.objs}
     _settle(objects, names, goal_objects, warn)
     rest = resting_heights([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],

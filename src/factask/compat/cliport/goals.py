@@ -126,6 +126,43 @@ def read_goals(task: Any, session: Session) -> list[RecordedGoal]:
     return out
 
 
+def share_targets(goal: RecordedGoal, warn: Any) -> None:
+    """Give each object of a pose goal that shares its targets (``replace=True``, more
+    objects than targets) a copy of a target of its own, copies at one point stacked.
+
+    Ravens lets any number of objects match one target when ``replace`` is set and
+    checks XY only: "all blocks in the bowl" as ``matches = ones((n, 1))`` to the
+    bowl's pose is met by a stack at the bowl's centre, which is what its oracle
+    builds. factask checks every object against a target of its own, with heights: the
+    objects are spread over the targets each may take (as evenly as ``matches``
+    allows), and the k-th copy at a target is put one object height above the one
+    before, so :func:`resting_heights` stacks them.
+    """
+    n, m = len(goal.objs), len(goal.targets)
+    if goal.metric != "pose" or not goal.replace or n <= m or m == 0:
+        return
+    taken = [0] * m
+    owner: list[int] = []  # the target each object's copy is of
+    for i in range(n):
+        allowed = [j for j in range(m) if goal.matches[i, j]]
+        j = min(allowed, key=lambda t: (taken[t], t))
+        owner.append(j)
+        taken[j] += 1
+    targets, matches_cols = [], []
+    for j, (pos, quat) in enumerate(goal.targets):
+        allowed = [o for i, o in enumerate(goal.objs) if goal.matches[i, j]]
+        height = max((o.size[2] for o in allowed), default=0.0)
+        for k in range(taken[j]):
+            targets.append((np.asarray(pos, dtype=float) + np.array([0.0, 0.0, k * height]),
+                            np.asarray(quat, dtype=float)))
+            matches_cols.append(goal.matches[:, j])
+    goal.targets = targets
+    goal.matches = np.stack(matches_cols, axis=1).astype(int)
+    stacked = "/".join(str(t) for t in taken if t > 1)
+    warn(f"goal {goal.index}: {n} objects share {m} target pose(s) (replace=True; Ravens "
+         f"checks XY only): each gets a copy of one, {stacked} stacked at one point")
+
+
 def _zone_list(params: Any) -> list[Any]:
     """The (zone_pose, zone_size) pairs of a zone goal's params, in either form task
     code writes: GenSim's ``add_goal`` takes ``[(zone_pose, zone_size), ...]``; a goal
