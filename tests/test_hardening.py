@@ -182,3 +182,28 @@ def test_task_files_that_exit_or_recurse_fail_with_a_non_zero_code(
         assert said in result.output and "Traceback" not in result.output
         assert len(result.output) < 2_000
 
+
+
+@pytest.mark.parametrize(("count", "said"), [
+    (150, "variables: List should have at most"),
+    (100_000, "adds more than"),
+])
+def test_task_files_adding_absurd_numbers_of_objects_fail_quickly_and_briefly(
+        tmp_path, count: int, said: str) -> None:
+    task = tmp_path / "many.py"
+    task.write_text(
+        "import numpy as np\n"
+        "from cliport.tasks.task import Task\n"
+        "class Many(Task):\n"
+        "    def reset(self, env):\n"
+        "        super().reset(env)\n"
+        "        ids = [env.add_object('block/block.urdf', self.get_random_pose(env, 0.04))\n"
+        f"               for _ in range({count})]\n"
+        "        self.add_goal(objs=ids, matches=np.eye(len(ids)), replace=False,\n"
+        "                      targ_poses=[((0.5, 0, 0.02), (0, 0, 0, 1))] * len(ids),\n"
+        "                      rotations=False, metric='pose', params=None, step_max_reward=1)\n")
+    result = _cli("run", f"{task}:Many")
+    assert result.exit_code != 0, result.output
+    assert said in result.output and "Traceback" not in result.output
+    assert "errors.pydantic.dev" not in result.output
+    assert len(result.output) < 1_000

@@ -146,6 +146,20 @@ def _where(exc: BaseException, path: Path) -> str:
     return f"{path}:{f.lineno} in {f.name}:{code}"
 
 
+def _short(exc: ValidationError) -> str:
+    """A graph's validation errors in one line each: where, what, and for the sizes a
+    task can exceed, the fix (pydantic's text repeats the whole input)."""
+    lines = []
+    for e in exc.errors(include_url=False):
+        where = ".".join(str(x) for x in e.get("loc", ())) or "graph"
+        fix = ""
+        if e.get("type") == "too_long" and where in ("variables", "factors"):
+            fix = (" (fix: fewer objects; a pile or a rope counts as one)" if where ==
+                   "variables" else " (fix: fewer goals)")
+        lines.append(f"{where}: {e.get('msg', 'invalid')}{fix}")
+    return "; ".join(lines)
+
+
 def _user_error(what: str, exc: BaseException, path: Path) -> CliportImportError:
     cls = Unsupported if isinstance(exc, Unsupported) else CliportImportError
     return cls(f"{what}: {type(exc).__name__}: {clip(exc, 300)} (at {_where(exc, path)})")
@@ -287,7 +301,10 @@ def import_cliport(path: str | Path, class_name: str | None = None,
                 raise CliportImportError(f"{p}: {cls.__name__}: the recorded goals could "
                                          f"not be converted: {type(exc).__name__}: {exc}"
                                          ) from exc
-            except (FactaskError, ValidationError) as exc:
+            except ValidationError as exc:
+                raise CliportImportError(f"{p}: {cls.__name__}: the recorded scene is not "
+                                         f"a valid graph: {_short(exc)}") from exc
+            except FactaskError as exc:
                 raise CliportImportError(f"{p}: {cls.__name__}: the recorded scene is not "
                                          f"a valid graph: {exc}") from exc
             except Exception as exc:  # e.g. a goal field of the wrong type

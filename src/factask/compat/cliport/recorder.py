@@ -25,6 +25,7 @@ import numpy as np
 from factask.compat.cliport.errors import Unsupported
 from factask.compat.cliport.transforms import split_pose
 from factask.compat.cliport.urdf_map import asset_key, resolve_asset
+from factask.model.limits import MAX_OBJECTS
 from factask.model.palette import COLORS as PALETTE
 from factask.model.palette import nearest_color, normalize_color
 
@@ -36,6 +37,10 @@ FAKE_ASSETS_ROOT = "cliport/environments/assets"
 COLOR_MATCH_WARN_DISTANCE = 0.15
 #: Categories of ``env.add_object`` factask models.
 CATEGORIES = ("rigid", "fixed")
+#: Objects a task may add before recording stops: more than a scene holds, since a
+#: pile's pieces and a rope's beads become one variable each, yet bounded, so a task
+#: adding objects in an endless loop stops at once.
+MAX_RECORDED_OBJECTS = 5 * MAX_OBJECTS
 
 
 @dataclass
@@ -243,9 +248,14 @@ class RecordingEnv:
             The new object's id.
 
         Raises:
-            Unsupported: deformable category or an unknown URDF.
+            Unsupported: deformable category, an unknown URDF, or more objects than
+                :data:`MAX_RECORDED_OBJECTS`.
         """
         s = self._session
+        if len(s.objects) >= MAX_RECORDED_OBJECTS:
+            raise Unsupported(f"the task adds more than {MAX_RECORDED_OBJECTS} objects; a "
+                              f"factask scene holds at most {MAX_OBJECTS} (a pile or a rope "
+                              "counts as one) (fix: add fewer objects)")
         if category not in CATEGORIES:
             raise Unsupported(f"env.add_object(category={category!r}): only 'rigid' and "
                               "'fixed' objects are supported (no deformables)")
