@@ -325,6 +325,36 @@ def test_unknown_class_name():
         load_task_class(TASKS / "stack_boxes_column.py", "Nope")
 
 
+_VARIANTS = """
+from cliport.tasks.task import Task
+
+
+class PutBlocks(Task):
+    pass
+
+
+class PutBlocksSeenColors(PutBlocks):
+    pass
+
+
+class PutBlocksUnseenColors(PutBlocks):
+    pass
+"""
+
+
+def test_the_class_every_other_derives_from_is_the_task(tmp_path):
+    path = tmp_path / "variants.py"
+    path.write_text(_VARIANTS)
+    assert load_task_class(path).__name__ == "PutBlocks"
+
+
+def test_unrelated_classes_ask_for_one_the_way_the_command_takes_it(tmp_path):
+    path = tmp_path / "two.py"
+    path.write_text(_VARIANTS + "\n\nclass Other(Task):\n    pass\n")
+    with pytest.raises(CliportImportError, match=r"two\.py:PutBlocks"):
+        load_task_class(path)
+
+
 # --------------------------------------------------------------- URDF map
 def test_template_sizes():
     def size(key, replace):

@@ -219,8 +219,14 @@ def _pick_class(module: types.ModuleType, path: Path, class_name: str | None) ->
     by_name = [c for c in own if c.__name__ == _camel(path.stem)]
     if by_name:
         return by_name[0]
+    # GenSim's variants (``FooSeenColors(Foo)``, ``FooUnseenColors(Foo)``) derive from
+    # the task itself: the one class every other derives from is the task.
+    roots = [c for c in own if all(issubclass(o, c) for o in own)]
+    if len(roots) == 1:
+        return roots[0]
     raise CliportImportError(f"{path}: several Task subclasses "
-                             f"({', '.join(c.__name__ for c in own)}); pick one with --class")
+                             f"({', '.join(c.__name__ for c in own)}); pick one as "
+                             f"{path.name}:{own[0].__name__} (import-cliport: --class)")
 
 
 def load_task_class(path: str | Path, class_name: str | None = None) -> type:
