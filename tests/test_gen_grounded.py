@@ -84,9 +84,10 @@ def test_grounding_needs_a_movable_named_object() -> None:
 
 
 def test_grounding_needs_a_goal_over_the_named_objects() -> None:
-    # One block and nothing to anchor it on: no relation fits (the GenSim task
-    # block-insertion); its empty goal took llama.cpp's server down.
-    found = mentions("block-insertion: put the L shape block in the L shape hole")
+    # One block and nothing to anchor it on: no relation fits (as the GenSim task
+    # block-insertion was read before an L shape block was an ell and a hole a
+    # fixture); its empty goal took llama.cpp's server down.
+    found = mentions("block-lifting: lift the block high above the table")
     assert [m.name for m in found] == ["block"] and not grounded.applies(found)
     with pytest.raises(ValueError):
         grounded.compact_graph_schema(found)

@@ -101,3 +101,24 @@ def test_a_later_phrase_naming_a_kind_again_refers_back() -> None:
 def test_plural_names_follow_english_endings() -> None:
     assert _names("three boxes and two blocks") == [
         ("boxes", "box", None, 3), ("blocks", "block", None, 2)]
+
+
+def test_everyday_words_for_the_kinds_are_read() -> None:
+    assert _names("put the green puck in the basket") == [
+        ("green_cylinder", "cylinder", "green", 1), ("container", "container", None, 1)]
+    assert _names("stack the crates on the platform") == [
+        ("boxes", "box", None, 2), ("pallet", "pallet", None, 1)]
+    assert _names("put the orb in the dish") == [
+        ("ball", "ball", None, 1), ("bowl", "bowl", None, 1)]
+
+
+def test_an_l_shaped_piece_is_one_ell_and_a_pile_of_blocks_one_pile() -> None:
+    assert _names("put the red L-shaped block into the hole") == [
+        ("red_ell", "ell", "red", 1), ("fixture", "fixture", None, 1)]
+    # GenSim's block-insertion: the hole keeps its own word.
+    assert _names("put the L shape block in the L shape hole") == [
+        ("ell", "ell", None, 1), ("fixture", "fixture", None, 1)]
+    assert _names("push the pile of small red blocks into the green zone") == [
+        ("red_pile", "pile", "red", 1), ("green_zone", "zone", "green", 1)]
+    assert _names("sweep a heap of cubes onto the pad") == [
+        ("pile", "pile", None, 1), ("zone", "zone", None, 1)]

@@ -28,7 +28,24 @@ KIND_WORDS: dict[str, str] = {
     "cube": "block", "brick": "block", "sphere": "ball", "marble": "ball",
     "cup": "bowl", "bin": "container", "tray": "container", "area": "zone",
     "region": "zone", "target": "zone", "pillar": "cylinder", "can": "cylinder",
+    "basket": "container", "bucket": "container", "crate": "box", "carton": "box",
+    "package": "box", "parcel": "box", "disk": "cylinder", "disc": "cylinder",
+    "puck": "cylinder", "peg": "cylinder", "rod": "cylinder", "dish": "bowl",
+    "pot": "bowl", "orb": "ball", "pad": "zone", "mat": "zone", "platform": "pallet",
+    "plate": "stand", "hole": "fixture", "slot": "fixture", "socket": "fixture",
+    "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
+    "heap": "pile",
 }
+#: Phrases read as one kind word before the words are split: an L-shaped piece is an
+#: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
+#: pile, not objects of their own).
+PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
+    (re.compile(r"\bl\s*shaped?\s+(?:block|piece|object|part|shape|brick|cube|bar)s?\b"),
+     "ell"),
+    (re.compile(r"\b(?:pile|heap)\s+of\s+(?:(?:small|tiny|little)\s+)?"
+                rf"(?:({'|'.join(COLOR_NAMES)})\s+)?(?:(?:small|tiny|little)\s+)?[a-z]+"),
+     r"\1 pile"),
+)
 #: Count words (a digit string is read too).
 NUMBER_WORDS: dict[str, int] = {
     "a": 1, "an": 1, "one": 1, "single": 1, "two": 2, "pair": 2, "three": 3, "four": 4,
@@ -104,7 +121,10 @@ def mentions(proposal: str) -> list[Mention]:
     Returns:
         At most :data:`MAX_MENTIONS` mentions, first occurrence first.
     """
-    words = _WORD.findall(proposal.lower().replace("_", " ").replace("-", " ")[:4000])
+    text = proposal.lower().replace("_", " ").replace("-", " ")[:4000]
+    for pattern, kind_word in PHRASES:
+        text = pattern.sub(kind_word, text)
+    words = _WORD.findall(text)
     found: dict[str, Mention] = {}
     for i, word in enumerate(words):
         kind, plural = _kind_of(word)
