@@ -268,13 +268,15 @@ def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema
 
 #: Words of a proposal that name a relation (singular; a plural ``s`` is read too).
 RELATION_WORDS: dict[str, frozenset[str]] = {
-    "in_zone": frozenset(["zone", "area", "region", "target"]),
-    "on": frozenset(["on", "onto", "top"]),
-    "inside": frozenset(["inside", "into", "bowl", "container", "bin", "tray", "cup"]),
-    "stack": frozenset(["stack", "tower", "pyramid"]),
+    "in_zone": frozenset(["zone", "area", "region", "target", "pad", "mat"]),
+    "on": frozenset(["on", "onto", "top", "atop"]),
+    "inside": frozenset(["inside", "into", "bowl", "container", "bin", "tray", "cup",
+                         "basket", "bucket", "dish", "pot"]),
+    "stack": frozenset(["stack", "tower", "pyramid", "column"]),
     "row": frozenset(["row", "line", "lined"]),
-    "circle": frozenset(["circle", "ring", "around"]),
-    "aligned": frozenset(["align", "aligned", "corner"]),
+    "circle": frozenset(["circle", "ring", "around", "circular"]),
+    "aligned": frozenset(["align", "aligned", "corner", "insert", "inserted", "insertion",
+                          "fixture", "hole", "slot", "socket", "fit"]),
     "pile_in_zone": frozenset(["pile", "sweep", "push"]),
     "rope_along": frozenset(["rope"]),
 }

@@ -36,6 +36,8 @@ KIND_WORDS: dict[str, str] = {
     "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
     "heap": "pile",
 }
+#: A proposal that starts with a task name: ``kebab-case-name: description``.
+TASK_NAME = re.compile(r"^\s*([a-z0-9]+(?:-[a-z0-9]+)+)\s*:\s*(.*)$", re.DOTALL)
 #: Phrases read as one kind word before the words are split: an L-shaped piece is an
 #: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
 #: pile, not objects of their own).
@@ -121,7 +123,15 @@ def mentions(proposal: str) -> list[Mention]:
     Returns:
         At most :data:`MAX_MENTIONS` mentions, first occurrence first.
     """
-    text = proposal.lower().replace("_", " ").replace("-", " ")[:4000]
+    text = proposal.lower()[:4000]
+    named = TASK_NAME.match(text)
+    if named:
+        # "block-insertion: put the L shape block in the hole": the name summarises
+        # the description, which says what the objects are (an ell and a fixture,
+        # not also a block); its words count only when the description names nothing.
+        described = mentions(named.group(2))
+        return described or mentions(named.group(1).replace("-", " "))
+    text = text.replace("_", " ").replace("-", " ")
     for pattern, kind_word in PHRASES:
         text = pattern.sub(kind_word, text)
     words = _WORD.findall(text)
