@@ -110,6 +110,12 @@ def test_everyday_words_for_the_kinds_are_read() -> None:
         ("boxes", "box", None, 2), ("pallet", "pallet", None, 1)]
     assert _names("put the orb in the dish") == [
         ("ball", "ball", None, 1), ("bowl", "bowl", None, 1)]
+    # Objects of no stated shape are blocks; a board with silhouettes is a kit of holes.
+    assert _names("pack the objects into the container") == [
+        ("blocks", "block", None, 2), ("container", "container", None, 1)]
+    assert _names("arrange the shapes on a board marked with silhouettes") == [
+        ("blocks", "block", None, 2), ("kit", "kit", None, 1),
+        ("fixtures", "fixture", None, 2)]
 
 
 def test_an_l_shaped_piece_is_one_ell_and_a_pile_of_blocks_one_pile() -> None:
@@ -118,6 +124,10 @@ def test_an_l_shaped_piece_is_one_ell_and_a_pile_of_blocks_one_pile() -> None:
     # GenSim's block-insertion: the hole keeps its own word.
     assert _names("put the L shape block in the L shape hole") == [
         ("ell", "ell", None, 1), ("fixture", "fixture", None, 1)]
+    assert _names("put two L shapes in the L-shaped slots") == [
+        ("ells", "ell", None, 2), ("fixtures", "fixture", None, 2)]
+    assert _names("put three red L shaped blocks in the slots") == [
+        ("red_ells", "ell", "red", 3), ("fixtures", "fixture", None, 2)]
     assert _names("push the pile of small red blocks into the green zone") == [
         ("red_pile", "pile", "red", 1), ("green_zone", "zone", "green", 1)]
     assert _names("sweep a heap of cubes onto the pad") == [

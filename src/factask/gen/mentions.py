@@ -34,7 +34,9 @@ KIND_WORDS: dict[str, str] = {
     "pot": "bowl", "orb": "ball", "pad": "zone", "mat": "zone", "platform": "pallet",
     "plate": "stand", "hole": "fixture", "slot": "fixture", "socket": "fixture",
     "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
-    "heap": "pile",
+    "heap": "pile", "board": "kit", "silhouette": "fixture",
+    # Objects of no stated shape are blocks: "pack the objects into the container".
+    "object": "block", "item": "block", "piece": "block", "shape": "block",
 }
 #: A proposal that starts with a task name: ``kebab-case-name: description``.
 TASK_NAME = re.compile(r"^\s*([a-z0-9]+(?:-[a-z0-9]+)+)\s*:\s*(.*)$", re.DOTALL)
@@ -42,8 +44,12 @@ TASK_NAME = re.compile(r"^\s*([a-z0-9]+(?:-[a-z0-9]+)+)\s*:\s*(.*)$", re.DOTALL)
 #: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
 #: pile, not objects of their own).
 PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
-    (re.compile(r"\bl\s*shaped?\s+(?:block|piece|object|part|shape|brick|cube|bar)s?\b"),
-     "ell"),
+    # "an L shape hole" is a hole (the words say its shape); any other L shape (with
+    # or without a noun: block, piece, ...) is an ell.
+    (re.compile(r"\bl\s*shaped?\s+(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"),
+     ""),
+    (re.compile(r"\bl\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|bar))?"
+                r"(s?)\b"), r"ell\1"),
     (re.compile(r"\b(?:pile|heap)\s+of\s+(?:(?:small|tiny|little)\s+)?"
                 rf"(?:({'|'.join(COLOR_NAMES)})\s+)?(?:(?:small|tiny|little)\s+)?[a-z]+"),
      r"\1 pile"),
