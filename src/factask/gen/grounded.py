@@ -250,7 +250,17 @@ def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema
     objects = props["objects"]
     rest = {k: v for k, v in props.items() if k not in ("type", field, "objects")}
     branches: list[Schema] = []
-    for anchor in _enum_of(props[field]):
+    # Anchors that stay put (a pallet, a zone, a bowl) first, then none, then a movable
+    # one: what a proposal's "on the platform" names; a small model tends to take the
+    # first branch a grammar offers.
+    anchors = sorted(_enum_of(props[field]), key=lambda a: a in movers)
+    for anchor in (a for a in anchors if a not in movers):
+        branches.append(ss.obj({"type": props["type"], field: {"const": anchor},
+                                "objects": objects, **rest}))
+    if any(o.get("type") == "null" for o in props[field].get("anyOf", [])):
+        branches.append(ss.obj({"type": props["type"], field: {"type": "null"},
+                                "objects": objects, **rest}))
+    for anchor in (a for a in anchors if a in movers):
         others = [m for m in movers if m != anchor]
         if len(others) < objects.get("minItems", 1):
             continue
@@ -258,9 +268,6 @@ def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema
                                 "objects": ss.array(ss.name(others),
                                                     objects.get("minItems", 1), len(others)),
                                 **rest}))
-    if any(o.get("type") == "null" for o in props[field].get("anyOf", [])):
-        branches.append(ss.obj({"type": props["type"], field: {"type": "null"},
-                                "objects": objects, **rest}))
     if not branches:
         return None
     return branches[0] if len(branches) == 1 else {"anyOf": branches}
@@ -299,7 +306,10 @@ def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
     options = {r: s for r in RELATION_TYPES if r not in COORDINATE_RELATIONS
                and (s := relation_over(r, kinds, counts)) is not None}
     named = {r: s for r, s in options.items() if r in (wanted or ())}
-    chosen = [b for s in (named or options).values() for b in s.get("anyOf", [s])
+    # An arrangement the proposal names (a stack, a row, a circle) is its task; "on"
+    # or "into" beside it say where: the arrangement's branches come first.
+    order = sorted(named or options, key=lambda r: r not in GROUP_RELATIONS)
+    chosen = [b for r in order for b in (named or options)[r].get("anyOf", [(named or options)[r]])
               if "properties" in b]
     if not chosen:
         return None
