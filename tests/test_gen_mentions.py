@@ -144,3 +144,18 @@ def test_a_leading_task_name_adds_no_object_the_description_does_not_name() -> N
     # A description naming nothing leaves the name's words.
     assert _names("red-block-in-zone: do it") == [
         ("red_block", "block", "red", 1), ("zone", "zone", None, 1)]
+
+
+def test_an_everyday_word_accepts_every_kind_it_may_mean() -> None:
+    from factask.gen.mentions import ALSO_KINDS, KIND_WORDS, missing_mentions
+    from factask.model.kinds import KIND_NAMES
+    from factask.model.variables import StateVariable
+
+    assert set(ALSO_KINDS) <= set(KIND_WORDS)
+    assert {k for kinds in ALSO_KINDS.values() for k in kinds} <= set(KIND_NAMES)
+    proposal = "put the green puck in the red basket"
+    as_bowl = [StateVariable(name="puck", kind="cylinder", color="green"),
+               StateVariable(name="basket", kind="bowl", color="red")]
+    assert missing_mentions(proposal, as_bowl) == []
+    as_zone = [as_bowl[0], StateVariable(name="basket", kind="zone", color="red")]
+    assert [m.name for m in missing_mentions(proposal, as_zone)] == ["red_container"]

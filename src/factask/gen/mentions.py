@@ -38,6 +38,19 @@ KIND_WORDS: dict[str, str] = {
     # Objects of no stated shape are blocks: "pack the objects into the container".
     "object": "block", "item": "block", "piece": "block", "shape": "block",
 }
+#: Other kinds an everyday word may as well mean: a graph whose coloured object is
+#: one of these is still the proposal's ("the red basket" may be a red bowl). The
+#: grounded answers use the word's kind in :data:`KIND_WORDS`.
+ALSO_KINDS: dict[str, tuple[str, ...]] = {
+    "cube": ("box",), "brick": ("box",), "crate": ("container",), "carton": ("container",),
+    "package": ("block",), "parcel": ("block",), "basket": ("bowl",), "bucket": ("bowl",),
+    "bin": ("bowl",), "tray": ("bowl", "kit"), "dish": ("container",), "pot": ("container",),
+    "cup": ("container",), "platform": ("stand",), "plate": ("pallet", "zone", "kit"),
+    "board": ("pallet",), "peg": ("block",), "rod": ("block",),
+    "object": ("box", "cylinder", "ball", "ell"), "item": ("box", "cylinder", "ball", "ell"),
+    "piece": ("box", "cylinder", "ball", "ell"), "shape": ("box", "cylinder", "ball", "ell"),
+    "hole": ("kit", "container"), "slot": ("kit",), "silhouette": ("kit",), "area": ("pallet",),
+}
 #: A proposal that starts with a task name: ``kebab-case-name: description``.
 TASK_NAME = re.compile(r"^\s*([a-z0-9]+(?:-[a-z0-9]+)+)\s*:\s*(.*)$", re.DOTALL)
 #: Phrases read as one kind word before the words are split: an L-shaped piece is an
@@ -76,12 +89,14 @@ class Mention:
         kind: Its asset kind.
         color: Its colour, or None when the proposal gives none.
         count: How many (1 unless the proposal says).
+        also: Other kinds the proposal's word may mean (:data:`ALSO_KINDS`).
     """
 
     name: str
     kind: str
     color: str | None
     count: int
+    also: tuple[str, ...] = ()
 
     def describe(self) -> str:
         """``red_blocks: kind block, colour red, count 3``."""
@@ -92,15 +107,15 @@ class Mention:
         return f"{self.name}: {', '.join(parts)}"
 
 
-def _kind_of(word: str) -> tuple[str | None, bool]:
-    """(kind, plural) of a word, or (None, False)."""
+def _kind_of(word: str) -> tuple[str | None, bool, str]:
+    """(kind, plural, singular word) of a word, or (None, False, word)."""
     if word in KIND_WORDS:
-        return KIND_WORDS[word], False
+        return KIND_WORDS[word], False, word
     for suffix in ("es", "s"):
         stem = word[: -len(suffix)]
         if word.endswith(suffix) and stem in KIND_WORDS:
-            return KIND_WORDS[stem], True
-    return None, False
+            return KIND_WORDS[stem], True, stem
+    return None, False, word
 
 
 def _plural(stem: str) -> str:
@@ -143,7 +158,7 @@ def mentions(proposal: str) -> list[Mention]:
     words = _WORD.findall(text)
     found: dict[str, Mention] = {}
     for i, word in enumerate(words):
-        kind, plural = _kind_of(word)
+        kind, plural, singular = _kind_of(word)
         if kind is None:
             continue
         earlier = [m for m in found.values() if m.kind == kind]
@@ -170,7 +185,7 @@ def mentions(proposal: str) -> list[Mention]:
             name = _plural(stem) if count > 1 else stem
             if stem in found or _plural(stem) in found:
                 continue
-            found[name] = Mention(name, kind, color, count)
+            found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()))
             if len(found) >= MAX_MENTIONS:
                 return list(found.values())
     return list(found.values())
@@ -199,7 +214,8 @@ def missing_mentions(proposal: str, variables: Sequence[Any]) -> list[Mention]:
         The unmatched mentions (empty: every coloured object is there).
     """
     have = {(getattr(v, "kind", None), getattr(v, "color", None)) for v in variables}
-    return [m for m in mentions(proposal) if m.color and (m.kind, m.color) not in have]
+    return [m for m in mentions(proposal) if m.color
+            and not any((kind, m.color) in have for kind in (m.kind, *m.also))]
 
 
 def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
@@ -213,5 +229,5 @@ def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
             f"for each (with this kind and colour):\n{lines}")
 
 
-__all__ = ["KIND_WORDS", "MAX_MENTIONS", "Mention", "grounding_feedback", "mentions",
+__all__ = ["ALSO_KINDS", "KIND_WORDS", "MAX_MENTIONS", "Mention", "grounding_feedback", "mentions",
            "mentions_text", "missing_mentions"]
