@@ -31,6 +31,7 @@ import numpy as np
 
 from factask.compat.cliport.errors import Unsupported
 from factask.model.kinds import kind_spec
+from factask.sim.parts import fixture_size_for
 
 Size = tuple[float, float, float]
 
@@ -150,6 +151,9 @@ _HANOI_DISK_NOTE = "Hanoi disk (a ring with a hole for the peg) modelled as a so
 _KIT_NOTE = ("kitting shape (a mesh) modelled as a flat block of the shape's "
              "bounding box; its own yaw symmetry is kept from the goal")
 
+#: Ravens' ell: bars 0.08 long, 0.03 wide, 0.04 high.
+_ELL_SIZE: Size = (0.08, 0.08, 0.04)
+
 #: URDF path (relative to CLIPort's assets folder) -> factask asset.
 URDF_TABLE: dict[str, _Entry] = {
     "block/block.urdf": _Entry("block", (0.04, 0.04, 0.04), "red", "", "0.04 cube"),
@@ -168,13 +172,15 @@ URDF_TABLE: dict[str, _Entry] = {
     "bowl/bowl.urdf": _Entry("bowl", (0.12, 0.12, 0.035), "gray", "",
                              "0.12 across, 0.035 high"),
     "insertion/ell.urdf": _Entry(
-        "ell", (0.08, 0.08, 0.04), "red",
+        "ell", _ELL_SIZE, "red",
         "the URDF origin is the bars' crossing, factask's is the bounding-box centre "
         "(2.5 cm apart along each bar); ell and fixture are shifted alike", "0.08 x 0.08 x 0.04"),
     "insertion/fixture.urdf": _Entry(
-        "fixture", kind_spec("fixture").default_size, "brown",
-        "factask's fixture is sized to take its ell (URDF walls span 0.10 x 0.105)",
-        "kind default 0.12 x 0.12 x 0.04"),
+        "fixture", fixture_size_for(_ELL_SIZE), "brown",
+        "factask's fixture is sized to take its ell: 1 cm walls, 5 mm play (URDF walls "
+        "span 0.10 x 0.105; the kind's default 0.12 frame overlapped fixtures an author "
+        "put 10 cm apart, and an ell came to rest tilted on its neighbour's wall)",
+        "0.11 x 0.11 x 0.04"),
     "kitting/kit.urdf": _Entry("kit", (0.28, 0.20, 0.005), "gray", "", "0.28 x 0.2 x 0.005"),
     "kitting/object-template.urdf": _Entry("block", _kit_shape_dim, "red", _KIT_NOTE,
                                            "20 x SCALE (default 0.06 x 0.06 x 0.02)"),
