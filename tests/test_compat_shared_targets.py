@@ -4,6 +4,7 @@ targets): every object gets a copy of a target it may take, copies stacked."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
@@ -68,3 +69,39 @@ def test_targets_are_spread_as_evenly_as_the_matches_allow() -> None:
     share_targets(goal, lambda _: None)
     xs = [round(float(p[0]), 3) for p, _ in goal.targets]
     assert sorted(xs.count(x) for x in set(xs)) == [2, 3]
+
+
+@given(st.integers(2, 5), st.floats(0.030, 0.050), st.floats(-3.1, 3.1))
+def test_targets_overlapping_a_little_are_moved_apart_within_the_limit(
+        n: int, spacing: float, yaw: float) -> None:
+    from factask.compat.cliport.goals import _separation, separate_targets
+
+    quat = np.array([0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2)])
+    axis = np.array([np.cos(yaw), np.sin(yaw), 0.0])
+    goal = _goal(np.eye(n, dtype=int), replace=False)
+    goal.targets = [(np.array([0.5, 0.0, 0.02]) + axis * spacing * k, quat) for k in range(n)]
+    before = [p.copy() for p, _ in goal.targets]
+    limit = 0.0075
+    shifted = separate_targets([goal], limit)
+    moves = [float(np.linalg.norm(p[:2] - b[:2])) for (p, _), b in zip(goal.targets, before,
+                                                                       strict=True)]
+    if not shifted:
+        assert not any(moves)  # untouched: no overlap, or none fixable within the limit
+    else:
+        assert max(moves) <= limit + 1e-9 and shifted[0] == pytest.approx(max(moves))
+        half = (0.02, 0.02)
+        for a in range(n):
+            for b in range(a + 1, n):
+                assert _separation((goal.targets[a][0][:2], yaw, half),
+                                   (goal.targets[b][0][:2], yaw, half)) is None
+    if spacing >= 0.04 + 1e-6:
+        assert not shifted  # nothing overlapped
+
+
+def test_a_tower_sent_to_one_point_is_not_spread() -> None:
+    from factask.compat.cliport.goals import separate_targets
+
+    goal = _goal(np.eye(2, dtype=int), replace=False)
+    goal.targets = [(np.array([0.5, 0.0, 0.02]), np.array([0.0, 0.0, 0.0, 1.0])),
+                    (np.array([0.5, 0.0, 0.02]), np.array([0.0, 0.0, 0.0, 1.0]))]
+    assert separate_targets([goal], 0.0075) == {}

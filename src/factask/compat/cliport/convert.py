@@ -37,6 +37,7 @@ from factask.compat.cliport.goals import (
     RecordedGoal,
     read_goals,
     resting_heights,
+    separate_targets,
     share_targets,
     target_pose,
     zone_poses,
@@ -75,6 +76,9 @@ WALLED_KINDS = ("container",)
 WALL_CLEARANCE = 0.003
 #: Longest factor name (the graph model allows 64 characters).
 MAX_NAME = 48
+#: How far (a fraction of the author's position tolerance) a target may be moved off
+#: another it overlaps (:func:`separate_targets`); the rest stays the tolerance.
+SEPARATE_LIMIT = 0.75
 #: Colour of a zone variable created from a zone goal's params.
 GOAL_ZONE_COLOR = "gray"
 
@@ -367,6 +371,12 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             g.objs = [g.objs[i] for i in rows]
             g.matches = g.matches[rows, :]
         share_targets(g, warn)
+    shifted = separate_targets([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],
+                               SEPARATE_LIMIT * pos_eps)
+    for index, shift in sorted(shifted.items()):
+        warn(f"goal {index}: targets overlapping by a little moved apart to touch, by up "
+             f"to {shift * 1000:.1f} mm; its position tolerance tightened by as much, to "
+             f"{(pos_eps - shift) * 1000:.1f} mm (the check stays within the author's)")
     goal_objects = {o.obj_id for g in goals for o in g.objs}
     _settle(objects, names, goal_objects, warn)
     rest = resting_heights([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],
@@ -378,6 +388,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             continue
         objs = [names[o.obj_id] for o in g.objs]
         extra_kw = {"tolerances": tol} if tol is not None else {}
+        if g.index in shifted:
+            extra_kw = {"tolerances": Tolerances(xy=pos_eps - shifted[g.index],
+                                                 yaw_deg=rot_eps_deg)}
         rope_rel = rope_goal(g, ropes, extra_kw) if in_ropes else None
         if rope_rel is not None:  # a rope's beads laid on their targets
             rel: Any = rope_rel
