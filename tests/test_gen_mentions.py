@@ -144,6 +144,12 @@ def test_a_leading_task_name_adds_no_object_the_description_does_not_name() -> N
     # A description naming nothing leaves the name's words.
     assert _names("red-block-in-zone: do it") == [
         ("red_block", "block", "red", 1), ("zone", "zone", None, 1)]
+    # The generator reads "description name": the same rule, and a name still adds
+    # what the description only refers to ("them").
+    assert _names("put the L shape block in the L shape hole block-insertion") == [
+        ("ell", "ell", None, 1), ("fixture", "fixture", None, 1)]
+    assert _names("stack them on the pallet stack-blocks-on-pallet") == [
+        ("pallet", "pallet", None, 1), ("blocks", "block", None, 2)]
 
 
 def test_an_everyday_word_accepts_every_kind_it_may_mean() -> None:

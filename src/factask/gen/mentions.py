@@ -53,6 +53,8 @@ ALSO_KINDS: dict[str, tuple[str, ...]] = {
 }
 #: A proposal that starts with a task name: ``kebab-case-name: description``.
 TASK_NAME = re.compile(r"^\s*([a-z0-9]+(?:-[a-z0-9]+)+)\s*:\s*(.*)$", re.DOTALL)
+#: A proposal that ends with a task name, as the generator reads one: ``description name``.
+TRAILING_NAME = re.compile(r"^(.*\S)\s+([a-z0-9]+(?:-[a-z0-9]+)+)\s*$", re.DOTALL)
 #: Phrases read as one kind word before the words are split: an L-shaped piece is an
 #: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
 #: pile, not objects of their own).
@@ -132,11 +134,13 @@ def mentions(proposal: str) -> list[Mention]:
     count counts 2 (per colour).
 
     A later phrase naming a kind already named refers back, it names no new
-    object: an uncoloured one ("a blue sphere ... the sphere", or the task
-    name's words after its description), and a coloured one after an
-    uncoloured group of that kind ("six blocks ... a red block at the bottom":
-    one of the six). Read as new objects, these would be declared twice and
-    every grounded goal would have to use the copy.
+    object: an uncoloured one ("a blue sphere ... the sphere"), and a coloured one
+    after an uncoloured group of that kind ("six blocks ... a red block at the
+    bottom": one of the six). Read as new objects, these would be declared twice and
+    every grounded goal would have to use the copy. A task name (kebab-case, before
+    the description with a colon, or after it as the generator writes it) adds only
+    objects whose words the description does not use: in "block-insertion: put the
+    L shape block in the L shape hole" the block is the ell.
 
     Args:
         proposal: The task proposal (any text; only its words are read).
@@ -145,19 +149,34 @@ def mentions(proposal: str) -> list[Mention]:
         At most :data:`MAX_MENTIONS` mentions, first occurrence first.
     """
     text = proposal.lower()[:4000]
-    named = TASK_NAME.match(text)
-    if named:
-        # "block-insertion: put the L shape block in the hole": the name summarises
-        # the description, which says what the objects are (an ell and a fixture,
-        # not also a block); its words count only when the description names nothing.
-        described = mentions(named.group(2))
-        return described or mentions(named.group(1).replace("-", " "))
+    leading, trailing = TASK_NAME.match(text), TRAILING_NAME.match(text)
+    if leading:
+        desc, name = leading.group(2), leading.group(1)
+    elif trailing:
+        desc, name = trailing.group(1), trailing.group(2)
+    else:
+        desc, name = text, ""
+    found: dict[str, Mention] = {}
+    _scan(_words(desc), found)
+    if name:
+        said = {_kind_of(w)[2] for w in _WORD.findall(desc.replace("-", " "))}
+        _scan([w for w in _words(name) if _kind_of(w)[2] not in said], found)
+    return list(found.values())
+
+
+def _words(text: str) -> list[str]:
+    """The words of ``text``, with :data:`PHRASES` read as their kind words."""
     text = text.replace("_", " ").replace("-", " ")
     for pattern, kind_word in PHRASES:
         text = pattern.sub(kind_word, text)
-    words = _WORD.findall(text)
-    found: dict[str, Mention] = {}
+    return _WORD.findall(text)
+
+
+def _scan(words: list[str], found: dict[str, Mention]) -> None:
+    """Add the mentions of ``words`` to ``found`` (see :func:`mentions`)."""
     for i, word in enumerate(words):
+        if len(found) >= MAX_MENTIONS:
+            return
         kind, plural, singular = _kind_of(word)
         if kind is None:
             continue
@@ -187,8 +206,7 @@ def mentions(proposal: str) -> list[Mention]:
                 continue
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()))
             if len(found) >= MAX_MENTIONS:
-                return list(found.values())
-    return list(found.values())
+                return
 
 
 def mentions_text(proposal: str) -> str:
