@@ -19,6 +19,7 @@ from dm_control import mjcf
 from factask.model.kinds import UnknownKindError
 from factask.model.kinds import kind_spec as _kind_spec
 from factask.sim.parts import (
+    BALL_FRICTION,
     BOWL_SEGMENTS,
     CAMERA_FOVY,
     FIXTURE_CLEARANCE,
@@ -126,6 +127,7 @@ def build_object(parent: Any, name: str, kind: str, size: tuple[float, float, fl
         geom["dclass"] = OBJECT_CLASS if plan.collides else VISUAL_CLASS
         if plan.collides and g.type == "sphere":
             geom["condim"] = ROLLING_CONDIM
+            geom["friction"] = list(BALL_FRICTION)
         if g.mass is not None:
             geom["mass"] = g.mass
         body.add("geom", **geom)

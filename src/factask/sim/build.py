@@ -21,6 +21,7 @@ import mujoco
 import numpy as np
 
 from factask.sim.parts import (
+    BALL_FRICTION,
     CAMERA_FOVY,
     FLOOR_POS,
     FLOOR_RGBA,
@@ -222,6 +223,7 @@ def add_object(spec: mujoco.MjSpec, plan: ObjectPlan,
             geom.quat = g.quat
         if plan.collides and g.type == "sphere":
             geom.condim = ROLLING_CONDIM
+            geom.friction = list(BALL_FRICTION)
         if g.mass is not None:
             geom.mass = g.mass
         geoms.append(geom)
