@@ -20,7 +20,7 @@ from factask.library.builders import (
     use,
     var,
 )
-from factask.library.conventions import BLOCK, CORNER, FIVE, FOUR
+from factask.library.conventions import BALL, BLOCK, CORNER, FIVE, FOUR
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, TaskGraph
 
@@ -395,3 +395,27 @@ def four_corner_pyramid_challenge() -> TaskGraph:
                     "In each of the four zones in the corners of the table, stack a red, a "
                     "blue, a green and a yellow block, from bottom to top.", columns)
 
+
+
+@register("color-coordinated-sphere-on-pallet-pyramid", family="structures")
+def color_coordinated_sphere_on_pallet_pyramid() -> TaskGraph:
+    # A two-one pyramid of each colour on the pallet of that colour, the pallets in a
+    # line (red, blue, green from left to right), and the ball of that colour on the
+    # pyramid's top block: a ball stays on a flat 4 cm top because balls have rolling
+    # friction (sim.parts.BALL_FRICTION).
+    colors = ("red", "blue", "green")
+    fragments: list[TaskGraph] = []
+    for c, y in zip(colors, (0.2, 0.0, -0.2), strict=True):
+        pallet = var(f"{c}_pallet", "pallet", c, (0.12, 0.08, 0.02), initial=at(0.6, y, 90.0),
+                     description=f"the {c} pallet")
+        base = var(f"{c}_base_blocks", "block", c, BLOCK, count=2)
+        top = var(f"{c}_top_block", "block", c, BLOCK)
+        ball = var(f"{c}_ball", "ball", c, BALL)
+        fragments += [use("align_along_line", objects=base, line=pallet),
+                      use("pyramid_layer", layer=top, below=base),
+                      use("place_on_top", objects=ball, support=top)]
+    return assemble("color-coordinated-sphere-on-pallet-pyramid",
+                    "On each of three pallets in a line (red, blue, green from left to right) "
+                    "build a pyramid of the three blocks of its colour, two at the base and "
+                    "one on top, and put the ball of that colour on top of the pyramid.",
+                    fragments)
