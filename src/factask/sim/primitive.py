@@ -74,7 +74,8 @@ REST_SPEED = 0.02
 #: ... or after this long (s).
 REST_MAX_TIME = 0.3
 #: Before release, objects must move slower than this (m/s) when the held one
-#: can roll (a ball let go while it swings rolls away: nothing slows it) ...
+#: can roll (a ball let go while it swings rolls on: rolling friction, BALL_FRICTION,
+#: stops one at 2 cm/s within 1.5 mm, one at 4 cm/s within 5 mm: faster goes further) ...
 RELEASE_SPEED = 0.003
 #: ... or this when it cannot (a box set down moving at 1 cm/s stops at once) ...
 RELEASE_SPEED_FLAT = 0.01
@@ -316,7 +317,7 @@ class SuctionRobot(ABC):
         if self.gripper.held is None:
             raise PrimitiveAbort("object lost during transport")
         # Release only once everything is still: a ball let go while it still swings
-        # on the cup rolls away (nothing slows a rolling ball on the table).
+        # on the cup rolls on (rolling friction stops it only after mm to cm).
         if self.gripper.held_can_roll():
             self._wait_for_rest(RELEASE_SPEED, RELEASE_MAX_TIME, ROUND_TURN_RADIUS)
         else:
