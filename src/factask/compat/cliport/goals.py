@@ -282,6 +282,9 @@ class _Slot:
     height: float
     objects: frozenset[int]  # ids of the objects that may take the target
     certain: bool  # every target of its goal gets an object (not a choice among them)
+    # Height of the floor above the slot's bottom when what goes there is a
+    # receptacle (a container moved into a zone): what is put in it rests inside.
+    floor: float | None = None
 
 
 def _half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
@@ -322,10 +325,13 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
                 continue
             yaw = yaw_of_xyzw(quat)
             size = max((o.size for o in allowed), key=lambda s: s[2])
+            receptacle = all(kind_spec(o.kind).receptacle for o in allowed)
             slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
                                _half_xy(size, yaw), size[2],
                                frozenset(o.obj_id for o in allowed),
-                               len(g.objs) >= len(g.targets)))
+                               len(g.objs) >= len(g.targets),
+                               max(floor_thickness(o.kind) for o in allowed)
+                               if receptacle else None))
     fixed = []
     for o in objects:
         spec = kind_spec(o.kind)
@@ -371,7 +377,15 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
                 below = (other.key[0] < slot.key[0] and other.z <= slot.z + Z_TOLERANCE
                          and abs(slot.x - other.x) < other.half[0]
                          and abs(slot.y - other.y) < other.half[1])
-            if below and z + other.height / 2 > support:
+            if not below:
+                continue
+            if other.floor is not None:
+                # Put into a receptacle that was moved there: on its floor, where
+                # the checker finds it (as for a fixed receptacle).
+                floor = z - other.height / 2 + other.floor
+                if floor > support:
+                    support, on_floor = floor, True
+            elif z + other.height / 2 > support:
                 support, on_floor = z + other.height / 2, False
         z_rest = support + slot.height / 2
         # A target on the table or on a receptacle's floor is reported as resting on
