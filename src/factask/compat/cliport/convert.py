@@ -40,6 +40,7 @@ from factask.compat.cliport.goals import (
     separate_targets,
     share_targets,
     target_pose,
+    zone_parts,
     zone_poses,
 )
 from factask.compat.cliport.grippers import Spatula
@@ -410,14 +411,17 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             taken.add(zone)
             rel = PileInZone(objects=[piles[g.index].name], zone=zone,
                              fraction=RAVENS_PILE_FRACTION)
-        else:
-            zone = _zone_variable(g, objects, names, extra, warn)
-            taken.add(zone)
-            poses = zone_poses(g, rest)
-            host = next((o for o in objects if names[o.obj_id] == zone), None)
-            if poses and host is not None and host.kind in WALLED_KINDS:
-                _make_room(host, g, poses, names, warn)
-            rel = InZone(objects=objs, zone=zone, poses=poses, **extra_kw)
+        else:  # one factor per zone (several zones: sorted by matches)
+            for part in zone_parts(g, warn):
+                zone = _zone_variable(part, objects, names, extra, warn)
+                taken.add(zone)
+                poses = zone_poses(part, rest)
+                host = next((o for o in objects if names[o.obj_id] == zone), None)
+                if poses and host is not None and host.kind in WALLED_KINDS:
+                    _make_room(host, part, poses, names, warn)
+                drafts.append((part, InZone(objects=[names[o.obj_id] for o in part.objs],
+                                            zone=zone, poses=poses, **extra_kw)))
+            continue
         drafts.append((g, rel))
     if not drafts:
         raise CliportImportError("no goal is left to check (every goal lost its objects)")

@@ -5,13 +5,14 @@
 * :func:`resting_heights` puts every pose target where the object would rest,
   taking the targets in queue order, as the robot places them;
 * :func:`target_pose` and :func:`zone_poses` turn targets into factask poses —
-  an author's explicit placements are facts.
+  an author's explicit placements are facts;
+* :func:`zone_parts` splits a zone goal over several zones by its ``matches``.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -444,3 +445,61 @@ def zone_poses(goal: RecordedGoal, rest: dict[tuple[int, int], float]
                                 and z > height / 2 + Z_TOLERANCE else None,
                                 yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS)))
     return poses
+
+
+def _centre_in(pos: np.ndarray, zone: tuple[np.ndarray, np.ndarray, tuple[float, float]]
+               ) -> bool:
+    zpos, zquat, (sx, sy) = zone
+    zyaw = yaw_of_xyzw(zquat)
+    dx, dy = float(pos[0] - zpos[0]), float(pos[1] - zpos[1])
+    c, s = math.cos(zyaw), math.sin(zyaw)
+    return abs(c * dx + s * dy) <= sx / 2 and abs(-s * dx + c * dy) <= sy / 2
+
+
+def zone_parts(goal: RecordedGoal, warn: Any) -> list[RecordedGoal]:
+    """A zone goal over several zones as one goal per zone, each object in the zone
+    its ``matches`` sends it to (sort the blocks into the zones by colour).
+
+    An object's zones are those holding the centre of a target its row of
+    ``matches`` allows (authors pass the zone poses themselves as targets, or
+    places inside them). Ravens' own zone metric counts an object in *any* of the
+    zones (and, summing over zones, never reaches the goal's reward with more than
+    one); the author's matrix is the meaning. An object allowed several zones (or
+    none that a target shows) is given the least loaded of them, with a warning:
+    factask checks one zone per object. A goal with one zone is returned as is.
+    The parts share the goal's index and targets; their rewards split the goal's
+    by their number of objects.
+    """
+    if len(goal.zones) < 2:
+        return [goal]
+    n, m = len(goal.objs), goal.matches
+    everywhere = list(range(len(goal.zones)))
+    allowed = []
+    for i in range(n):
+        ks: set[int] = set()
+        if m.ndim == 2 and m.shape[0] == n:
+            for j, (pos, _) in enumerate(goal.targets[:m.shape[1]]):
+                if m[i, j]:
+                    ks |= {k for k, zone in enumerate(goal.zones) if _centre_in(pos, zone)}
+        allowed.append(sorted(ks) or everywhere)
+    load = [0] * len(goal.zones)
+    assigned = []
+    for ks in allowed:
+        k = min(ks, key=lambda k: (load[k], k))
+        load[k] += 1
+        assigned.append(k)
+    chosen = sum(len(ks) > 1 for ks in allowed)
+    if chosen:
+        warn(f"goal {goal.index}: {chosen} object(s) may go to any of several of its "
+             f"{len(goal.zones)} zones; each is given one (the least loaded), which "
+             "factask checks")
+    parts = []
+    for k, zone in enumerate(goal.zones):
+        rows = [i for i, a in enumerate(assigned) if a == k]
+        if rows:
+            parts.append(replace(
+                goal, objs=[goal.objs[i] for i in rows],
+                symmetries=[goal.symmetries[i] for i in rows],
+                matches=m[rows, :] if m.ndim == 2 and m.shape[0] == n else m,
+                zones=[zone], max_reward=goal.max_reward * len(rows) / n))
+    return parts
