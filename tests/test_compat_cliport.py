@@ -753,3 +753,23 @@ def test_run_scores_a_task_file_as_ravens_does_beside_factask():
     (score,) = json.loads(res.output.strip().splitlines()[-1])["ravens"]
     assert score["goals"] == 3 and score["success"]
     assert "--ravens" in runner.invoke(app, ["run", "--help"]).output
+
+
+# ------------------------------------------------- pybullet physics tuning calls
+def test_pybullet_physics_tuning_is_accepted_with_a_warning_naming_it():
+    from factask.compat.cliport import pybullet_stub as p
+    from factask.compat.cliport.recorder import RecordedObject, Session, session_scope
+
+    session = Session()
+    session.objects[5] = RecordedObject(5, "block/block.urdf", "block", (0.04, 0.04, 0.04),
+                                        "red", "rigid", np.zeros(3), np.array([0, 0, 0, 1.0]))
+    with session_scope(session):
+        assert p.changeDynamics(5, -1, lateralFriction=0.9) == 0
+        p.setGravity(0, 0, -9.8)
+        p.changeDynamics(5, -1, mass=2.0)
+        assert p.getNumBodies() == 1 and p.getNumJoints(5) == 0
+        with pytest.raises(Unsupported, match="removeBody"):
+            p.removeBody(5)
+    assert session.warnings == [
+        "p.changeDynamics(...) ignored: factask gives each kind its own mass and friction",
+        "p.setGravity(...) ignored: factask's world has standard gravity"]

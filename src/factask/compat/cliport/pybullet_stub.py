@@ -7,9 +7,10 @@ recording; bodies built from shapes and the constraints between them
 (``createCollisionShape``, ``createVisualShape``, ``createMultiBody``,
 ``createConstraint``, ``changeConstraint``, ``removeConstraint``) are recorded
 (:mod:`factask.compat.cliport.bodies`: a chain of them becomes a rope);
-``stepSimulation`` does nothing (nothing moves during a reset).
-Anything else raises :class:`~factask.compat.cliport.errors.Unsupported` naming
-the call.
+``stepSimulation`` does nothing (nothing moves during a reset); calls that tune
+PyBullet's physics or debug drawing (:data:`IGNORED_CALLS`: ``changeDynamics``,
+``setGravity``, ...) are accepted with a warning. Anything else raises
+:class:`~factask.compat.cliport.errors.Unsupported` naming the call.
 """
 
 from __future__ import annotations
@@ -164,8 +165,47 @@ def stepSimulation(*args: Any, **kwargs: Any) -> None:
     """No-op: nothing is simulated while recording."""
 
 
+#: Calls that tune PyBullet's own physics or debug drawing: factask has its own
+#: (each kind's mass and friction, standard gravity, a fixed timestep), so they
+#: are accepted with a warning naming what takes their place.
+IGNORED_CALLS: dict[str, str] = {
+    "changeDynamics": "factask gives each kind its own mass and friction",
+    "setGravity": "factask's world has standard gravity",
+    "setTimeStep": "factask's physics has its own fixed timestep",
+    "setRealTimeSimulation": "factask's physics has its own fixed timestep",
+    "setPhysicsEngineParameter": "factask's physics has its own solver settings",
+    "configureDebugVisualizer": "nothing is drawn while a task is recorded",
+    "resetDebugVisualizerCamera": "nothing is drawn while a task is recorded",
+    "addUserDebugLine": "nothing is drawn while a task is recorded",
+    "addUserDebugText": "nothing is drawn while a task is recorded",
+    "removeUserDebugItem": "nothing is drawn while a task is recorded",
+    "removeAllUserDebugItems": "nothing is drawn while a task is recorded",
+}
+
+
+def _ignored(name: str) -> Any:
+    def call(*args: Any, **kwargs: Any) -> int:
+        active_session().warn(f"p.{name}(...) ignored: {IGNORED_CALLS[name]}")
+        return 0  # what PyBullet returns for a debug item id; other calls return None
+    call.__name__ = name
+    return call
+
+
+def getNumBodies(*args: Any, **kwargs: Any) -> int:
+    """How many objects the task has added so far."""
+    return len(active_session().objects)
+
+
+def getNumJoints(obj_id: int, *args: Any, **kwargs: Any) -> int:
+    """0: every recorded object is a single rigid body."""
+    active_session().obj(obj_id)
+    return 0
+
+
 def __getattr__(name: str) -> Any:
     if name.startswith("__"):
         raise AttributeError(name)
+    if name in IGNORED_CALLS:
+        return _ignored(name)
     raise Unsupported(f"pybullet.{name} is not supported by factask's CLIPort layer "
                       "(only pose maths and recorded-object poses/colours are)")
