@@ -20,6 +20,7 @@ from factask.gen.schemas import (
     SubtaskPlan,
     format_problems,
 )
+from factask.gen.steps import Abort, Evaluation, PromptBuilder, StepRunner
 from factask.model.errors import GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
@@ -105,6 +106,31 @@ def fragment(task: str, factor: SubtaskFactor, variables: list[StateVariable]) -
                           f"problem(s)):\n{format_problems(exc.problems)}",
                           exc.problems) from None
     return graph
+
+
+def checked_fragment(runner: StepRunner, task: str, factor: SubtaskFactor,
+                     variables: list[StateVariable]) -> Evaluation:
+    """The factor's fragment (:func:`fragment`) through the verification ladder."""
+    piece = fragment(task, factor, variables)
+    outcome = runner.verifier.check(piece)
+    return piece, outcome.level, outcome.feedback
+
+
+def ask_design(runner: StepRunner, task: str, subtask: str, prompt: PromptBuilder,
+               schema: dict[str, Any], evaluate: Any) -> tuple[TaskGraph, bool]:
+    """Approach 2, step 2 for one subtask: its verified fragment (remembered when it
+    passed) and whether it passed.
+
+    Raises:
+        Abort: no answer gave a fragment.
+    """
+    out = runner.ask(f"subtask_design:{subtask}", prompt, schema, "subtask_design", evaluate)
+    if out.value is None:
+        raise Abort(f"subtask {subtask!r}: no valid design after "
+                    f"{runner.max_repairs + 1} attempt(s): {out.feedback}")
+    if out.ok:
+        runner.remember(out.value, task)
+    return out.value, out.ok
 
 
 def merge_problems(design: SubtaskDesign,

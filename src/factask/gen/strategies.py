@@ -25,10 +25,13 @@ from typing import Any
 from pydantic import ValidationError
 
 from factask.gen import grounded
+from factask.gen import grounded_subtasks as gs
 from factask.gen import step_schemas as ss
 from factask.gen.conversation import PromptLevel
 from factask.gen.fragments import (
+    ask_design,
     check_goal_scope,
+    checked_fragment,
     closure,
     earlier_text,
     fragment,
@@ -395,6 +398,13 @@ class Generator(StepRunner):
 
     # ------------------------------------------------------- subtasks-first
     def _subtasks_first(self, task: str, desc: str) -> None:
+        found = mentions(f"{desc} {task}")
+        if self.grounded and grounded.applies(found):  # the named objects are constants
+            self._assemble(task, desc, gs.design_fragments(self, task, desc, found), found)
+        else:
+            self._assemble(task, desc, self._subtask_fragments(task, desc), None)
+
+    def _subtask_fragments(self, task: str, desc: str) -> list[TaskGraph]:
         query = f"{task} {desc}"
         outline = self._ask_outline(task, desc, query)
         outline_text = "; ".join(f"`{s.name}`: {s.description}" for s in outline.subtasks)
@@ -429,32 +439,30 @@ class Generator(StepRunner):
                 scope_vars = closure(wanted, {**known, **local})
                 factor = make_factor(sub.name, design.description or sub.description,
                                      design.goal, scope=None)
-                piece = fragment(task, factor, scope_vars)
-                outcome = self.verifier.check(piece)
-                return piece, outcome.level, outcome.feedback
+                return checked_fragment(self, task, factor, scope_vars)
 
-            out = self.ask(f"subtask_design:{sub.name}", prompt, schema, "subtask_design",
-                           evaluate)
-            if out.value is None:
-                raise Abort(f"subtask {sub.name!r}: no valid design after "
-                            f"{self.max_repairs + 1} attempt(s): {out.feedback}")
-            piece = out.value
-            if out.ok:
-                self.remember(piece, task)
+            piece, ok = ask_design(self, task, sub.name, prompt, schema, evaluate)
             fragments.append(piece)
             for v in piece.variables:
                 defined.setdefault(v.name, (v, sub.name))
-            earlier.append({"subtask": sub.name, "verified": out.ok,
+            earlier.append({"subtask": sub.name, "verified": ok,
                             "variables": [v.model_dump(mode="json", exclude_none=True)
                                           for v in piece.variables],
                             "goal": piece.factors[0].goal.model_dump(mode="json",
                                                                       exclude_none=True)})
+        return fragments
+
+    def _assemble(self, task: str, desc: str, fragments: list[TaskGraph],
+                  found: list[Any] | None) -> None:
+        """Merge the subtasks, verify the whole (``found``: grounded, goals use each)."""
         graph = None
         problem = None
         try:
             graph = compose(*fragments, name=task, description=desc)
             # The outline is in the order the subtasks are done (see variables-first).
             graph = graph.model_copy(update={"factors": in_listed_order(graph.factors)})
+            if found is not None:
+                problem = gs.assembly_problem(graph, found)
         except CompositionError as exc:
             problem = f"Merging the subtasks failed: {exc}"
         self._verify_assembled(task, desc, graph, problem)

@@ -1,0 +1,292 @@
+"""Subtasks-first (approach 2) grounded in the objects the proposal names.
+
+The ungrounded approach asks a tiny model for a free outline (names it repeats,
+lists it writes until the token cap) and then for each subtask's whole design
+(variables and goal under the full schema). When the proposal names a movable
+object (:func:`factask.gen.grounded.applies`) the two steps ask only for what is
+left to decide, as the grounded one-shot does:
+
+* **outline**: at most one subtask per movable named object, each an
+  ``object`` (a named movable object: the subtask is about it) and a short
+  ``description``; the subtask's name is derived from the object
+  (``place_red_block``), so names are unique when the objects are. Where the
+  ordered choices are few (:data:`MAX_SEQUENCES`) the schema is an ``anyOf`` of
+  tuples of distinct objects -- no object twice, by construction; beyond that an
+  array of at most as many items as movable objects, a repeated object refused
+  by :func:`read_outline` (fed back). Either way the answer's length is bounded.
+* **design** (per subtask): the named objects are constants, declared from the
+  proposal's words (:func:`named_variables`: kind, colour, count, size ``null``,
+  on the table) and never re-declared; the model writes only the goal over them
+  (the relation among those the proposal's words name,
+  :func:`factask.gen.grounded.goal_answer`), the subtask's own object first in
+  every list the grammar offers. The goal must use that object (moved, or as the
+  anchor): :func:`design_problems`.
+
+The merge and assembly are the ungrounded path's (fragments composed, the outline's
+order sequencing subtasks that move the same object), and the verification
+ladder is unchanged.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from itertools import permutations
+from typing import Any
+
+from factask.gen import grounded
+from factask.gen import step_schemas as ss
+from factask.gen.conversation import PromptLevel
+from factask.gen.fragments import (
+    ask_design,
+    checked_fragment,
+    closure,
+    earlier_text,
+    make_factor,
+)
+from factask.gen.mentions import Mention, mentions_text
+from factask.gen.prompts import render, schema_skeleton
+from factask.gen.schemas import (
+    AnswerError,
+    GoalAnswer,
+    OutlinedSubtask,
+    SubtaskOutline,
+    validate_answer,
+)
+from factask.gen.steps import Abort, Evaluation, StepRunner, read_strict
+from factask.model.graph import TaskGraph
+from factask.model.names import slugify
+from factask.model.variables import StateVariable
+
+Schema = ss.Schema
+
+#: Most ordered outlines written out as tuples (3 movable objects: 15).
+MAX_SEQUENCES = 16
+#: The verb of a subtask's name (``place_red_block``).
+VERB = "place"
+
+
+def subtask_name(obj: str) -> str:
+    """The subtask's name for its object (``red_block`` -> ``place_red_block``)."""
+    return slugify(f"{VERB} {obj}", "_", 48, VERB)
+
+
+def movers(found: Sequence[Mention]) -> list[str]:
+    """The names of the movable named objects, in the proposal's order (at most
+    :data:`~factask.gen.step_schemas.STEP_MAX_SUBTASKS`)."""
+    return [m.name for m in grounded.movable(found)][:ss.STEP_MAX_SUBTASKS]
+
+
+def _sequences(names: Sequence[str]) -> list[tuple[str, ...]] | None:
+    """Every ordered choice of distinct ``names`` (longest first, the proposal's
+    order first), or None when there are more than :data:`MAX_SEQUENCES`."""
+    out: list[tuple[str, ...]] = []
+    for k in range(len(names), 0, -1):
+        for seq in permutations(names, k):
+            out.append(seq)
+            if len(out) > MAX_SEQUENCES:
+                return None
+    return out
+
+
+def _item(obj: Schema) -> Schema:
+    return ss.obj({"object": obj, "description": ss.text(grounded.GROUNDED_TEXT)})
+
+
+def outline_schema(found: Sequence[Mention]) -> Schema:
+    """Approach 2, step 1, grounded: ``{"subtasks": [{object, description}, ...]}``.
+
+    Args:
+        found: The proposal's mentions (with a movable one: :func:`grounded.applies`).
+
+    Returns:
+        The schema: an ``anyOf`` of tuples of distinct objects when few, else an
+        array of 1..n items whose ``object`` is an enum of the movable objects.
+    """
+    names = movers(found)
+    sequences = _sequences(names)
+    if sequences is None:
+        subtasks: Schema = ss.array(_item(ss.name(names)), 1, len(names))
+    else:
+        tuples = [{"type": "array", "prefixItems": [_item({"const": n}) for n in seq],
+                   "items": False, "minItems": len(seq), "maxItems": len(seq)}
+                  for seq in sequences]
+        subtasks = tuples[0] if len(tuples) == 1 else {"anyOf": tuples}
+    return ss.obj({"subtasks": subtasks})
+
+
+def read_outline(data: dict[str, Any], found: Sequence[Mention]) -> SubtaskOutline:
+    """The outline of a (schema-checked) grounded answer.
+
+    Args:
+        data: The answer, ``{"subtasks": [{"object", "description"}, ...]}``.
+        found: The proposal's mentions.
+
+    Returns:
+        One subtask per object, named by :func:`subtask_name`, in the answer's order.
+
+    Raises:
+        AnswerError: an object that is not a movable named one, or one named twice.
+    """
+    allowed = movers(found)
+    items = data.get("subtasks")
+    if not isinstance(items, list) or not items:
+        raise AnswerError("The outline needs at least one subtask.")
+    objects = [i.get("object") if isinstance(i, dict) else None for i in items]
+    unknown = [o for o in objects if o not in allowed]
+    if unknown:
+        raise AnswerError(f"Each subtask's `object` is one of {allowed}; not {unknown}.")
+    repeated = sorted({o for o in objects if objects.count(o) > 1})
+    if repeated:
+        raise AnswerError(f"One subtask per object; named more than once: {repeated}. "
+                          "Put everything done to an object in its one subtask.")
+    return SubtaskOutline(subtasks=[
+        OutlinedSubtask(name=subtask_name(o),
+                        description=str(i.get("description") or f"place the {o}"))
+        for o, i in zip(objects, items, strict=True)])
+
+
+def outline_objects(outline: SubtaskOutline, found: Sequence[Mention]) -> dict[str, str]:
+    """Subtask name -> its object (the inverse of :func:`subtask_name`)."""
+    by_name = {subtask_name(n): n for n in movers(found)}
+    return {s.name: by_name[s.name] for s in outline.subtasks if s.name in by_name}
+
+
+def named_variables(found: Sequence[Mention]) -> list[StateVariable]:
+    """The named objects as variables, declared from the proposal's words: kind,
+    colour (grey when none is named), count; size null (the kind's default); on
+    the table."""
+    return [StateVariable.model_validate({
+        "name": m.name, "description": m.describe(), "kind": m.kind, "size": None,
+        "color": m.color or "gray", "count": m.count, "initial": {"type": "table"}})
+        for m in found]
+
+
+def design_schema(variables: Sequence[StateVariable], obj: str, proposal: str) -> Schema:
+    """Approach 2, step 2, grounded: one subtask's ``{"goal", "description"}``.
+
+    Args:
+        variables: The named objects (:func:`named_variables`), all constants.
+        obj: The subtask's object: listed first wherever the grammar offers names.
+        proposal: The proposal's text (the relations its words name).
+
+    Returns:
+        The goal over the named objects (:func:`factask.gen.grounded.goal_answer`).
+    """
+    ordered = sorted(variables, key=lambda v: v.name != obj)
+    return grounded.goal_answer(ordered, proposal)
+
+
+def design_problems(goal: dict[str, Any], obj: str, found: Sequence[Mention]) -> list[str]:
+    """What a grounded design's goal lacks: its subtask's object, or a group of one.
+
+    Args:
+        goal: The goal (JSON).
+        obj: The subtask's object.
+        found: The proposal's mentions.
+
+    Returns:
+        One line per problem (empty: none).
+    """
+    out = [p.replace("factors.0.", "") for p in grounded.goal_problems([goal], found)
+           if p.startswith("factors.")]
+    names = {n for v in goal.values() for n in (v if isinstance(v, list) else [v])
+             if isinstance(n, str)}
+    if obj not in names:
+        out.append(f"goal: this subtask is about {obj}; its goal must move {obj} or "
+                   "anchor on it")
+    return out
+
+
+def unused_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> list[str]:
+    """The named objects no goal of the assembled task uses (fed back, as for the
+    grounded one-shot)."""
+    return [p for p in grounded.goal_problems(list(goals), found)
+            if not p.startswith("factors.")]
+
+
+def ask_outline(runner: StepRunner, task: str, desc: str,
+                found: Sequence[Mention]) -> SubtaskOutline:
+    """Step 1, grounded: the subtasks, one per movable named object at most.
+
+    Raises:
+        Abort: no valid outline.
+    """
+    schema = outline_schema(found)
+
+    def prompt(lv: PromptLevel) -> str:
+        return render("subtask_outline_grounded", task_name=task, task_description=desc,
+                      mentions=mentions_text(f"{desc} {task}"), movable=", ".join(movers(found)),
+                      schema=schema_skeleton(schema))
+
+    def evaluate(text: str) -> Evaluation:
+        return read_outline(read_strict(text, schema), found), "syntax", None
+
+    out = runner.ask("subtask_outline", prompt, schema, "subtask_outline", evaluate)
+    if not out.ok:
+        raise Abort(f"subtask_outline: {out.feedback}")
+    return out.value
+
+
+def design_fragments(runner: StepRunner, task: str, desc: str,
+                     found: Sequence[Mention]) -> list[TaskGraph]:
+    """Steps 1 and 2, grounded: the outline, then each subtask's goal over the named
+    objects, verified on its own as a one-factor fragment (in the outline's order).
+
+    Raises:
+        Abort: no valid outline, or a subtask with no valid design.
+    """
+    outline = ask_outline(runner, task, desc, found)
+    objects = outline_objects(outline, found)
+    outline_text = "; ".join(f"`{s.name}`: {s.description}" for s in outline.subtasks)
+    variables = named_variables(found)
+    pool = {v.name: v for v in variables}
+    pieces: list[TaskGraph] = []
+    earlier: list[dict[str, Any]] = []
+    for sub in outline.subtasks:
+        obj = objects[sub.name]
+        schema = design_schema(variables, obj, desc)
+
+        def prompt(lv: PromptLevel, sub: Any = sub, schema: Any = schema,
+                   obj: str = obj) -> str:
+            return render(
+                "subtask_design_grounded", task_name=task, task_description=desc,
+                mentions=mentions_text(f"{desc} {task}"), outline=outline_text,
+                subtask_name=sub.name, subtask_description=sub.description, object=obj,
+                earlier=earlier_text(earlier),
+                examples=runner.examples(f"{sub.name} {sub.description}",
+                                         ("memory", "templates"), lv.examples),
+                schema=schema_skeleton(schema))
+
+        def evaluate(text: str, sub: Any = sub, schema: Any = schema,
+                     obj: str = obj) -> Evaluation:
+            data = read_strict(text, schema)
+            problems = design_problems(data["goal"], obj, found)
+            if problems:
+                raise AnswerError("The goal does not fit the subtask:\n"
+                                  + "\n".join(f"- {p}" for p in problems))
+            answer = validate_answer(data, GoalAnswer)
+            used = [pool[n] for n in answer.goal.variable_names() if n in pool]
+            factor = make_factor(sub.name, answer.description or sub.description,
+                                 answer.goal, scope=None)
+            return checked_fragment(runner, task, factor, closure(used, pool))
+
+        piece, ok = ask_design(runner, task, sub.name, prompt, schema, evaluate)
+        pieces.append(piece)
+        earlier.append({"subtask": sub.name, "verified": ok,
+                        "goal": piece.factors[0].goal.model_dump(mode="json",
+                                                                  exclude_none=True)})
+    return pieces
+
+
+def assembly_problem(graph: TaskGraph, found: Sequence[Mention]) -> str | None:
+    """The assembled graph's named objects that no goal uses, as feedback (None: none)."""
+    lines = unused_problems([f.goal.model_dump(mode="json", exclude_none=True)
+                             for f in graph.factors], found)
+    if not lines:
+        return None
+    return "The goals do not make the proposal's task:\n" + "\n".join(f"- {p}" for p in lines)
+
+
+__all__ = ["MAX_SEQUENCES", "VERB", "ask_outline", "assembly_problem", "design_fragments",
+           "design_problems", "design_schema", "movers", "named_variables", "outline_objects",
+           "outline_schema", "read_outline", "subtask_name", "unused_problems"]
