@@ -1,0 +1,194 @@
+"""Subtasks-first grounded in the objects the proposal names (factask.gen.grounded_subtasks)."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from factask.gen import grounded_subtasks as gs
+from factask.gen.mentions import mentions
+from factask.gen.schemas import AnswerError
+from factask.gen.step_schemas import schema_problems
+from factask.model.palette import COLOR_NAMES
+
+PROPOSAL = "put the yellow cylinder and the red block in the blue zone"
+FOUR = "put the red block, the green block, the blue block and the yellow block on the pallet"
+
+
+def _item(obj: str, text: str = "it is placed") -> dict:
+    return {"object": obj, "description": text}
+
+
+def _design(goal: dict, text: str = "done") -> str:
+    return json.dumps({"goal": goal, "description": text})
+
+
+IN_ZONE = {"type": "in_zone", "zone": "blue_zone"}
+
+
+def test_the_outline_has_each_movable_object_at_most_once_by_construction() -> None:
+    found = mentions(PROPOSAL)
+    assert gs.movers(found) == ["yellow_cylinder", "red_block"]  # the zone stays put
+    schema = gs.outline_schema(found)
+    for objects in (["yellow_cylinder", "red_block"], ["red_block", "yellow_cylinder"],
+                    ["red_block"], ["yellow_cylinder"]):
+        assert schema_problems({"subtasks": [_item(o) for o in objects]}, schema) == []
+    for objects in (["red_block", "red_block"], ["blue_zone"], [], ["green_ball"],
+                    ["red_block", "yellow_cylinder", "red_block"]):
+        assert schema_problems({"subtasks": [_item(o) for o in objects]}, schema), objects
+    # Every branch is a tuple of constants, no object twice.
+    for branch in schema["properties"]["subtasks"]["anyOf"]:
+        objects = [i["properties"]["object"]["const"] for i in branch["prefixItems"]]
+        assert len(objects) == len(set(objects)) and branch["items"] is False
+    # Bounded text: an answer cannot run to the token cap.
+    assert branch["prefixItems"][0]["properties"]["description"]["maxLength"] <= 60
+
+
+def test_many_movable_objects_get_a_bounded_enum_and_a_repeat_is_refused() -> None:
+    found = mentions(FOUR)
+    names = gs.movers(found)
+    assert len(names) == 4
+    subtasks = gs.outline_schema(found)["properties"]["subtasks"]
+    assert subtasks["maxItems"] == 4 and subtasks["items"]["properties"]["object"]["enum"] == names
+    with pytest.raises(AnswerError, match="more than once"):
+        gs.read_outline({"subtasks": [_item(names[0]), _item(names[0])]}, found)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["red_block", "green_block", "blue_block",
+                                           "yellow_block", "pallet", "ball"]),
+                          st.text(max_size=20)), max_size=6))
+def test_read_outline_names_subtasks_after_distinct_objects_or_refuses(items) -> None:
+    found = mentions(FOUR)
+    allowed = gs.movers(found)
+    data = {"subtasks": [_item(o, t) for o, t in items]}
+    objects = [o for o, _ in items]
+    if objects and all(o in allowed for o in objects) and len(set(objects)) == len(objects):
+        outline = gs.read_outline(data, found)
+        names = [s.name for s in outline.subtasks]
+        assert names == [gs.subtask_name(o) for o in objects]
+        assert len(set(names)) == len(names)
+        assert gs.outline_objects(outline, found) == dict(zip(names, objects, strict=True))
+    else:
+        with pytest.raises(AnswerError):
+            gs.read_outline(data, found)
+
+
+def test_the_design_has_the_named_objects_as_constants_and_its_object_first() -> None:
+    found = mentions(PROPOSAL)
+    variables = gs.named_variables(found)
+    assert [(v.name, v.kind, v.color) for v in variables] == [
+        ("yellow_cylinder", "cylinder", "yellow"), ("red_block", "block", "red"),
+        ("blue_zone", "zone", "blue")]
+    schema = gs.design_schema(variables, "red_block", PROPOSAL)
+    assert set(schema["properties"]) == {"goal", "description"}  # no variables to re-declare
+    goal = schema["properties"]["goal"]
+    assert goal["properties"]["type"] == {"const": "in_zone"}  # the only relation named
+    assert goal["properties"]["objects"]["items"]["enum"] == ["red_block", "yellow_cylinder"]
+    good = {**IN_ZONE, "objects": ["red_block", "yellow_cylinder"]}
+    assert schema_problems(json.loads(_design(good)), schema) == []
+    for wrong in ({**IN_ZONE, "objects": ["blue_zone"]},            # a zone is not moved
+                  {**IN_ZONE, "objects": ["green_block"]},          # not a named object
+                  {"type": "on", "objects": ["red_block"], "support": "yellow_cylinder"},
+                  {**IN_ZONE, "objects": ["red_block"], "zone": "red_zone"}):
+        assert schema_problems(json.loads(_design(wrong)), schema), wrong
+
+
+def test_a_design_must_use_its_subtask_object() -> None:
+    found = mentions(PROPOSAL)
+    assert gs.design_problems({**IN_ZONE, "objects": ["red_block"]}, "red_block", found) == []
+    problems = gs.design_problems({**IN_ZONE, "objects": ["yellow_cylinder"]}, "red_block",
+                                  found)
+    assert len(problems) == 1 and "red_block" in problems[0]
+
+
+def _run(script: dict, proposal: str = PROPOSAL):
+    from factask.gen import Generator, LLMClient, LLMConfig, Verifier
+    from factask.gen.loopback import LoopbackServer, ScriptedResponder
+
+    with LoopbackServer(ScriptedResponder(script)) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=0, timeout=30))
+        return Generator(client, Verifier(episodes=1), max_repairs=0,
+                         grounded=True).generate(proposal, "subtasks-first")
+
+
+GOOD = {
+    "subtask_outline": [json.dumps({"subtasks": [_item("yellow_cylinder"),
+                                                 _item("red_block")]})],
+    "subtask_design:place_yellow_cylinder": [_design({**IN_ZONE,
+                                                      "objects": ["yellow_cylinder"]})],
+    "subtask_design:place_red_block": [_design({**IN_ZONE, "objects": ["red_block"]})],
+}
+
+
+def test_grounded_subtasks_first_through_the_pipeline_reaches_completion() -> None:
+    result = _run(GOOD)
+    assert result.level_reached == "completion", result.failure
+    assert [s.step for s in result.steps] == [
+        "subtask_outline", "subtask_design:place_yellow_cylinder",
+        "subtask_design:place_red_block", "assembly"]
+    graph = result.graph
+    assert graph is not None
+    assert [f.name for f in graph.factors] == ["place_yellow_cylinder", "place_red_block"]
+    assert {(v.name, v.kind, v.color) for v in graph.variables} == {
+        ("yellow_cylinder", "cylinder", "yellow"), ("red_block", "block", "red"),
+        ("blue_zone", "zone", "blue")}
+
+
+def test_an_outline_naming_an_object_twice_is_refused() -> None:
+    script = dict(GOOD, subtask_outline=[json.dumps(
+        {"subtasks": [_item("red_block"), _item("red_block")]})])
+    result = _run(script)
+    assert result.level_reached == "none"
+    assert result.failure.startswith("subtask_outline")
+    assert not result.steps[0].ok and len(result.steps) == 1
+
+
+def test_a_design_whose_goal_leaves_out_its_object_is_refused() -> None:
+    script = dict(GOOD, **{"subtask_design:place_red_block": [
+        _design({**IN_ZONE, "objects": ["yellow_cylinder"]})]})
+    result = _run(script)
+    assert result.level_reached == "none"
+    assert "place_red_block" in result.failure and "red_block" in result.steps[-1].feedback
+
+
+def test_a_named_object_no_goal_uses_fails_the_assembly() -> None:
+    script = {"subtask_outline": [json.dumps({"subtasks": [_item("yellow_cylinder")]})],
+              "subtask_design:place_yellow_cylinder": GOOD[
+                  "subtask_design:place_yellow_cylinder"]}
+    result = _run(script)
+    assert result.level_reached != "completion"
+    assert result.steps[-1].step == "assembly" and not result.steps[-1].ok
+    assert "red_block" in result.steps[-1].feedback
+
+
+def test_a_proposal_naming_nothing_movable_takes_the_ungrounded_path() -> None:
+    result = _run({"subtask_outline": ['{"subtasks": []}']}, "build something nice")
+    assert result.failure.startswith("subtask_outline")
+    assert "object" not in (result.steps[0].feedback or "")
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(sorted(COLOR_NAMES)),
+                          st.sampled_from(["block", "cylinder", "ball", "zone", "bowl"])),
+                min_size=1, max_size=5))
+def test_grounded_subtask_schemas_turn_into_a_llama_cpp_grammar(pairs) -> None:
+    llama_grammar = pytest.importorskip("llama_cpp.llama_grammar")
+    from factask.gen import grounded
+
+    proposal = " and ".join(f"the {c} {k}" for c, k in pairs) + " in a row"
+    found = mentions(proposal)
+    if not grounded.applies(found):
+        return
+    variables = gs.named_variables(found)
+    schemas = [gs.outline_schema(found)] + [gs.design_schema(variables, o, proposal)
+                                            for o in gs.movers(found)]
+    for schema in schemas:
+        gbnf = llama_grammar.json_schema_to_gbnf(json.dumps(schema))
+        assert "root" in gbnf
+        assert not re.search(r"::=[ \t]*$", gbnf, re.MULTILINE), gbnf
