@@ -185,7 +185,7 @@ def test_task_files_that_exit_or_recurse_fail_with_a_non_zero_code(
 
 
 @pytest.mark.parametrize(("count", "said"), [
-    (150, "variables: List should have at most"),
+    (150, "a factask scene holds at most 100"),
     (100_000, "adds more than"),
 ])
 def test_task_files_adding_absurd_numbers_of_objects_fail_quickly_and_briefly(
@@ -207,3 +207,27 @@ def test_task_files_adding_absurd_numbers_of_objects_fail_quickly_and_briefly(
     assert said in result.output and "Traceback" not in result.output
     assert "errors.pydantic.dev" not in result.output
     assert len(result.output) < 1_000
+
+
+def test_a_task_file_allocating_too_much_memory_fails_quickly_in_the_batch(
+        tmp_path, monkeypatch) -> None:
+    from factask.compat.cliport.batch import run_one
+
+    task = tmp_path / "hog.py"
+    task.write_text(
+        "import numpy as np\n"
+        "from cliport.tasks.task import Task\n"
+        "class Hog(Task):\n"
+        "    def reset(self, env):\n"
+        "        super().reset(env)\n"
+        "        self.hoard = [np.ones((1024, 1024, 64)) for _ in range(64)]\n")
+    monkeypatch.setenv("FACTASK_WORKER_MEMORY_MB", "1500")
+    rec = run_one(task, timeout=120)
+    assert rec["loaded"] and not rec["imported"]
+    assert "MemoryError" in rec["error"], rec["error"]
+
+
+def test_a_batch_over_a_folder_without_task_files_is_refused(tmp_path) -> None:
+    result = _cli("import-cliport-batch", str(tmp_path), "-o", str(tmp_path / "r.jsonl"))
+    assert result.exit_code == 2, result.output
+    assert "has no .py files" in result.output

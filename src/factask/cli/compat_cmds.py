@@ -94,15 +94,18 @@ def import_cliport_batch_cmd(
     as_json: bool = typer.Option(False, "--json", help=JSON_HELP + " It holds folder, out, "
                                  "files, imported and every file's record."),
 ) -> None:
-    """Run the batch; exit 0 even if files fail (their lines say why)."""
+    """Run the batch; exit 0 even if files fail (their lines say why); 2 for a
+    folder that is missing or holds no ``.py`` file."""
     from factask.compat.cliport.batch import run_batch, task_files
 
     if not folder.is_dir():
         err_console.print(f"[red]{escape(str(folder))} is not a folder[/red]")
         raise typer.Exit(2)
     n = len(task_files(folder))
-    if n == 0:
-        err_console.print(f"[yellow]{escape(str(folder))} has no .py files[/yellow]")
+    if n == 0:  # nothing to measure is a mistake in the command, not a result
+        err_console.print(f"[red]{escape(str(folder))} has no .py files: give the folder "
+                          "that holds the task files[/red]")
+        raise typer.Exit(2)
 
     def show(rec: dict) -> None:
         ok = rec.get("imported") and not rec.get("error")

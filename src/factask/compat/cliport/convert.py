@@ -54,6 +54,7 @@ from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
 from factask.model.kinds import WALL_THICKNESS, kind_spec
+from factask.model.limits import MAX_OBJECTS
 from factask.model.names import slugify
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
@@ -337,6 +338,11 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     in_ropes = {oid for r in ropes for oid in r.ids}
     # The beads are the ropes' segments: no object of their own, host of nothing.
     objects = [o for o in objects if o.obj_id not in in_ropes]
+    solid = sum(o.obj_id not in in_piles for o in objects)
+    if solid > MAX_OBJECTS:  # before any goal is read into poses: one clear line
+        raise CliportImportError(
+            f"the task adds {solid} objects (besides piles and ropes); a factask scene "
+            f"holds at most {MAX_OBJECTS} (factask.model.limits.MAX_OBJECTS): add fewer")
     if getattr(task, "ee", None) is Spatula and not piles:
         warn("the task asks for a spatula but has no pile to push; factask uses its "
              "suction cup")

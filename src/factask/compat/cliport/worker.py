@@ -23,6 +23,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
+import resource
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -34,6 +36,28 @@ from factask.compat.cliport.loader import import_cliport
 from factask.compat.cliport.scoring import scored_episode
 from factask.sim.compile import compile_graph
 from factask.sim.episode import run_episode
+
+#: Data memory (heap and private mappings) a task file's worker may use, MiB; a
+#: file allocating more gets a ``MemoryError`` (reported like any exception) in
+#: seconds instead of swapping the machine until its time limit.
+#: ``FACTASK_WORKER_MEMORY_MB`` overrides it.
+DEFAULT_MEMORY_MB = 4096
+
+
+def limit_memory(megabytes: int | None = None) -> int:
+    """Cap this process's data memory (``RLIMIT_DATA``); returns the cap in MiB.
+
+    Args:
+        megabytes: The cap; default ``FACTASK_WORKER_MEMORY_MB`` or
+            :data:`DEFAULT_MEMORY_MB`. A hard limit already lower is kept.
+    """
+    mb = megabytes or int(os.environ.get("FACTASK_WORKER_MEMORY_MB") or DEFAULT_MEMORY_MB)
+    want = mb * 1024 * 1024
+    _, hard = resource.getrlimit(resource.RLIMIT_DATA)
+    if hard != resource.RLIM_INFINITY:
+        want = min(want, hard)
+    resource.setrlimit(resource.RLIMIT_DATA, (want, hard))
+    return want // (1024 * 1024)
 
 
 def new_record(path: str) -> dict[str, Any]:
@@ -146,6 +170,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--graph-out", default=None)
     ap.add_argument("--ravens", action="store_true")
     args = ap.parse_args(argv)
+    limit_memory()
     out = sys.stdout
     sys.stdout = sys.stderr  # user code's prints must not mix with the records
     out.write(READY_LINE + "\n")  # imports done: the parent's time limit starts now
