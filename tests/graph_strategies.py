@@ -102,10 +102,12 @@ def task_graphs(draw: st.DrawFn, prefix: str = "", max_factors: int = 5) -> Task
             options.append("inside")
         if kinds["support"] or movable_supports:
             options.append("on")
-        if fixed:
+        n_inst = sum(v.count for v in movable if v.name in objs)
+        # aligned gives each object an instance of the reference of its own.
+        references = [v.name for v in fixed if v.count >= n_inst]
+        if references:
             options.append("aligned")
         rtype = draw(st.sampled_from(options))
-        n_inst = sum(v.count for v in movable if v.name in objs)
         if rtype == "in_zone":
             goal = InZone(objects=objs, zone=draw(st.sampled_from(kinds["region"])))
         elif rtype == "inside":
@@ -130,7 +132,7 @@ def task_graphs(draw: st.DrawFn, prefix: str = "", max_factors: int = 5) -> Task
         elif rtype == "circle":
             goal = Circle(objects=objs, radius=draw(st.one_of(st.none(), st.just(0.1))))
         elif rtype == "aligned":
-            goal = Aligned(objects=objs, reference=draw(st.sampled_from([v.name for v in fixed])))
+            goal = Aligned(objects=objs, reference=draw(st.sampled_from(references)))
         else:
             poses = [TargetPose(x=0.3 + 0.05 * i, y=0.1 * k - 0.2, yaw_deg=0.0)
                      for i in range(n_inst)]

@@ -105,3 +105,22 @@ def test_held_objects_never_count_as_placed(kind: str) -> None:
     fs = check_task(graph, solved, poses, held=held).factors[fname]
     assert not fs.satisfied and s.objects[0] not in fs.placed
     assert "held by the robot" in fs.detail
+
+
+def test_aligned_needs_an_instance_of_the_reference_per_object_before_any_reset() -> None:
+    from factask.model import GraphValidationError
+    from factask.model.variables import StateVariable
+    from factask.relations import Aligned
+
+    def graph(corners: int) -> TaskGraph:
+        return TaskGraph(
+            name="t",
+            variables=[StateVariable(name="balls", kind="ball", count=3),
+                       StateVariable(name="corner", kind="corner", count=corners)],
+            factors=[SubtaskFactor(name="f", goal=Aligned(objects=["balls"],
+                                                          reference="corner", mode="corner"))])
+
+    with pytest.raises(GraphValidationError, match="3 object.*'corner' has 1 instance") as err:
+        graph(1).ensure_valid()
+    assert (err.value.problems[0].node, err.value.problems[0].field) == ("f", "goal.objects")
+    graph(3).ensure_valid()

@@ -7,7 +7,9 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
+from factask.model.errors import Problem
 from factask.model.names import Name
+from factask.model.variables import StateVariable
 from factask.relations.base import RelationBase
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import CheckScene, Verdict, check_slots
@@ -37,6 +39,21 @@ class Aligned(RelationBase):
         return ([{"name": "ell", "kind": "ell", "color": "purple"},
                  {"name": "fixture", "kind": "fixture"}],
                 cls(objects=["ell"], reference="fixture"))
+
+    def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
+        """Beyond the anchor's kind: an instance of the reference for every object
+        (each object is aligned with one of its own), found before any reset."""
+        out = super().problems(factor, variables)
+        ref = variables.get(self.reference)
+        n = sum(variables[o].count for o in dict.fromkeys(self.objects) if o in variables)
+        if ref is not None and n > ref.count:
+            out.append(Problem(factor, "goal.objects",
+                               f"{n} object(s) to align but {self.reference!r} has "
+                               f"{ref.count} instance(s): each object is aligned with an "
+                               "instance of its own",
+                               f"give {self.reference!r} count {n}, or use 'on' or "
+                               "'in_zone' to put several objects on one"))
+        return out
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         refs = ctx.inst(self.reference)
