@@ -120,7 +120,7 @@ def test_aligned_needs_an_instance_of_the_reference_per_object_before_any_reset(
             factors=[SubtaskFactor(name="f", goal=Aligned(objects=["balls"],
                                                           reference="corner", mode="corner"))])
 
-    with pytest.raises(GraphValidationError, match="3 object.*'corner' has 1 instance") as err:
+    with pytest.raises(GraphValidationError, match=r"3 object.*'corner' has 1 instance") as err:
         graph(1).ensure_valid()
     assert (err.value.problems[0].node, err.value.problems[0].field) == ("f", "goal.objects")
     graph(3).ensure_valid()
