@@ -105,3 +105,32 @@ def test_a_tower_sent_to_one_point_is_not_spread() -> None:
     goal.targets = [(np.array([0.5, 0.0, 0.02]), np.array([0.0, 0.0, 0.0, 1.0])),
                     (np.array([0.5, 0.0, 0.02]), np.array([0.0, 0.0, 0.0, 1.0]))]
     assert separate_targets([goal], 0.0075) == {}
+
+
+def _ball(i: int) -> RecordedObject:
+    return RecordedObject(obj_id=i, urdf="sphere/sphere.urdf", kind="ball",
+                          size=(0.04, 0.04, 0.04), color="red", category="rigid",
+                          pos=np.zeros(3), quat=np.array([0.0, 0.0, 0.0, 1.0]))
+
+
+@given(st.integers(2, 6), st.floats(0.0, 0.1))
+def test_balls_sharing_a_target_go_side_by_side_within_the_spread_else_stacked(
+        n: int, spread: float) -> None:
+    goal = RecordedGoal(0, [_ball(i) for i in range(n)], [0.0] * n, np.ones((n, 1), dtype=int),
+                        [(np.array([0.5, 0.0, 0.02]), np.array([0.0, 0.0, 0.0, 1.0]))], True,
+                        False, "pose", [], 1.0, "balls in the bowl")
+    messages: list[str] = []
+    share_targets(goal, messages.append, spread=spread)
+    pos = np.array([p for p, _ in goal.targets])
+    assert len(pos) == n and goal.matches.shape == (n, n) and goal.matches.all()
+    offsets = np.linalg.norm(pos[:, :2] - [0.5, 0.0], axis=1)
+    if np.allclose(pos[:, 2], 0.02):  # side by side: within the spread, clear of each other
+        assert offsets.max() <= spread + 1e-9
+        gaps = np.linalg.norm(pos[:, None, :2] - pos[None, :, :2], axis=2) + np.eye(n)
+        assert gaps.min() >= np.hypot(0.04, 0.04) - 1e-9
+        assert "side by side" in messages[0]
+    else:  # stacked at the point: the ring would leave the author's tolerance
+        assert np.allclose(offsets, 0) and np.allclose(np.diff(pos[:, 2]), 0.04)
+        half_diagonal = np.hypot(0.04, 0.04) / 2
+        assert half_diagonal / np.sin(np.pi / n) > spread
+        assert "stacked" in messages[0]

@@ -377,7 +377,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                  "(a zero row of matches); they are left out")
             g.objs = [g.objs[i] for i in rows]
             g.matches = g.matches[rows, :]
-        share_targets(g, warn)
+        share_targets(g, warn, spread=SEPARATE_LIMIT * pos_eps)
     shifted = separate_targets([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],
                                SEPARATE_LIMIT * pos_eps)
     for index, shift in sorted(shifted.items()):

@@ -131,9 +131,18 @@ def read_goals(task: Any, session: Session) -> list[RecordedGoal]:
     return out
 
 
-def share_targets(goal: RecordedGoal, warn: Any) -> None:
+def _ring(count: int, objs: list[RecordedObject]) -> float:
+    """Radius of a ring of ``count`` copies side by side, each as wide as the widest
+    footprint diagonal of ``objs`` (clear of each other at any yaw, as
+    :func:`separate_targets` measures them)."""
+    width = max(math.hypot(o.size[0], o.size[1]) for o in objs) + 2 * SEPARATE_GAP
+    return width / 2 / math.sin(math.pi / count)
+
+
+def share_targets(goal: RecordedGoal, warn: Any, spread: float = 0.0) -> None:
     """Give each object of a pose goal that shares its targets (``replace=True``, more
-    objects than targets) a copy of a target of its own, copies at one point stacked.
+    objects than targets) a copy of a target of its own: copies at one point stacked,
+    or side by side around it when the objects cannot carry one another.
 
     Ravens lets any number of objects match one target when ``replace`` is set and
     checks XY only: "all blocks in the bowl" as ``matches = ones((n, 1))`` to the
@@ -141,7 +150,11 @@ def share_targets(goal: RecordedGoal, warn: Any) -> None:
     builds. factask checks every object against a target of its own, with heights: the
     objects are spread over the targets each may take (as evenly as ``matches``
     allows), and the k-th copy at a target is put one object height above the one
-    before, so :func:`resting_heights` stacks them.
+    before, so :func:`resting_heights` stacks them. Objects that are no support (balls:
+    a ball on a ball does not stay) are put in a ring around the target instead, each
+    touching its neighbours, when the ring's radius is within ``spread`` (the author's
+    ``pos_eps`` less a margin: every copy stays within the author's tolerance of the
+    target, so Ravens' XY check holds too); otherwise they are stacked as before.
     """
     n, m = len(goal.objs), len(goal.targets)
     if goal.metric != "pose" or not goal.replace or n <= m or m == 0:
@@ -154,18 +167,34 @@ def share_targets(goal: RecordedGoal, warn: Any) -> None:
         owner.append(j)
         taken[j] += 1
     targets, matches_cols = [], []
+    ringed: list[bool] = []  # per shared target: side by side (True) or stacked
     for j, (pos, quat) in enumerate(goal.targets):
         allowed = [o for i, o in enumerate(goal.objs) if goal.matches[i, j]]
         height = max((o.size[2] for o in allowed), default=0.0)
-        for k in range(taken[j]):
-            targets.append((np.asarray(pos, dtype=float) + np.array([0.0, 0.0, k * height]),
-                            np.asarray(quat, dtype=float)))
+        k_all = taken[j]
+        ring = (_ring(k_all, allowed) if k_all > 1 and allowed
+                and not any(kind_spec(o.kind).support for o in allowed) else math.inf)
+        for k in range(k_all):
+            if ring <= spread:
+                angle = 2 * math.pi * k / k_all
+                offset = np.array([ring * math.cos(angle), ring * math.sin(angle), 0.0])
+            else:
+                offset = np.array([0.0, 0.0, k * height])
+            targets.append((np.asarray(pos, dtype=float) + offset, np.asarray(quat, dtype=float)))
             matches_cols.append(goal.matches[:, j])
+        if k_all > 1:
+            ringed.append(ring <= spread)
     goal.targets = targets
     goal.matches = np.stack(matches_cols, axis=1).astype(int)
-    stacked = "/".join(str(t) for t in taken if t > 1)
+    stacked = "/".join(str(t) for t, r in zip([t for t in taken if t > 1], ringed,
+                                               strict=True) if not r)
+    side = "/".join(str(t) for t, r in zip([t for t in taken if t > 1], ringed,
+                                            strict=True) if r)
+    how = ", ".join(([f"{stacked} stacked at one point"] if stacked else [])
+                    + ([f"{side} side by side around one point (they cannot carry "
+                        "one another)"] if side else []))
     warn(f"goal {goal.index}: {n} objects share {m} target pose(s) (replace=True; Ravens "
-         f"checks XY only): each gets a copy of one, {stacked} stacked at one point")
+         f"checks XY only): each gets a copy of one, {how}")
 
 
 def _separation(a: tuple[np.ndarray, float, tuple[float, float]],
