@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 
-from factask.compat.cliport.goals import RecordedGoal, share_targets
+from factask.compat.cliport.goals import SEPARATE_GAP, RecordedGoal, share_targets
 from factask.compat.cliport.recorder import RecordedObject
 
 
@@ -131,6 +131,6 @@ def test_balls_sharing_a_target_go_side_by_side_within_the_spread_else_stacked(
         assert "side by side" in messages[0]
     else:  # stacked at the point: the ring would leave the author's tolerance
         assert np.allclose(offsets, 0) and np.allclose(np.diff(pos[:, 2]), 0.04)
-        half_diagonal = np.hypot(0.04, 0.04) / 2
-        assert half_diagonal / np.sin(np.pi / n) > spread
+        half_width = (np.hypot(0.04, 0.04) + 2 * SEPARATE_GAP) / 2  # touching, plus a gap
+        assert half_width / np.sin(np.pi / n) > spread
         assert "stacked" in messages[0]
