@@ -124,3 +124,29 @@ def test_aligned_needs_an_instance_of_the_reference_per_object_before_any_reset(
         graph(1).ensure_valid()
     assert (err.value.problems[0].node, err.value.problems[0].field) == ("f", "goal.objects")
     graph(3).ensure_valid()
+
+
+@pytest.mark.parametrize(("goal", "initial"), [
+    ({"type": "on", "objects": ["b"], "support": "p"}, {"type": "on", "support": "p"}),
+    ({"type": "inside", "objects": ["b"], "container": "c"}, {"type": "inside", "container": "c"}),
+    ({"type": "in_zone", "objects": ["b"], "zone": "c"}, {"type": "inside", "container": "c"}),
+])
+def test_a_first_goal_its_objects_meet_by_their_start_is_refused_before_any_reset(
+        goal: dict, initial: dict) -> None:
+    from factask.model import GraphValidationError, parse_graph
+
+    def graph(start: dict | None, after: list[str]) -> dict:
+        block = {"name": "b", "kind": "block", **({"initial": start} if start else {})}
+        return {"name": "t", "variables": [block, {"name": "p", "kind": "pallet"},
+                                           {"name": "c", "kind": "container"},
+                                           {"name": "z", "kind": "zone"}],
+                "factors": ([{"name": "first", "weight": 0.5, "milestone": True,
+                              "goal": {"type": "in_zone", "objects": ["b"], "zone": "z"}}]
+                            if after else [])
+                + [{"name": "f", "goal": goal, "after": after, "weight": 0.5 if after else 1}]}
+
+    with pytest.raises(GraphValidationError, match="met at the start") as err:
+        parse_graph(graph(initial, [])).ensure_valid()
+    assert (err.value.problems[0].node, err.value.problems[0].field) == ("f", "goal")
+    parse_graph(graph(None, [])).ensure_valid()  # starts on the table
+    parse_graph(graph(initial, ["first"])).ensure_valid()  # moved away first, then back

@@ -58,6 +58,11 @@ class RelationBase(BaseModel, abc.ABC):
     #: ``row`` runs along a corner marker's arm, though a corner is not a region).
     anchor_kinds: ClassVar[Mapping[str, tuple[str, ...]]] = {}
 
+    #: The anchor field such that an object starting on or in its variable already
+    #: meets the goal (``on``'s support, ``inside``'s container, ``in_zone``'s zone);
+    #: None: no start placement meets it by itself.
+    met_by_starting_in: ClassVar[str | None] = None
+
     objects: list[Name] = Field(
         min_length=1, description="Variables this goal moves (all instances of each)."
     )
@@ -118,6 +123,21 @@ class RelationBase(BaseModel, abc.ABC):
                                        "choose another variable or relation"))
         return out
 
+    def met_at_start(self, variables: Mapping[str, StateVariable]) -> str | None:
+        """The host every object of the goal starts on or in, when that start alone
+        meets the goal (see :attr:`met_by_starting_in`); else None.
+
+        Args:
+            variables: The graph's variables by name.
+        """
+        if self.met_by_starting_in is None:
+            return None
+        anchors = set(self.anchor_names(self.met_by_starting_in))
+        hosts = {_start_host(variables.get(o)) for o in self.objects}
+        if len(hosts) == 1 and (host := hosts.pop()) in anchors:
+            return host
+        return None
+
     @classmethod
     @abc.abstractmethod
     def example(cls) -> tuple[list[dict[str, Any]], RelationBase]:
@@ -146,3 +166,9 @@ class RelationBase(BaseModel, abc.ABC):
             CheckError: a needed pose is missing or not finite.
         """
         return factor_status(solved, scene, self.check(solved, scene))
+
+
+def _start_host(v: StateVariable | None) -> str | None:
+    """The variable ``v`` starts on (``StartOn``) or in (``StartInside``), if any."""
+    initial = getattr(v, "initial", None)
+    return getattr(initial, "support", None) or getattr(initial, "container", None)

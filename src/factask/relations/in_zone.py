@@ -26,6 +26,7 @@ class InZone(RegionRelation):
     packing plan; left out, the library packs them."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"zone": ("region",)}
+    met_by_starting_in: ClassVar[str | None] = "zone"
     region_field: ClassVar[str] = "zone"
 
     type: Literal["in_zone"] = "in_zone"

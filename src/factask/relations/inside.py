@@ -14,6 +14,7 @@ class Inside(RegionRelation):
     fixture): within its inner walls, below its rim."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"container": ("receptacle",)}
+    met_by_starting_in: ClassVar[str | None] = "container"
     region_field: ClassVar[str] = "container"
     between_floor_and_rim: ClassVar[bool] = True
 

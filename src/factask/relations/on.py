@@ -34,6 +34,7 @@ class On(RelationBase):
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {
         "support": ("support", "receptacle")}
+    met_by_starting_in: ClassVar[str | None] = "support"
 
     type: Literal["on"] = "on"
     support: Name
