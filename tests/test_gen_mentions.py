@@ -165,3 +165,19 @@ def test_an_everyday_word_accepts_every_kind_it_may_mean() -> None:
     assert missing_mentions(proposal, as_bowl) == []
     as_zone = [as_bowl[0], StateVariable(name="basket", kind="zone", color="red")]
     assert [m.name for m in missing_mentions(proposal, as_zone)] == ["red_container"]
+
+
+def test_counts_read_past_modifiers_and_from_a_list_of_colours() -> None:
+    assert _names("Sort four differently colored blocks into four matching colored bowls") == [
+        ("blocks", "block", None, 4), ("bowls", "bowl", None, 4)]
+    assert _names("twelve blocks of four different colors and a pallet") == [
+        ("blocks", "block", None, 12), ("pallet", "pallet", None, 1)]
+    # A plural with no count is counted by the list of its colours right after it...
+    assert _names("stack the blocks (red, blue, green, and yellow) on the stand") == [
+        ("blocks", "block", None, 4), ("stand", "stand", None, 1)]
+    assert _names("cylinders of different colors: red, blue and green") == [
+        ("cylinders", "cylinder", None, 3)]
+    # ... not by colours that belong to the next noun.
+    assert _names("put the blocks in the red and blue bowls") == [
+        ("blocks", "block", None, 2), ("red_bowl", "bowl", "red", 1),
+        ("blue_bowl", "bowl", "blue", 1)]

@@ -72,8 +72,24 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
 #: Count words (a digit string is read too).
 NUMBER_WORDS: dict[str, int] = {
     "a": 1, "an": 1, "one": 1, "single": 1, "two": 2, "pair": 2, "three": 3, "four": 4,
-    "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10,
+    "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10, "eleven": 11,
+    "twelve": 12, "dozen": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15,
+    "sixteen": 16,
 }
+#: Words that may stand between a count and its kind word without changing what is
+#: counted: "four differently colored blocks", "three small matching cubes".
+MODIFIERS = frozenset({
+    "different", "differently", "colored", "coloured", "color", "colour", "matching",
+    "corresponding", "identical", "distinct", "various", "similar", "same", "other",
+    "small", "smaller", "little", "tiny", "large", "larger", "big", "bigger", "tall",
+    "short", "wooden", "plastic", "solid", "empty", "separate", "individual", "more",
+    "random", "randomly", "placed", "scattered", "multicolored", "multicoloured",
+})
+#: Words that may stand between a plural kind word and the list of its colours that
+#: counts it: "blocks (red, blue, green)", "cylinders of different colors: red, ...".
+COLOUR_LIST_LEAD = frozenset({"of", "in", "with", "different", "differently", "colors",
+                              "colours", "color", "colour", "colored", "coloured",
+                              "various", "distinct", "the", "following", "namely"})
 #: Most mentions listed (a proposal is a sentence or two, not an inventory).
 MAX_MENTIONS = 8
 #: Largest count read from a proposal (the graph model's count limit is larger).
@@ -131,7 +147,10 @@ def mentions(proposal: str) -> list[Mention]:
     A mention is a kind word with the colour words and the count word just
     before it: ``three red blocks``; ``red and green zones`` names a red zone and
     a green zone; ``six red and blue blocks`` three of each. A plural without a
-    count counts 2 (per colour).
+    count counts 2 (per colour). Words of :data:`MODIFIERS` may stand between the
+    count and the kind ("four differently colored blocks": 4); a plural with no
+    count followed by a list of its colours is counted by the list ("blocks (red,
+    blue, green)": 3).
 
     A later phrase naming a kind already named refers back, it names no new
     object: an uncoloured one ("a blue sphere ... the sphere"), and a coloured one
@@ -190,8 +209,12 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
         if earlier and (not colors or any(m.color is None and m.count > 1
                                            for m in earlier)):
             continue  # a reference to an object already named (see above)
+        while j >= 0 and words[j] in MODIFIERS:  # "four differently colored blocks"
+            j -= 1
         before = words[j] if j >= 0 else ""
         total = int(before) if before.isdigit() else NUMBER_WORDS.get(before, 0)
+        if not total and plural and not colors:
+            total = _listed_colours(words, i + 1)  # "blocks (red, blue, green)"
         for color in colors or [None]:
             if total and len(colors) > 1:
                 count = max(total // len(colors), 1)
@@ -207,6 +230,23 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()))
             if len(found) >= MAX_MENTIONS:
                 return
+
+
+def _listed_colours(words: list[str], start: int) -> int:
+    """How many colours the list right after a plural kind word names ("blocks of
+    different colors (red, blue, green, yellow)": 4), or 0 when none follows or the
+    colours are another noun's ("blocks in the red and blue bowls")."""
+    k = start
+    while k < len(words) and k - start < 4 and words[k] in COLOUR_LIST_LEAD:
+        k += 1
+    listed = 0
+    while k < len(words) and (words[k] in COLOR_NAMES or (words[k] in ("and", "or")
+                                                           and listed)):
+        listed += words[k] in COLOR_NAMES
+        k += 1
+    if listed < 2 or (k < len(words) and _kind_of(words[k])[0] is not None):
+        return 0
+    return listed
 
 
 def mentions_text(proposal: str) -> str:
