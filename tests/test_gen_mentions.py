@@ -181,3 +181,10 @@ def test_counts_read_past_modifiers_and_from_a_list_of_colours() -> None:
     assert _names("put the blocks in the red and blue bowls") == [
         ("blocks", "block", None, 2), ("red_bowl", "bowl", "red", 1),
         ("blue_bowl", "bowl", "blue", 1)]
+
+
+def test_ell_shaped_is_read_like_l_shaped() -> None:
+    assert _names("three different colored ell-shaped fixtures") == [
+        ("fixtures", "fixture", None, 3)]
+    assert _names("put the ell-shaped block into the L-shaped hole") == [
+        ("ell", "ell", None, 1), ("fixture", "fixture", None, 1)]

@@ -61,10 +61,10 @@ TRAILING_NAME = re.compile(r"^(.*\S)\s+([a-z0-9]+(?:-[a-z0-9]+)+)\s*$", re.DOTAL
 PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
     # "an L shape hole" is a hole (the words say its shape); any other L shape (with
     # or without a noun: block, piece, ...) is an ell.
-    (re.compile(r"\bl\s*shaped?\s+(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"),
-     ""),
-    (re.compile(r"\bl\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|bar))?"
-                r"(s?)\b"), r"ell\1"),
+    (re.compile(r"\b(?:l|ell)\s*shaped?\s+"
+                r"(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"), ""),
+    (re.compile(r"\b(?:l|ell)\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|"
+                r"bar))?(s?)\b"), r"ell\1"),
     (re.compile(r"\b(?:pile|heap)\s+of\s+(?:(?:small|tiny|little)\s+)?"
                 rf"(?:({'|'.join(COLOR_NAMES)})\s+)?(?:(?:small|tiny|little)\s+)?[a-z]+"),
      r"\1 pile"),
