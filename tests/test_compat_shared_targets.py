@@ -9,8 +9,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 
-from factask.compat.cliport.goals import SEPARATE_GAP, RecordedGoal, share_targets
+from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject
+from factask.compat.cliport.sharing import SEPARATE_GAP, share_targets
 
 
 def _block(i: int, height: float = 0.04) -> RecordedObject:
@@ -74,7 +75,7 @@ def test_targets_are_spread_as_evenly_as_the_matches_allow() -> None:
 @given(st.integers(2, 5), st.floats(0.030, 0.050), st.floats(-3.1, 3.1))
 def test_targets_overlapping_a_little_are_moved_apart_within_the_limit(
         n: int, spacing: float, yaw: float) -> None:
-    from factask.compat.cliport.goals import _separation, separate_targets
+    from factask.compat.cliport.sharing import _separation, separate_targets
 
     quat = np.array([0.0, 0.0, np.sin(yaw / 2), np.cos(yaw / 2)])
     axis = np.array([np.cos(yaw), np.sin(yaw), 0.0])
@@ -99,7 +100,7 @@ def test_targets_overlapping_a_little_are_moved_apart_within_the_limit(
 
 
 def test_a_tower_sent_to_one_point_is_not_spread() -> None:
-    from factask.compat.cliport.goals import separate_targets
+    from factask.compat.cliport.sharing import separate_targets
 
     goal = _goal(np.eye(2, dtype=int), replace=False)
     goal.targets = [(np.array([0.5, 0.0, 0.02]), np.array([0.0, 0.0, 0.0, 1.0])),

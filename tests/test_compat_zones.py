@@ -10,9 +10,10 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from factask.compat.cliport import import_cliport
-from factask.compat.cliport.goals import RecordedGoal, zone_parts
+from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject
 from factask.compat.cliport.scoring import scored_episode
+from factask.compat.cliport.sharing import zone_parts
 from factask.sim.env import FactaskEnv
 
 SORT_FILE = (Path(__file__).parent / "cliport_tasks" / "zone_metric_caps"

@@ -37,10 +37,7 @@ from factask.compat.cliport.goals import (
     RecordedGoal,
     read_goals,
     resting_heights,
-    separate_targets,
-    share_targets,
     target_pose,
-    zone_parts,
     zone_poses,
 )
 from factask.compat.cliport.grippers import Spatula
@@ -48,6 +45,7 @@ from factask.compat.cliport.piles import RAVENS_PILE_FRACTION, find_piles
 from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.ropes import find_ropes, rope_goal
 from factask.compat.cliport.scoring import RavensGoal
+from factask.compat.cliport.sharing import separate_targets, share_targets, zone_parts
 from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
 from factask.geometry import Pose, tilt_deg
 from factask.model.errors import GraphValidationError
