@@ -15,8 +15,10 @@ rounded by at most the distance covered in the overlap, and the robot never
 stops at a via point.
 
 A move may also follow a smooth curve through via points (:func:`curve_move`: a
-cubic spline in the same space), timed by one profile from its start to its end,
-so the robot does not slow down at the via points either.
+cubic spline in the same space), timed from its start to its end without stopping
+at the via points: by the time-optimal parameterisation of the curve under the
+per-axis limits (:class:`CurveTiming`), or by one trapezoid slowed down evenly to
+the curve's worst point where that is no slower.
 """
 
 from __future__ import annotations
@@ -33,6 +35,11 @@ import numpy as np
 Shape = Callable[[np.ndarray], np.ndarray]
 #: Samples of a curve's path parameter where its speed and curvature are bounded.
 _CURVE_SAMPLES = 64
+#: Intervals of the grid of the path parameter the time-optimal timing works on.
+_TOPP_STEPS = 100
+#: Share of each limit the time-optimal timing plans for: the limits hold on its
+#: grid (each interval's start, middle and end); the margin covers the rest.
+_TOPP_MARGIN = 0.98
 
 
 @dataclass(frozen=True)
@@ -104,8 +111,9 @@ def profile(delta: np.ndarray, vmax: np.ndarray, amax: np.ndarray,
     return Profile(duration, ta, v, a)
 
 
-def blend(points: list[np.ndarray], profiles: list[Profile], overlap: float | Sequence[float],
-          dt: float, shapes: list[Shape | None] | None = None) -> np.ndarray:
+def blend(points: list[np.ndarray], profiles: list[Profile | CurveTiming],
+          overlap: float | Sequence[float], dt: float,
+          shapes: list[Shape | None] | None = None) -> np.ndarray:
     """Sample a path through ``points`` whose consecutive moves overlap in time.
 
     Move ``k`` (from ``points[k]`` to ``points[k+1]``) starts ``overlap`` seconds
@@ -159,12 +167,14 @@ def constant_speed(start: np.ndarray, goal: np.ndarray, duration: float,
     return start[None, :] + s[:, None] * (goal - start)[None, :]
 
 
-def curve_move(knots: np.ndarray, vmax: np.ndarray, amax: np.ndarray) -> tuple[Shape, Profile]:
+def curve_move(knots: np.ndarray, vmax: np.ndarray,
+               amax: np.ndarray) -> tuple[Shape, Profile | CurveTiming]:
     """A smooth move through ``knots`` (start, via points, end) and its fastest profile.
 
     The curve is a natural cubic spline through the knots, parameterised by chord length
     (``s`` from 0 to 1). Axis ``i`` moves at ``q_i'(s) ds/dt`` and accelerates at
-    ``q_i''(s) (ds/dt)^2 + q_i'(s) d2s/dt2``: the profile is the trapezoid of
+    ``q_i''(s) (ds/dt)^2 + q_i'(s) d2s/dt2``: the timing is the time-optimal one
+    (:class:`CurveTiming`), or, where that is no faster, the trapezoid of
     :func:`profile` under the largest ``|q_i'|``, slowed down evenly until the
     curvature term fits the acceleration limits too.
 
@@ -192,7 +202,14 @@ def curve_move(knots: np.ndarray, vmax: np.ndarray, amax: np.ndarray) -> tuple[S
     if need > 1.0:
         prof = profile(d1, vmax, amax, min_time=prof.duration * math.sqrt(need))
     start = knots[0]
-    return (lambda s: spline(s) - start[None, :]), prof
+    # The grid: _TOPP_STEPS even intervals, and at least 8 between two knots however
+    # close (a short span of the spline can bend sharply).
+    grid = np.unique(np.concatenate([
+        np.linspace(a, b, max(8, math.ceil((b - a) * _TOPP_STEPS)) + 1)
+        for a, b in itertools.pairwise(spline.u)]))
+    timing = CurveTiming.of(spline, np.asarray(vmax, float), np.asarray(amax, float), grid)
+    return (lambda s: spline(s) - start[None, :]), (timing if timing.duration < prof.duration
+                                                    else prof)
 
 
 class _NaturalSpline:
@@ -232,7 +249,107 @@ class _NaturalSpline:
         return c0 + jerk * t
 
 
-def move_starts(profiles: list[Profile], overlap: Sequence[float]) -> list[float]:
+class CurveTiming:
+    """The time-optimal timing of a curve's path parameter ``s`` from rest to rest.
+
+    Axis ``i`` of the curve ``q(s)`` moves at ``q_i'(s) ds/dt`` and accelerates at
+    ``q_i''(s) (ds/dt)^2 + q_i'(s) d2s/dt2``. On a grid of ``s``, with ``x = (ds/dt)^2``
+    and ``u = d2s/dt2`` constant over each interval (so ``x`` grows by ``2 u ds``), the
+    speed limits bound ``x`` and the acceleration limits bound ``u`` to an interval
+    that depends on ``x`` (empty above some ``x``: the curvature term alone would
+    break a limit). A backward pass finds at each grid point the largest ``x`` from
+    which the motion can still come to rest at the end (the controllable set, as in
+    TOPP-RA), a forward pass accelerates as hard as allowed while staying in it.
+    Both limits hold at the grid points with :data:`_TOPP_MARGIN` to spare.
+
+    Attributes:
+        duration: Total time (s).
+        accel_time: The shorter of the time to the end of the first speed-up and
+            the time from the start of the last slow-down (s): what a corner of a
+            :func:`blend` may overlap, as :attr:`Profile.accel_time`.
+    """
+
+    def __init__(self, s: np.ndarray, times: np.ndarray, x: np.ndarray, u: np.ndarray) -> None:
+        self._s, self._times, self._u = s, times, u
+        self._sdot = np.sqrt(x)
+        self.duration = float(times[-1])
+        rising = np.flatnonzero(u > 0.0)
+        if len(rising) == 0 or not math.isfinite(self.duration):
+            self.accel_time = 0.0
+        else:
+            up = times[int(np.argmax(u <= 0.0))] if (u <= 0.0).any() else self.duration
+            down = self.duration - times[rising[-1] + 1]
+            self.accel_time = float(min(up, down))
+
+    def at(self, t: np.ndarray) -> np.ndarray:
+        """``s`` at times ``t`` (clipped to [0, duration]), same shape as ``t``."""
+        t = np.clip(t, 0.0, self.duration)
+        i = np.clip(np.searchsorted(self._times, t, side="right") - 1, 0, len(self._u) - 1)
+        tau = t - self._times[i]
+        return np.clip(self._s[i] + self._sdot[i] * tau + 0.5 * self._u[i] * tau * tau, 0.0, 1.0)
+
+    @classmethod
+    def of(cls, curve: Callable[[np.ndarray, int], np.ndarray], vmax: np.ndarray,
+           amax: np.ndarray, grid: np.ndarray | None = None) -> CurveTiming:
+        """The timing of ``curve(s, derivative)`` (s in [0, 1]) under the per-axis
+        limits, on ``grid`` (increasing, from 0 to 1; default :data:`_TOPP_STEPS`
+        even intervals); its duration is infinite where the grid leaves no way through."""
+        s = np.linspace(0.0, 1.0, _TOPP_STEPS + 1) if grid is None else np.asarray(grid, float)
+        steps = len(s) - 1
+        h = np.diff(s)
+        hh = np.append(h, h[-1])[:, None]
+        d1, d2 = curve(s, 1), curve(s, 2)
+        vm, am = _TOPP_MARGIN * vmax, _TOPP_MARGIN * amax
+        mid = s[:-1] + 0.5 * h
+        # The speed limits at each grid point and the middles of both its intervals.
+        x_speed = 1.0 / np.maximum(((np.abs(d1) / vm) ** 2).max(axis=1), 1e-300)
+        x_mid = 1.0 / np.maximum(((np.abs(curve(mid, 1)) / vm) ** 2).max(axis=1), 1e-300)
+        x_speed = np.minimum(x_speed, np.minimum(np.append(x_mid, np.inf),
+                                                 np.insert(x_mid, 0, np.inf)))
+        # Interval j's u must fit the limits at its start (s_j, x_j), its middle and its
+        # end: at s_j + f h, with x_j + 2 f h u, the acceleration is
+        # q'' x_j + (q' + 2 f h q'') u there (the middle: where a joint turns back).
+        m1, m2 = np.vstack([curve(mid, 1), d1[-1:]]), np.vstack([curve(mid, 2), d2[-1:]])
+        e1, e2 = np.vstack([d1[1:], d1[-1:]]), np.vstack([d2[1:], d2[-1:]])
+        d1 = np.concatenate([d1, m1 + hh * m2, e1 + 2.0 * hh * e2], axis=1)
+        d2 = np.concatenate([d2, m2, e2], axis=1)
+        am = np.concatenate([am, am, am])
+        flat = np.abs(d1) < 1e-9
+        p = np.where(flat, 1e-9, d1)
+        half = am / np.abs(p)  # u lies within -k x +- half, per constraint
+        k = d2 / p
+        # x bounds: the speeds; some u for every pair of constraints; an axis at rest.
+        gap = k[:, :, None] - k[:, None, :]
+        pair = (half[:, :, None] + half[:, None, :]) / np.where(gap < 0.0, -gap, np.nan)
+        x_pair = np.min(np.where(gap < 0.0, pair, np.inf), axis=(1, 2))
+        x_still = np.where(flat, am / np.maximum(np.abs(d2), 1e-300), np.inf).min(axis=1)
+        x_lim = np.minimum(np.minimum(x_speed, x_pair), x_still)
+        # The next x from x: at most min_i (x c_i + b_i) (the largest u), at least
+        # max_i (x c_i - b_i) (the smallest).
+        c_all, b_all = (1.0 - 2.0 * hh * k).tolist(), (2.0 * hh * half).tolist()
+        lim = x_lim.tolist()
+        reach = [0.0] * (steps + 1)  # backward: the largest x that can still stop
+        for j in range(steps - 1, 0, -1):
+            nxt, best = reach[j + 1], lim[j]
+            for c, b in zip(c_all[j], b_all[j], strict=True):
+                if c > 0.0 and (nxt + b) / c < best:
+                    best = (nxt + b) / c
+            reach[j] = max(best, 0.0)
+        x = [0.0] * (steps + 1)  # forward: as fast as the limits and the stop allow
+        for j in range(steps - 1):
+            xj = x[j]
+            grow = min(xj * c + b for c, b in zip(c_all[j], b_all[j], strict=True))
+            x[j + 1] = max(0.0, min(reach[j + 1], grow))
+        xs = np.array(x)
+        u = np.diff(xs) / (2.0 * h)
+        root = np.sqrt(xs)
+        with np.errstate(divide="ignore"):
+            dt = np.where(root[:-1] + root[1:] > 0.0, 2.0 * h / (root[:-1] + root[1:]), np.inf)
+        times = np.concatenate([[0.0], np.cumsum(dt)])
+        return cls(s, times, xs, u)
+
+
+def move_starts(profiles: list[Profile | CurveTiming], overlap: Sequence[float]) -> list[float]:
     """Start time (s) of each move of a :func:`blend`: each starts ``overlap``
     (per corner; at most the shorter of the two accelerations) before the
     previous one ends."""
