@@ -142,3 +142,26 @@ def test_a_server_that_died_is_started_again_before_the_next_request() -> None:
         assert json.loads(reply.text)["color"] in ("blue", "red", "green")
         assert srv.restarts == 2
     assert not srv.revive()  # stopped on purpose: not started again
+
+
+def test_a_server_that_keeps_dying_at_once_stops_the_run_with_the_fix() -> None:
+    import os
+    import signal
+
+    from factask.gen.llm_errors import LLMFatalError
+    from factask.gen.local import TESTED_LLAMA_CPP, LocalServerCrashError
+
+    with LocalLlamaServer() as srv:
+        for attempt in range(srv.QUICK_DEATHS_FATAL):
+            assert srv._proc is not None
+            os.kill(srv._proc.pid, signal.SIGKILL)  # as a build that crashes on this CPU
+            srv._proc.wait(timeout=10)
+            if attempt < srv.QUICK_DEATHS_FATAL - 1:
+                assert srv.revive()  # one death, or two, may be a bad request: restart
+        with pytest.raises(LocalServerCrashError) as info:
+            srv.revive()
+    assert isinstance(info.value, LLMFatalError)  # the run stops, no retries
+    line = info.value.line()
+    assert "killed by SIGKILL" in line and f"=={TESTED_LLAMA_CPP}" in line
+    assert "\n" not in line
+    assert not srv.running

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any
 
-from factask.gen.llm_errors import LLMConfigError, LLMError
+from factask.gen.llm_errors import LLMConfigError, LLMError, LLMFatalError
 
 #: The model used when none is configured.
 DEFAULT_LOCAL_MODEL = "local/smollm2-135m"
@@ -41,6 +41,18 @@ LOCAL_PREFIX = "local/"
 
 class LocalModelError(LLMError):
     """The local model is not installed, or its server did not start."""
+
+
+class LocalServerCrashError(LocalModelError, LLMFatalError):
+    """The local server keeps dying within seconds of each start (a llama.cpp build
+    that crashes on this CPU): no call can succeed, so the run stops."""
+
+    what = "the local model server keeps crashing"
+
+
+#: llama-cpp-python version factask's local model is tested with (pyproject pins it:
+#: later versions' vendored llama.cpp crashed in libggml-cpu on an AVX-512/AMX Xeon).
+TESTED_LLAMA_CPP = "0.3.16"
 
 
 @dataclass(frozen=True)
@@ -266,6 +278,10 @@ class LocalLlamaServer:
     #: Tokens a chat template adds per message (role markers) and for the reply's start.
     PER_MESSAGE_TOKENS = 6
     REPLY_PRIMING_TOKENS = 4
+    #: A server that dies this soon after starting, this many times in a row, is
+    #: broken, not unlucky (one bad grammar takes down one server, not every one).
+    QUICK_DEATH_S = 20.0
+    QUICK_DEATHS_FATAL = 3
 
     def __init__(self, model: str | None = None, n_ctx: int | None = None,
                  startup_timeout: float = 90.0, n_threads: int | None = None,
@@ -282,6 +298,9 @@ class LocalLlamaServer:
         self.restarts = 0
         #: The end of the log of each server that died under us (why, for the report).
         self.deaths: list[str] = []
+        #: Deaths in a row, each within ``QUICK_DEATH_S`` of its start.
+        self.quick_deaths = 0
+        self._started_at = 0.0
 
     # --------------------------------------------------------------- lifecycle
     @property
@@ -324,6 +343,7 @@ class LocalLlamaServer:
                                           stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                                           env=env, start_new_session=True)
             if self._wait_ready():
+                self._started_at = time.monotonic()
                 return self
             tail = self.log_tail()
             self.stop()
@@ -384,7 +404,19 @@ class LocalLlamaServer:
         was restarted; does nothing before the first start or after :meth:`stop`."""
         if self._proc is None or self.running:
             return False
+        code = self._proc.returncode
         self.deaths.append(self.log_tail())
+        quick = time.monotonic() - self._started_at < self.QUICK_DEATH_S
+        self.quick_deaths = self.quick_deaths + 1 if quick else 0
+        if self.quick_deaths >= self.QUICK_DEATHS_FATAL:
+            self.stop()
+            raise LocalServerCrashError(
+                f"{self.alias} died {self.quick_deaths} times in a row within "
+                f"{self.QUICK_DEATH_S:.0f} s of starting ({describe_exit(code)}); "
+                f"llama-cpp-python {installed_llama_cpp()}; its log ends: "
+                f"{self.deaths[-1][-300:]}",
+                fix=f"pip install 'llama-cpp-python[server]=={TESTED_LLAMA_CPP}' (the "
+                    "version factask is tested with), or pass --model for another provider")
         self.restart()
         return True
 
@@ -426,6 +458,30 @@ class LocalLlamaServer:
                 + self.REPLY_PRIMING_TOKENS)
 
 
+def describe_exit(code: int | None) -> str:
+    """``exit code 1`` or ``killed by SIGSEGV`` for a process's return code."""
+    import signal
+
+    if code is None:
+        return "still running"
+    if code < 0:
+        try:
+            return f"killed by {signal.Signals(-code).name}"
+        except ValueError:
+            return f"killed by signal {-code}"
+    return f"exit code {code}"
+
+
+def installed_llama_cpp() -> str:
+    """The installed llama-cpp-python's version, or ``not installed``."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("llama-cpp-python")
+    except metadata.PackageNotFoundError:
+        return "not installed"
+
+
 def check_local_model(model: str | None) -> None:
     """Raise a clear error now if the local model cannot be used (before any work).
 
@@ -439,6 +495,7 @@ def check_local_model(model: str | None) -> None:
                              "'llama-cpp-python[server]' (or reinstall factask)")
 
 
-__all__ = ["DEFAULT_LOCAL_MODEL", "LOCAL_MODELS", "LocalLlamaServer", "LocalModelError",
-           "LocalModelSpec", "check_local_model", "default_threads", "free_port", "is_local",
+__all__ = ["DEFAULT_LOCAL_MODEL", "LOCAL_MODELS", "TESTED_LLAMA_CPP", "LocalLlamaServer",
+           "LocalModelError", "LocalModelSpec", "LocalServerCrashError", "check_local_model",
+           "default_threads", "describe_exit", "free_port", "installed_llama_cpp", "is_local",
            "package_dir", "parse_count_reply", "parse_models_reply", "resolve_local"]
