@@ -44,10 +44,16 @@ RATE_LEVELS = ("syntax", "runtime", "completion")
 
 RESULTS_FILE = "results.jsonl"
 
-_DEFORMABLE_WORDS = re.compile(
+#: What no factask world can hold: cloth and bags (ropes and piles of small blocks
+#: are relations with their own oracles: ``rope_along``, ``pile_in_zone``).
+_CLOTH_WORDS = re.compile(r"\b(cloths?|fabrics?|towels?|bags?|sacks?)\b")
+_CLOTH_ASSETS = ("cloth", "bag")
+#: The research sample's pool is the rigid tasks (as the research's table was):
+#: these words and assets keep a task out of it, ropes and piles included.
+_NON_RIGID_WORDS = re.compile(
     r"\b(ropes?|cables?|cloths?|fabrics?|bags?|sacks?|piles?|particles?|sweep(?:ing|s)?|"
     r"swept|spatula)\b")
-_DEFORMABLE_ASSETS = ("rope", "cloth", "bag", "cable")
+_NON_RIGID_ASSETS = ("rope", "cloth", "bag", "cable")
 _PUSH_WORDS = re.compile(r"\b(push(?:ing|es)?|sweep(?:ing|s)?)\b")
 
 
@@ -115,47 +121,60 @@ def research_sample(tasks: Sequence[BenchTask], n: int = RESEARCH_SAMPLE_SIZE,
                     seed: int = RESEARCH_SAMPLE_SEED) -> list[BenchTask]:
     """The fixed task sample of the generation table.
 
-    The rule: of the tasks a rigid suction world can express
-    (:func:`not_expressible_reason` is None), sorted by name, ``n`` drawn by
-    ``random.Random(seed).sample``; returned in the list's own order. With the
-    packaged list this is always the same 55 tasks (docs/generation.md lists them).
+    The rule: of the rigid tasks (:func:`non_rigid_reason` is None: no rope,
+    cloth, bag, pile or sweeping -- the research's table covered rigid tasks),
+    sorted by name, ``n`` drawn by ``random.Random(seed).sample``; returned in
+    the list's own order. With the packaged list this is always the same 55
+    tasks (docs/generation.md lists them).
 
     Args:
         tasks: The task list.
-        n: Sample size (all expressible tasks if fewer).
+        n: Sample size (all rigid tasks if fewer).
         seed: Seed of the draw.
 
     Returns:
         The sample.
     """
-    pool = sorted((t for t in tasks if not_expressible_reason(t) is None),
-                  key=lambda t: t.name)
+    pool = sorted((t for t in tasks if non_rigid_reason(t) is None), key=lambda t: t.name)
     chosen = {t.name for t in random.Random(seed).sample(pool, min(n, len(pool)))}
     return [t for t in tasks if t.name in chosen]
 
 
-def not_expressible_reason(task: BenchTask) -> str | None:
-    """Why a rigid suction world cannot express ``task``, or None if it can.
-
-    Detects deformables and particles from the task's words (rope, cloth, bag,
-    piles, sweeping) and its assets (rope/cloth/bag URDFs; small blocks pushed
-    or swept as a pile).
-    """
+def _found(task: BenchTask, words: re.Pattern[str], assets: Sequence[str],
+           pushed_small_blocks: bool) -> str | None:
+    """What of ``words`` and ``assets`` the task mentions, or None."""
     text = f"{task.name.replace('-', ' ')} {task.description}".lower()
-    found = sorted(set(_DEFORMABLE_WORDS.findall(text)))
-    assets = " ".join(task.assets).lower()
-    bad_assets = [a for a in _DEFORMABLE_ASSETS if a in assets]
-    if "block/small.urdf" in assets and _PUSH_WORDS.search(text):
+    found = sorted(set(words.findall(text)))
+    used = " ".join(task.assets).lower()
+    bad_assets = [a for a in assets if a in used]
+    if pushed_small_blocks and "block/small.urdf" in used and _PUSH_WORDS.search(text):
         bad_assets.append("small blocks pushed as a pile")
-    if not found and not bad_assets:
-        return None
     parts = []
     if found:
         parts.append("mentions " + ", ".join(found))
     if bad_assets:
         parts.append("assets: " + ", ".join(bad_assets))
-    return ("needs deformables or particles (ropes, cloth, bags, piles, sweeping) that a "
-            "rigid suction world cannot express: " + "; ".join(parts))
+    return "; ".join(parts) or None
+
+
+def not_expressible_reason(task: BenchTask) -> str | None:
+    """Why factask cannot express ``task``, or None if it can.
+
+    Cloth and bags (from the task's words and assets) have no factask kind;
+    ropes and piles of small blocks do (``rope_along``, ``pile_in_zone``), so
+    such tasks are sent to the model like any other.
+    """
+    found = _found(task, _CLOTH_WORDS, _CLOTH_ASSETS, pushed_small_blocks=False)
+    if found is None:
+        return None
+    return "needs cloth or bags, which factask has no kind for: " + found
+
+
+def non_rigid_reason(task: BenchTask) -> str | None:
+    """Why ``task`` is not a rigid pick-and-place task (ropes, cloth, bags, piles,
+    sweeping), or None: the research sample's pool (:func:`research_sample`)."""
+    found = _found(task, _NON_RIGID_WORDS, _NON_RIGID_ASSETS, pushed_small_blocks=True)
+    return None if found is None else "needs deformables or particles: " + found
 
 
 # ------------------------------------------------------------------ results file
@@ -439,6 +458,7 @@ __all__ = [
     "default_tasks_path",
     "finished_pairs",
     "load_tasks",
+    "non_rigid_reason",
     "not_expressible_reason",
     "plot_rates",
     "read_results",
