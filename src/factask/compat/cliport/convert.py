@@ -46,6 +46,7 @@ from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.ropes import find_ropes, rope_goal
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.sharing import separate_targets, share_targets, zone_parts
+from factask.compat.cliport.starts import fits_inside, separate_starts
 from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
 from factask.geometry import Pose, tilt_deg
 from factask.model.errors import GraphValidationError
@@ -64,6 +65,9 @@ from factask.scene.collision import centre_in_workspace
 START_ABOVE_TABLE = 0.01
 #: Slack when deciding that a support's top is under an object's bottom, metres.
 SUPPORT_SLACK = 0.02
+#: An object too wide for a receptacle whose bottom is at most this far (m) below the
+#: receptacle's top rests on its rim.
+RIM_SLACK = 0.005
 #: An object whose bottom is this far (m) below the table top has sunk into it.
 SINK_EPS = 0.001
 #: Weights are rescaled silently when they sum to 1 within this; beyond it, with a warning.
@@ -128,18 +132,30 @@ def _in_workspace(o: RecordedObject) -> bool:
 
 
 def _hosts(o: RecordedObject, others: list[RecordedObject]
-           ) -> tuple[list[RecordedObject], list[RecordedObject]]:
-    """The receptacles ``o`` starts in and the supports it starts on."""
+           ) -> tuple[list[RecordedObject], list[RecordedObject], list[RecordedObject]]:
+    """The receptacles ``o`` starts in, the supports it starts on, and the
+    receptacles on whose rim it rests (too wide to go in: stacked containers)."""
     bottom = float(o.pos[2]) - o.size[2] / 2
     # Any other object may hold it, whatever the order the task added them in (a
     # stack added top first); only a lower one can be its support, so no cycles.
     holders = [c for c in others if _in_workspace(c) and _inside_footprint(o.pos[:2], c)]
     receptacles = [c for c in holders if kind_spec(c.kind).receptacle
                    and c.pos[2] - c.size[2] / 2 <= bottom + SUPPORT_SLACK]
+    rims = [c for c in receptacles if not fits_inside(o, c)
+            and bottom >= c.pos[2] + c.size[2] / 2 - RIM_SLACK]
+    receptacles = [c for c in receptacles if c not in rims]
     # A centre inside a support's footprint cannot rest on the table: it is on it.
     supports = [c for c in holders if kind_spec(c.kind).support
                 and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
-    return receptacles, supports
+    return receptacles, supports, rims
+
+
+def _on_table_as_given(o: RecordedObject, others: list[RecordedObject],
+                       moved: set[int]) -> bool:
+    """Whether factask starts ``o`` on the table at the author's pose (``AtFixedPose``)."""
+    if o.random_start and o.obj_id in moved and o.category != "fixed":
+        return False
+    return _in_workspace(o) and not any(_hosts(o, others))
 
 
 def _settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int],
@@ -153,9 +169,8 @@ def _settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int
         if (o.random_start and o.obj_id in moved and o.category != "fixed") or (
                 not _in_workspace(o)):
             continue  # factask samples its start anyway
-        receptacles, supports = _hosts(o, objects[:k] + objects[k + 1:])
-        if receptacles or supports:
-            continue
+        if any(_hosts(o, objects[:k] + objects[k + 1:])):
+            continue  # in or on a host (or on a rim: a random start, see _placement)
         name = names[o.obj_id]
         bottom = float(o.pos[2]) - o.size[2] / 2
         if bottom < -SINK_EPS:
@@ -188,7 +203,12 @@ def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int,
         warn(f"{name} starts outside the workspace at ({x:.3f}, {y:.3f}); it starts at a "
              "random free spot instead")
         return OnTable()
-    receptacles, below = _hosts(o, others)
+    receptacles, below, rims = _hosts(o, others)
+    if rims and not receptacles and not below:
+        warn(f"{name} starts on the rim of {names[rims[-1].obj_id]!r}, too wide to go in "
+             "(stacked receptacles); factask cannot rest it on a rim: it starts at a "
+             "random free spot instead")
+        return OnTable()
     if receptacles:
         host = receptacles[-1]
         return StartInside(container=names[host.obj_id], **_given_place(o, host))
@@ -384,6 +404,10 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
              f"{(pos_eps - shift) * 1000:.1f} mm (the check stays within the author's)")
     goal_objects = {o.obj_id for g in goals for o in g.objs}
     _settle(objects, names, goal_objects, warn)
+    given = [o for k, o in enumerate(objects) if o.obj_id not in in_piles
+             and _on_table_as_given(o, objects[:k] + objects[k + 1:], goal_objects)]
+    separate_starts(given, {o.obj_id for o in given if o.obj_id in goal_objects or (
+        o.category != "fixed" and kind_spec(o.kind).movable)}, names, warn)
     rest = resting_heights([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],
                            objects, goal_objects)
     drafts: list[tuple[RecordedGoal, Any]] = []

@@ -1,0 +1,90 @@
+"""Start poses a task's author gave by hand that factask cannot take as they are.
+
+* :func:`fits_inside`: whether an object fits between a receptacle's walls (a
+  container as wide as the one under it rests on that one's rim: "the containers
+  start stacked");
+* :func:`separate_starts`: hand-placed objects on the table whose footprints
+  overlap by a little are pushed apart until they touch, as PyBullet pushes them
+  apart at its first step (a row of 4 cm blocks put 3.5 cm apart).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from factask.compat.cliport.recorder import RecordedObject
+from factask.compat.cliport.sharing import SEPARATE_GAP, SEPARATE_ROUNDS, _separation
+from factask.compat.cliport.transforms import yaw_of_xyzw
+from factask.model.kinds import WALL_THICKNESS, kind_spec
+
+#: Farthest (m) one hand-placed start is moved off the objects it overlaps. Deeper
+#: overlaps are not a nudge PyBullet would make quietly: they are left as given.
+START_NUDGE = 0.02
+
+
+def _half_extents(o: RecordedObject, yaw: float) -> np.ndarray:
+    """Half extents (x, y) of the box around ``o``'s footprint in a frame at ``yaw``."""
+    rel = yaw_of_xyzw(o.quat) - yaw
+    c, s = abs(math.cos(rel)), abs(math.sin(rel))
+    return np.array([c * o.size[0] + s * o.size[1], s * o.size[0] + c * o.size[1]]) / 2
+
+
+def fits_inside(o: RecordedObject, host: RecordedObject) -> bool:
+    """Whether ``o``'s footprint, turned as the author turned it, fits between the
+    walls of receptacle ``host`` (its size less a wall each side)."""
+    room = np.array(host.size[:2], dtype=float) / 2 - WALL_THICKNESS
+    return bool(np.all(_half_extents(o, yaw_of_xyzw(host.quat)) <= room))
+
+
+def _footprint(o: RecordedObject) -> tuple[np.ndarray, float, tuple[float, float]]:
+    return (np.array(o.pos[:2], dtype=float), yaw_of_xyzw(o.quat),
+            (o.size[0] / 2, o.size[1] / 2))
+
+
+def separate_starts(objects: list[RecordedObject], movable: set[int], names: dict[int, str],
+                    warn: Any, limit: float = START_NUDGE) -> None:
+    """Push apart hand-placed objects on the table whose footprints overlap by a little.
+
+    ``objects`` are the objects factask starts at the author's pose on the table;
+    ``movable`` the ids among them that may move (a fixed body stays where it was
+    put, and two fixed bodies may interpenetrate). Authors place rows by hand and
+    PyBullet separates what overlaps at its first step; factask refuses an overlap
+    at a given pose. Each movable object is moved (in place, with a warning) at most
+    ``limit``; when that does not clear every overlap, nothing is moved.
+    """
+    solid = [o for o in objects if kind_spec(o.kind).collides]
+    pairs = [(a, b) for i, a in enumerate(solid) for b in solid[i + 1:]
+             if (a.obj_id in movable or b.obj_id in movable)
+             and _separation(_footprint(a), _footprint(b)) is not None]
+    if not pairs:
+        return
+    start = {o.obj_id: np.array(o.pos, dtype=float) for o in solid}
+    for _ in range(SEPARATE_ROUNDS):
+        pushed = False
+        for a, b in pairs:
+            move = _separation(_footprint(a), _footprint(b))
+            if move is None:
+                continue
+            move = move * (1 + 2 * SEPARATE_GAP / max(float(np.linalg.norm(move)), 1e-9))
+            share_a = 0.5 if b.obj_id in movable else 1.0
+            if a.obj_id not in movable:
+                share_a = 0.0
+            a.pos[:2] = a.pos[:2] - share_a * move
+            b.pos[:2] = b.pos[:2] + (1.0 - share_a) * move
+            pushed = True
+        if not pushed:
+            break
+    shifts = {o.obj_id: float(np.linalg.norm(o.pos[:2] - start[o.obj_id][:2])) for o in solid}
+    left = any(_separation(_footprint(a), _footprint(b)) is not None for a, b in pairs)
+    if left or max(shifts.values()) > limit:
+        for o in solid:
+            o.pos = start[o.obj_id]
+        return
+    touched = sorted({names[o.obj_id] for pair in pairs for o in pair})
+    most = max(shifts.values())
+    warn(f"{', '.join(touched)} start overlapping where the task put them by hand; moved "
+         f"apart until they touch, each by at most {most * 1000:.1f} mm (PyBullet pushes "
+         "overlapping objects apart at its first step)")
