@@ -125,6 +125,8 @@ class SolveContext:
         attempt: Index of this attempt; odd attempts pack by random spots instead of
             a grid.
         deadline: When the whole reset gives up (checked between candidate spots).
+        placed: Instances an earlier factor already put at a target (their
+            ``current`` pose is that target, not their start).
     """
 
     graph: TaskGraph
@@ -134,6 +136,7 @@ class SolveContext:
     rng: np.random.Generator
     attempt: int = 0
     deadline: Deadline = NO_DEADLINE
+    placed: set[str] = field(default_factory=set)
 
     def inst(self, var: str) -> list[str]:
         """Instance names of variable ``var``."""
@@ -162,9 +165,11 @@ class SolveContext:
         trial = self.occ.with_clearance(GIVEN_CLEARANCE) if plan.given else self.occ.copy()
         # The movers' own starts stay obstacles for their slots, so no object starts at
         # a target of its own goal (starts of objects other goals move do not count:
-        # those objects are moved out of the way).
+        # those objects are moved out of the way). An object an earlier factor already
+        # placed may be sent to where it stands (a later goal that lists it again at
+        # the same target: it stays): its own slot ignores its own body.
         for obj in movers:
-            if obj.collides:
+            if obj.collides and obj.name not in self.placed:
                 trial.put(f"@start:{obj.name}", obj, self.current[obj.name])
         for i, j in enumerate(plan.assignment):
             obj = movers[i]
@@ -183,8 +188,9 @@ class SolveContext:
             if bottom < TABLE_Z - Z_TOLERANCE:
                 raise Infeasible(f"slot {j} puts {obj.name} {TABLE_Z - bottom:.3f} m into "
                                  "the table", retry=False)
-            if not trial.free_mask(obj, [pose], plan.ignore[j])[0]:
-                who = trial.blockers(obj, pose, plan.ignore[j])
+            ignore = plan.ignore[j] | ({obj.name} if obj.name in self.placed else set())
+            if not trial.free_mask(obj, [pose], ignore)[0]:
+                who = trial.blockers(obj, pose, ignore)
                 raise Infeasible(f"slot {j} for {obj.name} collides with {who}")
             trial.put(f"@slot{j}", obj, pose)
 

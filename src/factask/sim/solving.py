@@ -94,6 +94,7 @@ def solve_targets(graph: TaskGraph, layout: Mapping[str, Pose], rng: np.random.G
         for name, pose in solved.targets(objs).items():
             ctx.current[name] = pose
             ctx.occ.put(name, objs[name], pose)
+            ctx.placed.add(name)
         out[fname] = solved
     return out
 

@@ -443,7 +443,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             for part in zone_parts(g, warn):
                 zone = _zone_variable(part, objects, names, extra, warn)
                 taken.add(zone)
-                poses = zone_poses(part, rest)
+                poses = zone_poses(part, rest, [e for e in goals if e.index < part.index])
                 host = next((o for o in objects if names[o.obj_id] == zone), None)
                 if poses and host is not None and host.kind in WALLED_KINDS:
                     _make_room(host, part, poses, names, warn)

@@ -280,35 +280,70 @@ def target_pose(pos: np.ndarray, quat: np.ndarray, height: float, z_rest: float 
                       yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS))
 
 
-def zone_poses(goal: RecordedGoal, rest: dict[tuple[int, int], float]
-               ) -> list[TargetPose] | None:
+def _in_zone_pose(pos: np.ndarray, quat: np.ndarray, height: float, z: float | None,
+                  zone: tuple[np.ndarray, np.ndarray, tuple[float, float]]
+                  ) -> TargetPose | None:
+    """The factask pose of a target whose centre lies in ``zone``, else None. A
+    target resting on something other than the table or a receptacle's floor keeps
+    its resting height ``z``."""
+    zpos, zquat, (sx, sy) = zone
+    zyaw = yaw_of_xyzw(zquat)
+    c, s = math.cos(zyaw), math.sin(zyaw)
+    dx, dy = float(pos[0] - zpos[0]), float(pos[1] - zpos[1])
+    if abs(c * dx + s * dy) > sx / 2 or abs(-s * dx + c * dy) > sy / 2:
+        return None
+    return TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
+                      y=round(float(pos[1]), TARGET_DECIMALS),
+                      z=round(z, TARGET_DECIMALS) if z is not None
+                      and z > height / 2 + Z_TOLERANCE else None,
+                      yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS))
+
+
+def zone_poses(goal: RecordedGoal, rest: dict[tuple[int, int], float],
+               earlier: list[RecordedGoal] | None = None) -> list[TargetPose] | None:
     """The author's own place for each object inside the zone (e.g. a packing plan):
     when the goal gives every object a target of its own (within ``matches``) whose
     centre lies in the zone, those targets are facts; otherwise None (factask packs).
     A target that rests on something other than the table or a receptacle's floor
     (a second layer on a pallet) keeps its resting height from ``rest``
-    (:func:`resting_heights`)."""
+    (:func:`resting_heights`).
+
+    Failing that, when ``earlier`` goals (those queued before this one) already put
+    every object at a target of its own inside the zone (one pose goal per block
+    into the container, then "all blocks are in the container"), those targets are
+    the places: Ravens finds the zone goal met when it reaches it.
+    """
     n = len(goal.objs)
-    if len(goal.targets) < n or goal.matches.shape != (n, len(goal.targets)):
-        return None
-    rows, cols = linear_sum_assignment(-goal.matches.astype(float))
-    if len(rows) < n or not all(goal.matches[r, c] for r, c in zip(rows, cols, strict=True)):
-        return None
-    zpos, zquat, (sx, sy) = goal.zones[0]
-    zyaw = yaw_of_xyzw(zquat)
-    c, s = math.cos(zyaw), math.sin(zyaw)
+    if len(goal.targets) >= n and goal.matches.shape == (n, len(goal.targets)):
+        rows, cols = linear_sum_assignment(-goal.matches.astype(float))
+        if len(rows) == n and all(goal.matches[r, c] for r, c in zip(rows, cols, strict=True)):
+            poses = [_in_zone_pose(*goal.targets[int(cols[r])], goal.objs[int(rows[r])].size[2],
+                                   rest.get((goal.index, int(cols[r]))), goal.zones[0])
+                     for r in np.argsort(rows)]
+            if all(p is not None for p in poses):
+                return poses  # type: ignore[return-value]
+    return _earlier_places(goal, earlier or [], rest)
+
+
+def _earlier_places(goal: RecordedGoal, earlier: list[RecordedGoal],
+                    rest: dict[tuple[int, int], float]) -> list[TargetPose] | None:
+    """Each object's place in the zone from the last earlier pose goal that gives it
+    exactly one target, or None unless every object has one inside the zone."""
     poses = []
-    for r in np.argsort(rows):
-        pos, quat = goal.targets[int(cols[r])]
-        dx, dy = float(pos[0] - zpos[0]), float(pos[1] - zpos[1])
-        if abs(c * dx + s * dy) > sx / 2 or abs(-s * dx + c * dy) > sy / 2:
+    for o in goal.objs:
+        place = None
+        for g in reversed(earlier):
+            ids = [x.obj_id for x in g.objs]
+            if g.metric != "pose" or o.obj_id not in ids:
+                continue
+            row = g.matches[ids.index(o.obj_id)]
+            allowed = np.flatnonzero(row[:len(g.targets)])
+            if len(allowed) == 1:
+                j = int(allowed[0])
+                place = _in_zone_pose(*g.targets[j], o.size[2], rest.get((g.index, j)),
+                                      goal.zones[0])
+            break
+        if place is None:
             return None
-        j = int(cols[r])
-        z = rest.get((goal.index, j))
-        height = goal.objs[int(rows[r])].size[2]
-        poses.append(TargetPose(x=round(float(pos[0]), TARGET_DECIMALS),
-                                y=round(float(pos[1]), TARGET_DECIMALS),
-                                z=round(z, TARGET_DECIMALS) if z is not None
-                                and z > height / 2 + Z_TOLERANCE else None,
-                                yaw_deg=round(math.degrees(yaw_of_xyzw(quat)), TARGET_DECIMALS)))
+        poses.append(place)
     return poses
