@@ -198,6 +198,15 @@ def test_one_shot_grounded_through_the_pipeline_reaches_completion() -> None:
     assert result.steps[0].step == "one_shot"
 
 
+def goal_branches(schema: dict) -> list[dict]:
+    """Every goal branch a compact schema's ``factors`` allows (in any shape)."""
+    factors = schema["properties"]["factors"]
+    items = [i for shape in factors.get("anyOf", [factors])
+             for i in shape.get("prefixItems", [shape.get("items")])]
+    goals = [i["properties"]["goal"] for i in items]
+    return [b for g in goals for b in g.get("anyOf", [g])]
+
+
 @pytest.mark.parametrize(("proposal", "relations"), [
     ("put the yellow cylinder in the blue zone", {"in_zone"}),
     ("place three blocks in a row", {"row"}),
@@ -206,18 +215,16 @@ def test_one_shot_grounded_through_the_pipeline_reaches_completion() -> None:
 ])
 def test_the_relations_the_proposal_names_are_the_goals_allowed(proposal, relations) -> None:
     assert grounded.named_relations(proposal) == relations
-    goal = grounded.compact_graph_schema(mentions(proposal), proposal)[
-        "properties"]["factors"]["items"]["properties"]["goal"]
-    types = {o["properties"]["type"]["const"] for o in goal.get("anyOf", [goal])}
+    types = {b["properties"]["type"]["const"] for b in goal_branches(
+        grounded.compact_graph_schema(mentions(proposal), proposal))}
     assert types == relations
 
 
 def test_no_named_relation_leaves_every_relation_that_fits() -> None:
     proposal = "move the yellow cylinder near the gold stand"
     assert grounded.named_relations(proposal) == set()
-    goal = grounded.compact_graph_schema(mentions(proposal), proposal)[
-        "properties"]["factors"]["items"]["properties"]["goal"]
-    types = {o["properties"]["type"]["const"] for o in goal["anyOf"]}
+    types = {b["properties"]["type"]["const"] for b in goal_branches(
+        grounded.compact_graph_schema(mentions(proposal), proposal))}
     assert len(types) > 1 and not types & {"row", "circle"}  # a row of one object: no task
 
 

@@ -32,6 +32,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from factask.gen import step_schemas as ss
+from factask.gen.cover import GROUP_RELATIONS, covering_factors
 from factask.gen.examples import library_task_examples, render_examples
 from factask.gen.mentions import Mention
 from factask.model.errors import FactaskError, InvalidValueError
@@ -287,8 +288,6 @@ RELATION_WORDS: dict[str, frozenset[str]] = {
     "pile_in_zone": frozenset(["pile", "sweep", "push"]),
     "rope_along": frozenset(["rope"]),
 }
-#: Relations that arrange several objects: with fewer than two, the goal is trivial.
-GROUP_RELATIONS = frozenset(["row", "circle", "stack"])
 
 
 def named_relations(proposal: str) -> set[str]:
@@ -369,36 +368,64 @@ def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> 
     return out
 
 
-def compact_graph_schema(found: Sequence[Mention], proposal: str = "") -> Schema:
+def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
+                         cover: bool = True) -> Schema:
     """A whole graph's *decisions* only (one-shot with a grounded proposal).
 
     The named objects' kinds, colours, counts, sizes and descriptions come from
     the proposal (:func:`expand_graph`); the model writes where each starts and
-    the factors' names and goals -- about 70 tokens instead of 300, which on a
-    CPU with a grammar is minutes.
+    the factors' goals -- about 70 tokens instead of 300, which on a CPU with a
+    grammar is minutes.
 
     Args:
         found: The proposal's mentions (with a movable one: :func:`applies`).
         proposal: The proposal: where its words name relations
             (:func:`named_relations`), the goals are of those types only.
+        cover: Whether the goals must use every named object by construction
+            (:func:`factask.gen.cover.covering_factors`: one goal over all movable
+            objects, or one per movable object, the fixed ones spread over their
+            anchors; relations the words do not name only where the named ones
+            cannot); a movable object then starts on the table or on or in
+            another movable one, never on a fixed one (every fixed object is an
+            anchor: that start could be a goal met at the start). False, or
+            where no such shape exists: an array of at most one goal per
+            movable object (checked by :func:`goal_problems`).
 
     Returns:
         ``{"variables": [{name, initial}, ...], "factors": [{goal}, ...]}``
-        with the variables a tuple of the named objects and at most one factor
-        per movable one.
+        with the variables a tuple of the named objects.
     """
     kinds = {m.name: m.kind for m in found}
-    goal = _goal(kinds, named_relations(proposal), {m.name: m.count for m in found})
+    counts = {m.name: m.count for m in found}
+    goal = _goal(kinds, named_relations(proposal), counts)
     if goal is None:
         raise InvalidValueError("no goal relation fits the named objects alone "
                                 "(check applies() first)")
-    most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
-    items = [ss.obj({"name": {"const": m.name}, "initial": _placement(m.name, kinds)})
+    factors: Schema | None = None
+    if cover:
+        movers = [m.name for m in movable(found)]
+        fixed = [m.name for m in found if m.name not in movers]
+        for allowed in (goal, _goal(kinds, None, counts)):
+            branches = allowed.get("anyOf", [allowed]) if allowed else []
+            factors = covering_factors(branches, movers, fixed, counts)
+            if factors is not None:
+                break
+    starts = kinds
+    if factors is None:
+        most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
+        factors = ss.array(ss.obj({"goal": goal}), 1, most)
+    else:
+        # Every fixed named object is some goal's anchor: an object starting on or in
+        # one would start where a goal may put it (a goal met at the start).
+        starts = {n: k for n, k in kinds.items() if kind_spec(k).movable}
+    items = [ss.obj({"name": {"const": m.name},
+                     "initial": _placement(m.name, starts) if m.name in starts
+                     else _placement(m.name, kinds)})
              for m in found]
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},
-        "factors": ss.array(ss.obj({"goal": goal}), 1, most),
+        "factors": factors,
     })
 
 

@@ -257,6 +257,10 @@ class Generator(StepRunner):
         compact = self.grounded and grounded.applies(found)
         schema = grounded.compact_graph_schema(found, desc) if compact else \
             ss.graph_schema(task)
+        # The prompt shows the plain goal list's outline: the grammar's shapes
+        # (factask.gen.cover) would only lengthen it.
+        outline = schema_skeleton(grounded.compact_graph_schema(found, desc, cover=False)) \
+            if compact else ""
 
         def prompt(lv: PromptLevel) -> str:
             if compact:
@@ -266,7 +270,7 @@ class Generator(StepRunner):
                 return render("one_shot_grounded", task_name=task, task_description=desc,
                               mentions=mentions_text(f"{desc} {task}"),
                               examples=grounded.compact_examples(query, k, task),
-                              schema=schema_skeleton(schema))
+                              schema=outline)
             return render("one_shot", task_name=task, task_description=desc,
                           mentions=mentions_text(f"{desc} {task}"),
                           examples=self.examples(query, ("tasks", "memory"), lv.examples),

@@ -1,0 +1,201 @@
+"""Goal lists that use every named object by construction (factask.gen.cover)."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from factask.gen import cover, grounded
+from factask.gen.mentions import mentions
+from factask.gen.step_schemas import schema_problems
+from factask.model.graph import TaskGraph
+from factask.model.palette import COLOR_NAMES
+
+MOVABLE = ["block", "cylinder", "ball", "box", "ell"]
+FIXED = ["zone", "bowl", "pallet", "container", "line", "stand"]
+WORDS = ["in", "on", "into", "stack", "row", "circle", "align", "zone", "tower", "onto"]
+
+
+def sample(node: dict, data: st.DataObject) -> object:
+    """One answer the schema allows, drawn branch by branch (the grammar's choices)."""
+    if "anyOf" in node:
+        return sample(data.draw(st.sampled_from(node["anyOf"])), data)
+    if "const" in node:
+        return node["const"]
+    if "enum" in node:
+        return data.draw(st.sampled_from(node["enum"]))
+    kind = node.get("type")
+    if kind == "object":
+        return {k: sample(v, data) for k, v in node["properties"].items()}
+    if kind == "array":
+        if "prefixItems" in node:
+            return [sample(i, data) for i in node["prefixItems"]]
+        n = data.draw(st.integers(node.get("minItems", 0),
+                                  node.get("maxItems", node.get("minItems", 0) + 2)))
+        return [sample(node["items"], data) for _ in range(n)]
+    if kind == "null":
+        return None
+    if kind == "boolean":
+        return data.draw(st.booleans())
+    if kind in ("number", "integer"):
+        lo = node.get("minimum", node.get("exclusiveMinimum", 0))
+        return (lo + node.get("maximum", lo + 1)) / 2
+    raise AssertionError(f"unexpected schema node {node}")
+
+
+proposals = st.builds(
+    lambda movers, fixed, words: " and ".join(
+        [f"put the {c} {k}" for c, k in movers]
+        + [f"{w} the {c} {k}" for w, (c, k) in zip(words * 4, fixed, strict=False)]
+        + [" ".join(words)]),
+    st.lists(st.tuples(st.sampled_from(sorted(COLOR_NAMES)), st.sampled_from(MOVABLE)),
+             min_size=1, max_size=4),
+    st.lists(st.tuples(st.sampled_from(sorted(COLOR_NAMES)), st.sampled_from(FIXED)),
+             max_size=3),
+    st.lists(st.sampled_from(WORDS), min_size=1, max_size=3))
+
+
+@settings(max_examples=150, deadline=None)
+@given(proposals, st.data())
+def test_every_answer_the_covering_schema_allows_uses_every_named_object(proposal,
+                                                                         data) -> None:
+    found = mentions(proposal)
+    if not grounded.applies(found):
+        return
+    schema = grounded.compact_graph_schema(found, proposal)
+    factors = schema["properties"]["factors"]
+    if "items" in factors and factors["items"] is not False:
+        return  # no shape covers them all: the plain list, checked afterwards
+    answer = sample(schema, data)
+    assert schema_problems(answer, schema) == []
+    goals = [f["goal"] for f in answer["factors"]]
+    assert grounded.goal_problems(goals, found) == [], (proposal, goals)
+    for goal in goals:
+        objects = goal["objects"]
+        assert len(set(objects)) == len(objects)
+        assert not cover.used_names({k: v for k, v in goal.items() if k != "objects"},
+                                    objects), goal  # never its own anchor
+    TaskGraph.model_validate(grounded.expand_graph(answer, found, "t", proposal))
+
+
+@pytest.mark.parametrize("proposal", [
+    "put the red block in the red bowl and the blue block in the blue bowl",
+    "place the yellow cylinder in the green zone and the purple ball in the red zone",
+    "put the blue cylinder in the red zone, the green cylinder in the blue zone and the "
+    "yellow cylinder in the green zone",
+    "put the green block on the yellow pallet and the red ball in the blue bowl",
+    "stack the blue block and the green block on the red pallet",
+    "put the red block in the green zone, then the blue block on it",
+    "stack the red block on the green block",
+    "place three red blocks in a row on the gray pallet",
+])
+def test_proposals_with_their_objects_and_anchors_get_covering_shapes(proposal) -> None:
+    factors = grounded.compact_graph_schema(mentions(proposal), proposal)[
+        "properties"]["factors"]
+    shapes = factors.get("anyOf", [factors])
+    assert all("prefixItems" in s for s in shapes)
+
+
+def test_the_answer_that_leaves_a_bowl_out_is_refused() -> None:
+    proposal = "put the red block in the red bowl and the blue block in the blue bowl"
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+
+    def answer(*goals: tuple[str, str]) -> dict:
+        return {"variables": variables, "factors": [
+            {"goal": {"type": "inside", "objects": [o], "container": c}} for o, c in goals]}
+
+    # The measured failure (SmolLM2, before): one goal, or both blocks in one bowl.
+    assert schema_problems(answer(("red_block", "red_bowl")), schema)
+    assert schema_problems(answer(("red_block", "red_bowl"), ("blue_block", "red_bowl")),
+                           schema)
+    assert schema_problems(answer(("red_block", "red_bowl"), ("red_block", "blue_bowl")),
+                           schema)
+    assert schema_problems(answer(("red_block", "red_bowl"), ("blue_block", "blue_bowl")),
+                           schema) == []
+    assert schema_problems(answer(("red_block", "blue_bowl"), ("blue_block", "red_bowl")),
+                           schema) == []  # which block goes where stays the model's
+    # The prompt still shows the plain goal list's outline.
+    plain = grounded.compact_graph_schema(found, proposal, cover=False)
+    assert plain["properties"]["factors"]["type"] == "array"
+
+
+def test_one_group_goal_or_one_goal_per_object() -> None:
+    proposal = "stack the blue block and the green block on the red pallet"
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    group = {"type": "stack", "objects": ["blue_block", "green_block"], "base": "red_pallet",
+             "ordered": True}
+    each = [{"type": "on", "objects": ["blue_block"], "support": "red_pallet"},
+            {"type": "on", "objects": ["green_block"], "support": "blue_block"}]
+    for goals in ([group], each):
+        answer = {"variables": variables, "factors": [{"goal": g} for g in goals]}
+        assert schema_problems(answer, schema) == []
+    twice = dict(group, objects=["blue_block", "blue_block"])  # enum arrays allowed it
+    assert schema_problems({"variables": variables, "factors": [{"goal": twice}]}, schema)
+    lone = [{"type": "on", "objects": ["blue_block"], "support": "red_pallet"}]
+    assert schema_problems({"variables": variables,
+                            "factors": [{"goal": g} for g in lone]}, schema)
+
+
+def test_named_relations_that_cannot_cover_widen_to_those_that_can() -> None:
+    # "on" alone cannot anchor on a fixture; one goal per fixed object can, with
+    # "aligned" or "inside" where the words name only "on".
+    proposal = "put the red ell on the blue pallet and the green hole"
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    factors = schema["properties"]["factors"]
+    shapes = factors.get("anyOf", [factors])
+    assert all("prefixItems" in s for s in shapes)
+
+
+def test_pin_fixes_objects_and_anchors_and_keeps_groups_of_two() -> None:
+    branch = {"type": "object", "properties": {
+        "type": {"const": "row"},
+        "objects": {"type": "array", "items": {"type": "string", "enum": ["a", "b"]},
+                    "minItems": 1, "maxItems": 2},
+        "along": {"anyOf": [{"type": "string", "enum": ["line", "a"]}, {"type": "null"}]}},
+        "required": ["type", "objects", "along"], "additionalProperties": False}
+    assert cover.pin(branch, ["a"], [], {"a": 1}) == []  # a row of one
+    assert cover.pin(branch, ["a"], [], {"a": 3})         # three blocks: a row
+    (variant,) = cover.pin(branch, ["a", "b"], ["line"], {})
+    assert variant["properties"]["along"] == {"const": "line"}
+    assert cover.pin(branch, ["a", "b"], ["a"], {}) == []  # never its own anchor
+    (free,) = cover.pin(branch, ["b"], [], {"b": 2})
+    assert cover.names_of(free["properties"]["along"]) == ["line", "a"]
+
+
+@settings(max_examples=30, deadline=None)
+@given(proposals)
+def test_covering_schemas_turn_into_a_llama_cpp_grammar(proposal) -> None:
+    llama_grammar = pytest.importorskip("llama_cpp.llama_grammar")
+    found = mentions(proposal)
+    if not grounded.applies(found):
+        return
+    gbnf = llama_grammar.json_schema_to_gbnf(json.dumps(
+        grounded.compact_graph_schema(found, proposal)))
+    assert "root" in gbnf
+    assert not re.search(r"::=[ \t]*$", gbnf, re.MULTILINE), gbnf
+
+
+def test_with_covering_goals_nothing_starts_on_a_fixed_object() -> None:
+    # Measured before: SmolLM2 started the red block in the blue bowl and then put it
+    # there ("met at the start"); every fixed object is now some goal's anchor.
+    proposal = "put the red block in the red bowl and the blue block in the blue bowl"
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    factors = [{"goal": {"type": "inside", "objects": ["red_block"], "container": "red_bowl"}},
+               {"goal": {"type": "inside", "objects": ["blue_block"],
+                         "container": "blue_bowl"}}]
+    assert schema_problems({"variables": variables, "factors": factors}, schema) == []
+    variables[0]["initial"] = {"type": "inside", "container": "blue_bowl"}
+    assert schema_problems({"variables": variables, "factors": factors}, schema)
+    variables[0]["initial"] = {"type": "on", "support": "blue_block"}  # stacked at the start
+    assert schema_problems({"variables": variables, "factors": factors}, schema) == []
