@@ -124,3 +124,24 @@ class Swallows(Task):
 ''')
     with pytest.raises(Unsupported, match=r"refused .*Google scanned objects"):
         import_cliport(task, seed=0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(roll=st.floats(-np.pi, np.pi), pitch=st.floats(-np.pi / 2, np.pi / 2),
+       yaw=st.floats(-np.pi, np.pi))
+def test_a_tilted_target_is_placed_upright_with_a_warning(roll: float, pitch: float,
+                                                          yaw: float) -> None:
+    from factask.compat.cliport.goals import TARGET_TILT_WARN_DEG, target_pose
+    from factask.geometry import tilt_deg
+
+    quat = np.asarray(cutils.eulerXYZ_to_quatXYZW((roll, pitch, yaw)))
+    warnings: list[str] = []
+    pose = target_pose(np.array([0.5, 0.1, 0.02]), quat, 0.04, None, "goal 0 target 0",
+                       warnings.append)
+    tilt = tilt_deg(np.array([quat[3], quat[0], quat[1], quat[2]]))
+    off = min(tilt, 180.0 - tilt)
+    if off > TARGET_TILT_WARN_DEG + 1e-6:
+        assert len(warnings) == 1 and "tilted" in warnings[0] and "goal 0 target 0" in warnings[0]
+    elif off < TARGET_TILT_WARN_DEG - 1e-6:
+        assert not warnings
+    assert pose.x == 0.5 and pose.y == 0.1 and -180.0 <= pose.yaw_deg <= 180.0

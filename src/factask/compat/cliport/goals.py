@@ -22,7 +22,8 @@ from scipy.optimize import linear_sum_assignment
 
 from factask.compat.cliport.errors import CliportImportError, Unsupported
 from factask.compat.cliport.recorder import RecordedObject, Session
-from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
+from factask.compat.cliport.transforms import split_pose, xyzw_to_wxyz, yaw_of_xyzw
+from factask.geometry import tilt_deg
 from factask.model.kinds import kind_spec
 from factask.model.tolerances import Z_TOLERANCE
 from factask.relations import TargetPose
@@ -265,8 +266,17 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
     return out
 
 
+#: A target tilted more than this (degrees) off upright, or off upside down, is
+#: placed upright (with a warning): factask's objects stand upright.
+TARGET_TILT_WARN_DEG = 5.0
+
+
 def target_pose(pos: np.ndarray, quat: np.ndarray, height: float, z_rest: float | None,
             where: str, warn: Any) -> TargetPose:
+    tilt = tilt_deg(xyzw_to_wxyz(quat))
+    if TARGET_TILT_WARN_DEG < tilt < 180.0 - TARGET_TILT_WARN_DEG:
+        warn(f"{where}: the target is tilted {tilt:.0f} degrees; factask places objects "
+             "upright, so only its yaw is kept (an object laid on its side stands)")
     z = float(pos[2]) if z_rest is None else z_rest
     if z_rest is not None and abs(float(pos[2]) - z_rest) > Z_TOLERANCE:
         warn(f"{where}: target z {float(pos[2]):.4f} m is not where the object would rest; "
