@@ -8,7 +8,9 @@ import re
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from test_gen_cover import proposals, sample
 
+from factask.gen import cover, grounded
 from factask.gen import grounded_subtasks as gs
 from factask.gen.mentions import mentions
 from factask.gen.schemas import AnswerError
@@ -157,14 +159,51 @@ def test_a_design_whose_goal_leaves_out_its_object_is_refused() -> None:
     assert "place_red_block" in result.failure and "red_block" in result.steps[-1].feedback
 
 
-def test_a_named_object_no_goal_uses_fails_the_assembly() -> None:
+def test_the_last_design_must_use_every_named_object_left() -> None:
+    # One subtask for two movable objects and a zone: its goal must use all three.
+    lone = {"type": "in_zone", "objects": ["yellow_cylinder"], "zone": "blue_zone"}
     script = {"subtask_outline": [json.dumps({"subtasks": [_item("yellow_cylinder")]})],
-              "subtask_design:place_yellow_cylinder": GOOD[
-                  "subtask_design:place_yellow_cylinder"]}
+              "subtask_design:place_yellow_cylinder": [_design(lone)]}
     result = _run(script)
-    assert result.level_reached != "completion"
-    assert result.steps[-1].step == "assembly" and not result.steps[-1].ok
-    assert "red_block" in result.steps[-1].feedback
+    assert result.level_reached == "none"  # refused by the design's schema
+    assert result.steps[-1].step == "subtask_design:place_yellow_cylinder"
+    both = {**lone, "objects": ["yellow_cylinder", "red_block"]}
+    result = _run(dict(script, **{"subtask_design:place_yellow_cylinder": [_design(both)]}))
+    assert result.level_reached == "completion", result.failure
+
+
+def test_designs_leave_the_later_subtasks_able_to_use_every_named_object() -> None:
+    proposal = "put the red block in the red bowl and the blue block in the blue bowl"
+    found = mentions(proposal)
+    variables = gs.named_variables(found)
+    names = [m.name for m in found]
+
+    def inside(obj: str, bowl: str) -> str:
+        return _design({"type": "inside", "objects": [obj], "container": bowl})
+
+    # Two subtasks, two bowls: no slack, so each design must take a bowl of its own.
+    first = gs.design_schema(variables, "red_block", proposal,
+                             [n for n in names if n != "blue_block"], 2)
+    assert schema_problems(json.loads(inside("red_block", "red_bowl")), first) == []
+    second = gs.design_schema(variables, "blue_block", proposal, ["blue_bowl"], 1)
+    assert schema_problems(json.loads(inside("blue_block", "red_bowl")), second)
+    assert schema_problems(json.loads(inside("blue_block", "blue_bowl")), second) == []
+    # With slack (nothing left to use) the design is the plain one.
+    assert gs.design_schema(variables, "blue_block", proposal, [], 1) == \
+        gs.design_schema(variables, "blue_block", proposal, narrow=False)
+
+
+def test_a_named_object_no_goal_uses_fails_the_assembly() -> None:
+    from factask.model.graph import TaskGraph
+
+    found = mentions(PROPOSAL)
+    graph = TaskGraph.model_validate({
+        "name": "t", "description": "d",
+        "variables": [v.model_dump(mode="json") for v in gs.named_variables(found)],
+        "factors": [{"name": "place_yellow_cylinder", "description": "d",
+                     "goal": {**IN_ZONE, "objects": ["yellow_cylinder"]}}]})
+    problem = gs.assembly_problem(graph, found)
+    assert problem is not None and "red_block" in problem
 
 
 def test_a_proposal_naming_nothing_movable_takes_the_ungrounded_path() -> None:
@@ -192,3 +231,32 @@ def test_grounded_subtask_schemas_turn_into_a_llama_cpp_grammar(pairs) -> None:
         gbnf = llama_grammar.json_schema_to_gbnf(json.dumps(schema))
         assert "root" in gbnf
         assert not re.search(r"::=[ \t]*$", gbnf, re.MULTILINE), gbnf
+
+
+@settings(max_examples=100, deadline=None)
+@given(proposals, st.data())
+def test_designs_drawn_one_by_one_from_narrowed_schemas_use_every_named_object(
+        proposal, data) -> None:
+    found = mentions(proposal)
+    if not grounded.applies(found):
+        return
+    variables = gs.named_variables(found)
+    names = [m.name for m in found]
+    outline = data.draw(st.permutations(gs.movers(found)))
+    used: set[str] = set()
+    slack = True
+    for i, obj in enumerate(outline):
+        unused = [n for n in names if n not in used and n not in outline[i + 1:]]
+        remaining = len(outline) - i
+        slack = slack and len([u for u in unused if u != obj]) <= remaining
+        schema = gs.design_schema(variables, obj, proposal, unused, remaining)
+        plain = gs.design_schema(variables, obj, proposal, narrow=False)
+        if schema == plain and len([u for u in unused if u != obj]) >= remaining:
+            return  # no branch can use what is left: the assembly check reports it
+        goal = sample(schema["properties"]["goal"], data)
+        assert schema_problems({"goal": goal, "description": "d"}, schema) == []
+        if schema != plain:
+            assert obj in cover.used_names(goal, names)
+        used |= cover.used_names(goal, names) | {obj}
+    if slack:
+        assert used == set(names), (proposal, outline, used)

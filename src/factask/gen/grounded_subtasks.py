@@ -36,6 +36,7 @@ from typing import Any
 from factask.gen import grounded
 from factask.gen import step_schemas as ss
 from factask.gen.conversation import PromptLevel
+from factask.gen.cover import must_use, used_names
 from factask.gen.fragments import (
     ask_design,
     checked_fragment,
@@ -54,6 +55,7 @@ from factask.gen.schemas import (
 )
 from factask.gen.steps import Abort, Evaluation, StepRunner, read_strict
 from factask.model.graph import TaskGraph
+from factask.model.kinds import kind_spec
 from factask.model.names import slugify
 from factask.model.variables import StateVariable
 
@@ -161,19 +163,36 @@ def named_variables(found: Sequence[Mention]) -> list[StateVariable]:
         for m in found]
 
 
-def design_schema(variables: Sequence[StateVariable], obj: str, proposal: str) -> Schema:
+def design_schema(variables: Sequence[StateVariable], obj: str, proposal: str,
+                  unused: Sequence[str] = (), remaining: int = 1,
+                  narrow: bool = True) -> Schema:
     """Approach 2, step 2, grounded: one subtask's ``{"goal", "description"}``.
 
     Args:
         variables: The named objects (:func:`named_variables`), all constants.
         obj: The subtask's object: listed first wherever the grammar offers names.
         proposal: The proposal's text (the relations its words name).
+        unused: The named objects no goal uses yet (no earlier goal, no later
+            subtask's own object).
+        remaining: Subtasks left, this one included.
+        narrow: Whether the goal must leave the later subtasks able to use every
+            named object (:func:`factask.gen.cover.must_use`; the prompt shows
+            the plain schema).
 
     Returns:
-        The goal over the named objects (:func:`factask.gen.grounded.goal_answer`).
+        The goal over the named objects (:func:`factask.gen.grounded.goal_answer`),
+        narrowed where the subtasks left have no slack.
     """
     ordered = sorted(variables, key=lambda v: v.name != obj)
-    return grounded.goal_answer(ordered, proposal)
+    schema = grounded.goal_answer(ordered, proposal)
+    if not narrow or "goal" not in schema.get("properties", {}):
+        return schema
+    counts = {v.name: v.count for v in variables}
+    movable = [v.name for v in variables if kind_spec(v.kind).movable]
+    goal = must_use(schema["properties"]["goal"], obj, unused, remaining, counts, movable)
+    if goal is None:
+        return schema
+    return {**schema, "properties": {**schema["properties"], "goal": goal}}
 
 
 def design_problems(goal: dict[str, Any], obj: str, found: Sequence[Mention]) -> list[str]:
@@ -242,11 +261,16 @@ def design_fragments(runner: StepRunner, task: str, desc: str,
     pool = {v.name: v for v in variables}
     pieces: list[TaskGraph] = []
     earlier: list[dict[str, Any]] = []
-    for sub in outline.subtasks:
+    names = [m.name for m in found]
+    used: set[str] = set()
+    for i, sub in enumerate(outline.subtasks):
         obj = objects[sub.name]
-        schema = design_schema(variables, obj, desc)
+        later = {objects[s.name] for s in outline.subtasks[i + 1:]}
+        unused = [n for n in names if n not in used and n not in later]
+        schema = design_schema(variables, obj, desc, unused, len(outline.subtasks) - i)
+        shown = schema_skeleton(design_schema(variables, obj, desc, narrow=False))
 
-        def prompt(lv: PromptLevel, sub: Any = sub, schema: Any = schema,
+        def prompt(lv: PromptLevel, sub: Any = sub, shown: str = shown,
                    obj: str = obj) -> str:
             return render(
                 "subtask_design_grounded", task_name=task, task_description=desc,
@@ -255,7 +279,7 @@ def design_fragments(runner: StepRunner, task: str, desc: str,
                 earlier=earlier_text(earlier),
                 examples=runner.examples(f"{sub.name} {sub.description}",
                                          ("memory", "templates"), lv.examples),
-                schema=schema_skeleton(schema))
+                schema=shown)
 
         def evaluate(text: str, sub: Any = sub, schema: Any = schema,
                      obj: str = obj) -> Evaluation:
@@ -272,6 +296,8 @@ def design_fragments(runner: StepRunner, task: str, desc: str,
 
         piece, ok = ask_design(runner, task, sub.name, prompt, schema, evaluate)
         pieces.append(piece)
+        used |= used_names(piece.factors[0].goal.model_dump(mode="json", exclude_none=True),
+                           names)
         earlier.append({"subtask": sub.name, "verified": ok,
                         "goal": piece.factors[0].goal.model_dump(mode="json",
                                                                   exclude_none=True)})
