@@ -118,8 +118,19 @@ def test_the_answer_that_leaves_a_bowl_out_is_refused() -> None:
                            schema)
     assert schema_problems(answer(("red_block", "red_bowl"), ("blue_block", "blue_bowl")),
                            schema) == []
+    # The words pair them ("X in A and Y in B"): the other pairing is refused ...
     assert schema_problems(answer(("red_block", "blue_bowl"), ("blue_block", "red_bowl")),
-                           schema) == []  # which block goes where stays the model's
+                           schema)
+    # ... where they do not, which block goes where stays the model's.
+    other = "put the red and blue blocks in the red and blue bowls"
+    assert [m.name for m in mentions(other)] == [m.name for m in found][::2] + \
+        [m.name for m in found][1::2]
+    loose = grounded.compact_graph_schema(mentions(other), other)
+    for goals in ((("red_block", "red_bowl"), ("blue_block", "blue_bowl")),
+                  (("red_block", "blue_bowl"), ("blue_block", "red_bowl"))):
+        assert schema_problems(dict(answer(*goals), variables=[
+            {"name": m.name, "initial": {"type": "table"}} for m in mentions(other)]),
+            loose) == []
     # The prompt still shows the plain goal list's outline.
     plain = grounded.compact_graph_schema(found, proposal, cover=False)
     assert plain["properties"]["factors"]["type"] == "array"
@@ -199,3 +210,11 @@ def test_with_covering_goals_nothing_starts_on_a_fixed_object() -> None:
     assert schema_problems({"variables": variables, "factors": factors}, schema)
     variables[0]["initial"] = {"type": "on", "support": "blue_block"}  # stacked at the start
     assert schema_problems({"variables": variables, "factors": factors}, schema) == []
+
+
+def test_paired_in_order_reads_x_in_a_and_y_in_b() -> None:
+    assert cover.paired_in_order([True, False, True, False])
+    assert cover.paired_in_order([True, False] * 3)
+    assert not cover.paired_in_order([True, False])           # one pair: nothing to choose
+    assert not cover.paired_in_order([True, True, False, False])  # "red and blue ... in"
+    assert not cover.paired_in_order([True, False, True])

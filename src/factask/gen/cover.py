@@ -18,7 +18,8 @@ it anchors on, so that every shape uses every named object:
   one on it; the fixed objects spread over the goals' anchors: an ``anyOf``
   over the ways to give each fixed object a goal of its own (at most
   :data:`MAX_PATTERNS`; the other goals anchor on any other named object, or on
-  none);
+  none) -- only the proposal's own pairing where its words alternate "X in A
+  and Y in B" (:func:`paired_in_order`);
 * **per anchor**: with one movable object and more fixed objects than that, one
   goal per fixed object, each moving the movable one.
 
@@ -175,16 +176,19 @@ def group_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Seque
 
 
 def each_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Sequence[str],
-                counts: dict[str, int]) -> list[Schema]:
+                counts: dict[str, int], paired: bool = False) -> list[Schema]:
     """One goal per movable object, in the proposal's order, that uses it: moves it
     (anchored on any other named object, or on none), or -- where no fixed object
     is pinned to the goal -- moves another movable object onto it ("the red block
     in the zone, then on the blue block"). Every fixed object is the anchor of a
     goal of its own, that goal moving the goal's object: each way of choosing
-    which, up to :data:`MAX_PATTERNS`."""
+    which, up to :data:`MAX_PATTERNS`; with ``paired`` (the words name each
+    fixed object right after its own movable one: "X in A and Y in B") only the
+    i-th fixed object with the i-th movable one."""
     if len(movers) < 2 or len(fixed) > len(movers):
         return []
-    patterns = list(permutations(range(len(movers)), len(fixed)))
+    patterns = [tuple(range(len(fixed)))] if paired and len(fixed) == len(movers) else \
+        list(permutations(range(len(movers)), len(fixed)))
     if len(patterns) > MAX_PATTERNS:
         return []
     out: list[Schema] = []
@@ -220,7 +224,8 @@ def per_anchor_shapes(branches: Sequence[Schema], movers: Sequence[str],
 
 
 def covering_factors(branches: Sequence[Schema], movers: Sequence[str],
-                     fixed: Sequence[str], counts: dict[str, int]) -> Schema | None:
+                     fixed: Sequence[str], counts: dict[str, int],
+                     paired: bool = False) -> Schema | None:
     """The ``factors`` schema whose every answer uses every named object.
 
     Args:
@@ -228,13 +233,14 @@ def covering_factors(branches: Sequence[Schema], movers: Sequence[str],
         movers: The movable named objects, in the proposal's order.
         fixed: The named objects that stay put (zones, bowls, pallets, ...).
         counts: Name -> count.
+        paired: Whether the proposal pairs them in its order (see :func:`each_shapes`).
 
     Returns:
         An ``anyOf`` of tuples of ``{"goal": ...}`` (group, each, per anchor),
         or None when no shape can use every named object.
     """
     shapes = [*group_shapes(branches, movers, fixed, counts),
-              *each_shapes(branches, movers, fixed, counts),
+              *each_shapes(branches, movers, fixed, counts, paired),
               *per_anchor_shapes(branches, movers, fixed, counts)]
     if not shapes:
         return None
@@ -287,6 +293,13 @@ def must_use(goal: Schema, obj: str, unused: Sequence[str], remaining: int,
     return None if pinned is None else pinned["properties"]["goal"]
 
 
+def paired_in_order(movable: Sequence[bool]) -> bool:
+    """Whether named objects read in this order (True: movable) pair up as the
+    words say "X in A and Y in B": movable, fixed, movable, fixed, ..."""
+    return len(movable) >= 4 and len(movable) % 2 == 0 and \
+        all(m == (i % 2 == 0) for i, m in enumerate(movable))
+
+
 def used_names(goal: dict[str, Any], names: Iterable[str]) -> set[str]:
     """The ``names`` a goal (JSON) uses, moved or as an anchor."""
     known = set(names)
@@ -295,5 +308,5 @@ def used_names(goal: dict[str, Any], names: Iterable[str]) -> set[str]:
 
 
 __all__ = ["GROUP_RELATIONS", "MAX_PATTERNS", "covering_factors", "each_shapes",
-           "group_shapes", "must_use", "names_of", "nullable", "per_anchor_shapes", "pin",
-           "used_names"]
+           "group_shapes", "must_use", "names_of", "nullable", "paired_in_order",
+           "per_anchor_shapes", "pin", "used_names"]

@@ -32,7 +32,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from factask.gen import step_schemas as ss
-from factask.gen.cover import GROUP_RELATIONS, covering_factors
+from factask.gen.cover import GROUP_RELATIONS, covering_factors, paired_in_order
 from factask.gen.examples import library_task_examples, render_examples
 from factask.gen.mentions import Mention
 from factask.model.errors import FactaskError, InvalidValueError
@@ -407,7 +407,8 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
         fixed = [m.name for m in found if m.name not in movers]
         for allowed in (goal, _goal(kinds, None, counts)):
             branches = allowed.get("anyOf", [allowed]) if allowed else []
-            factors = covering_factors(branches, movers, fixed, counts)
+            factors = covering_factors(branches, movers, fixed, counts, paired_in_order(
+                [m.name in movers for m in found]))
             if factors is not None:
                 break
     starts = kinds
