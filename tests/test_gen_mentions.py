@@ -188,3 +188,12 @@ def test_ell_shaped_is_read_like_l_shaped() -> None:
         ("fixtures", "fixture", None, 3)]
     assert _names("put the ell-shaped block into the L-shaped hole") == [
         ("ell", "ell", None, 1), ("fixture", "fixture", None, 1)]
+
+
+def test_a_noun_before_the_kind_word_does_not_hide_the_count() -> None:
+    assert _names("insert three ell blocks into three insertion fixtures") == [
+        ("ells", "ell", None, 3), ("fixtures", "fixture", None, 3)]
+    assert _names("stack four kitting slots") == [("fixtures", "fixture", None, 4)]
+    # A function word between them is no noun: the count is not the kind's.
+    assert _names("three of the blocks") == [("blocks", "block", None, 2)]
+    assert _names("put two in each bowl") == [("bowl", "bowl", None, 1)]

@@ -65,6 +65,9 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
                 r"(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"), ""),
     (re.compile(r"\b(?:l|ell)\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|"
                 r"bar))?(s?)\b"), r"ell\1"),
+    # "ell blocks", "ell pieces": the ell is the shape, the noun the object.
+    (re.compile(r"\bell\s+(?:block|piece|object|part|shape|brick|cube|bar)(s?)\b"),
+     r"ell\1"),
     (re.compile(r"\b(?:pile|heap)\s+of\s+(?:(?:small|tiny|little)\s+)?"
                 rf"(?:({'|'.join(COLOR_NAMES)})\s+)?(?:(?:small|tiny|little)\s+)?[a-z]+"),
      r"\1 pile"),
@@ -90,6 +93,16 @@ MODIFIERS = frozenset({
 COLOUR_LIST_LEAD = frozenset({"of", "in", "with", "different", "differently", "colors",
                               "colours", "color", "colour", "colored", "coloured",
                               "various", "distinct", "the", "following", "namely"})
+#: Words that never name what a count counts: "three of the blocks", "two in each
+#: bowl". Any other one word between a count and a kind word is a noun used as an
+#: adjective ("three insertion fixtures", "four kitting slots"), skipped like
+#: :data:`MODIFIERS`.
+FUNCTION_WORDS = frozenset({
+    "and", "or", "of", "in", "on", "onto", "into", "to", "at", "by", "for", "from", "with",
+    "the", "a", "an", "each", "every", "all", "per", "than", "then", "times", "more",
+    "less", "them", "it", "is", "are", "be", "as", "so", "its", "their", "other", "next",
+    "over", "under", "between", "near", "beside", "behind", "around", "inside", "top",
+})
 #: Most mentions listed (a proposal is a sentence or two, not an inventory).
 MAX_MENTIONS = 8
 #: Largest count read from a proposal (the graph model's count limit is larger).
@@ -148,7 +161,8 @@ def mentions(proposal: str) -> list[Mention]:
     before it: ``three red blocks``; ``red and green zones`` names a red zone and
     a green zone; ``six red and blue blocks`` three of each. A plural without a
     count counts 2 (per colour). Words of :data:`MODIFIERS` may stand between the
-    count and the kind ("four differently colored blocks": 4); a plural with no
+    count and the kind ("four differently colored blocks": 4), and one other word
+    that is no function word ("three insertion fixtures": 3); a plural with no
     count followed by a list of its colours is counted by the list ("blocks (red,
     blue, green)": 3).
 
@@ -212,7 +226,9 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
         while j >= 0 and words[j] in MODIFIERS:  # "four differently colored blocks"
             j -= 1
         before = words[j] if j >= 0 else ""
-        total = int(before) if before.isdigit() else NUMBER_WORDS.get(before, 0)
+        total = _count_of(before)
+        if not total and j >= 1 and _is_adjunct(words[j]) and _count_of(words[j - 1]):
+            total = _count_of(words[j - 1])  # "three insertion fixtures"
         if not total and plural and not colors:
             total = _listed_colours(words, i + 1)  # "blocks (red, blue, green)"
         for color in colors or [None]:
@@ -230,6 +246,18 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()))
             if len(found) >= MAX_MENTIONS:
                 return
+
+
+def _count_of(word: str) -> int:
+    """The count a word says (``3`` for ``three`` or ``3``), else 0."""
+    return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
+
+
+def _is_adjunct(word: str) -> bool:
+    """Whether ``word`` may be a noun used as an adjective before a kind word: not a
+    function word, count, colour or kind word itself."""
+    return (word not in FUNCTION_WORDS and not _count_of(word) and word not in COLOR_NAMES
+            and _kind_of(word)[0] is None and word.isalpha())
 
 
 def _listed_colours(words: list[str], start: int) -> int:
