@@ -91,13 +91,18 @@ def test_import_cliport_batch_ravens_reports_both_rates(tmp_path: Path) -> None:
     src = Path(__file__).parent / "cliport_tasks" / "place_red_in_green.py"
     (folder / src.name).write_text(src.read_text())
     out = tmp_path / "out.jsonl"
-    result = runner.invoke(app, ["import-cliport-batch", str(folder), "-o", str(out),
-                                 "--episodes", "1", "--ravens"])
-    assert result.exit_code == 0, result.output
-    (rec,) = [json.loads(line) for line in out.read_text().splitlines()]
-    assert rec["oracle_success_rate"] == 1.0 and rec["ravens_success_rate"] == 1.0
-    (episode,) = rec["ravens"]
-    assert episode["success"] and episode["ravens_success"]
+    for robot in ("floating", "arm"):
+        result = runner.invoke(app, ["import-cliport-batch", str(folder), "-o", str(out),
+                                     "--episodes", "1", "--ravens", "--robot", robot])
+        assert result.exit_code == 0, result.output
+        (rec,) = [json.loads(line) for line in out.read_text().splitlines()]
+        assert rec["robot"] == robot
+        assert rec["oracle_success_rate"] == 1.0 and rec["ravens_success_rate"] == 1.0
+        (episode,) = rec["ravens"]
+        assert episode["success"] and episode["ravens_success"]
+    bad = runner.invoke(app, ["import-cliport-batch", str(folder), "-o", str(out),
+                              "--robot", "no-such-robot"])
+    assert bad.exit_code != 0 and "unknown robot" in bad.output
 
 
 def test_graph_goal_queue_has_one_goal_per_factor_in_order() -> None:

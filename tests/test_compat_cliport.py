@@ -571,7 +571,7 @@ def _fake_worker(behaviour):
         "worker.main(sys.argv[1:])\n"
     )
 
-    def command(path, seed, episodes, graph_out, ravens=False):
+    def command(path, seed, episodes, graph_out, ravens=False, robot="floating"):
         return [sys.executable, "-c", script, str(path), "--episodes", str(episodes)]
 
     return command

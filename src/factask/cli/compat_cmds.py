@@ -14,7 +14,7 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from factask.cli.app import JSON_HELP, MAX_SEED, app
+from factask.cli.app import JSON_HELP, MAX_SEED, ROBOT_HELP, app, check_robot
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -91,6 +91,8 @@ def import_cliport_batch_cmd(
                                 "yaw within rot_eps modulo symmetry, a finished goal never "
                                 "re-checked, success at reward >= 0.99): ravens_success_rate "
                                 "and per-episode scores beside factask's own checks."),
+    robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP + " Runs the "
+                              "oracle episodes."),
     as_json: bool = typer.Option(False, "--json", help=JSON_HELP + " It holds folder, out, "
                                  "files, imported and every file's record."),
 ) -> None:
@@ -98,6 +100,7 @@ def import_cliport_batch_cmd(
     folder that is missing or holds no ``.py`` file."""
     from factask.compat.cliport.batch import run_batch, task_files
 
+    check_robot(robot)
     if not folder.is_dir():
         err_console.print(f"[red]{escape(str(folder))} is not a folder[/red]")
         raise typer.Exit(2)
@@ -123,7 +126,8 @@ def import_cliport_batch_cmd(
     try:
         with out.open("w", encoding="utf-8") as fh:
             records = run_batch(folder, fh, timeout=timeout, seed=seed, episodes=episodes,
-                                graphs_dir=graphs, on_result=show, ravens=ravens)
+                                graphs_dir=graphs, on_result=show, ravens=ravens,
+                                robot=robot)
     except OSError as exc:
         err_console.print(f"[red]{escape(f'cannot write {out}: {exc.strerror or exc}')}[/red]")
         raise typer.Exit(2) from None

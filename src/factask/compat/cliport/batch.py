@@ -52,9 +52,10 @@ def _kill_group(proc: subprocess.Popen[str]) -> None:
 
 
 def _worker_command(path: Path, seed: int, episodes: int,
-                    graph_out: str | Path | None, ravens: bool = False) -> list[str]:
+                    graph_out: str | Path | None, ravens: bool = False,
+                    robot: str = "floating") -> list[str]:
     cmd = [sys.executable, "-m", "factask.compat.cliport.worker", str(path),
-           "--seed", str(seed), "--episodes", str(episodes)]
+           "--seed", str(seed), "--episodes", str(episodes), "--robot", robot]
     if ravens:
         cmd.append("--ravens")
     if graph_out is not None:
@@ -90,7 +91,7 @@ def _last_record(out: str) -> tuple[dict[str, Any] | None, str | None]:
 
 def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
             episodes: int = 0, graph_out: str | Path | None = None,
-            ravens: bool = False) -> dict[str, Any]:
+            ravens: bool = False, robot: str = "floating") -> dict[str, Any]:
     """Import one file in a child process; always return a result record.
 
     The child reports each stage it finishes (loaded, imported, compiled) as it
@@ -105,12 +106,13 @@ def run_one(path: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
         episodes: Oracle episodes per file (0: none).
         graph_out: Where the child writes the graph JSON, if given.
         ravens: Also score every episode as Ravens does.
+        robot: The robot of the oracle episodes (a name of the registry).
 
     Returns:
         The worker's record, or one saying why the child did not finish.
     """
     p = Path(path)
-    proc = subprocess.Popen(_worker_command(p, seed, episodes, graph_out, ravens),
+    proc = subprocess.Popen(_worker_command(p, seed, episodes, graph_out, ravens, robot),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
     child = _ChildOutput(proc)
@@ -175,7 +177,7 @@ class _ChildOutput:
 def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT_S,
               seed: int = 0, episodes: int = 0, graphs_dir: str | Path | None = None,
               on_result: Callable[[dict[str, Any]], None] | None = None,
-              ravens: bool = False) -> list[dict[str, Any]]:
+              ravens: bool = False, robot: str = "floating") -> list[dict[str, Any]]:
     """Import every task file of ``folder``; write one JSON line per file to ``out``.
 
     Args:
@@ -187,12 +189,13 @@ def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT
         graphs_dir: If given, each imported graph is written there as ``<stem>.json``.
         on_result: Called with each record as it is written (progress display).
         ravens: Also score every episode as Ravens does.
+        robot: The robot of the oracle episodes (a name of the registry).
 
     Returns:
         Every record, in file order.
     """
     records = []
-    for rec in iter_batch(folder, timeout, seed, episodes, graphs_dir, ravens):
+    for rec in iter_batch(folder, timeout, seed, episodes, graphs_dir, ravens, robot):
         out.write(json.dumps(rec) + "\n")
         out.flush()
         if on_result is not None:
@@ -203,11 +206,11 @@ def run_batch(folder: str | Path, out: IO[str], timeout: float = DEFAULT_TIMEOUT
 
 def iter_batch(folder: str | Path, timeout: float = DEFAULT_TIMEOUT_S, seed: int = 0,
                episodes: int = 0, graphs_dir: str | Path | None = None,
-               ravens: bool = False) -> Iterator[dict[str, Any]]:
+               ravens: bool = False, robot: str = "floating") -> Iterator[dict[str, Any]]:
     """Records of :func:`run_one` for each file of ``folder``, one at a time."""
     gdir = Path(graphs_dir) if graphs_dir is not None else None
     if gdir is not None:
         gdir.mkdir(parents=True, exist_ok=True)
     for path in task_files(folder):
         graph_out = gdir / f"{path.stem}.json" if gdir is not None else None
-        yield run_one(path, timeout, seed, episodes, graph_out, ravens)
+        yield run_one(path, timeout, seed, episodes, graph_out, ravens, robot)

@@ -1,7 +1,7 @@
 """Child-process entry of the batch import: one task file, one result record.
 
 Run as ``python -m factask.compat.cliport.worker FILE [--seed S] [--episodes N]
-[--graph-out PATH] [--ravens]``. The file **is executed**; the parent
+[--graph-out PATH] [--ravens] [--robot NAME]``. The file **is executed**; the parent
 (:mod:`factask.compat.cliport.batch`) runs this in its own process with a time
 limit, so a crashing or hanging task never stops the batch.
 
@@ -69,7 +69,7 @@ def new_record(path: str) -> dict[str, Any]:
 
 def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None = None,
              emit: Callable[[dict[str, Any]], None] | None = None,
-             ravens: bool = False) -> dict[str, Any]:
+             ravens: bool = False, robot: str = "floating") -> dict[str, Any]:
     """Load, import, compile and (optionally) run one task file.
 
     The file is executed once (:func:`import_cliport` loads it and reports the
@@ -85,6 +85,7 @@ def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None 
             returned), so a parent that has to kill this process still knows how
             far it got.
         ravens: Also score every episode as Ravens does.
+        robot: The robot of the oracle episodes (a name of the registry).
 
     Returns:
         The result record (see the module docstring); never raises: a late
@@ -101,7 +102,7 @@ def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None 
         report()
 
     try:
-        _run_stages(rec, path, seed, episodes, graph_out, loaded, report, ravens)
+        _run_stages(rec, path, seed, episodes, graph_out, loaded, report, ravens, robot)
     except Exception as exc:  # never lose the stages already done
         rec["error"] = f"internal error: {type(exc).__name__}: {exc}"
     return rec
@@ -109,7 +110,8 @@ def run_file(path: str, seed: int = 0, episodes: int = 0, graph_out: str | None 
 
 def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
                 graph_out: str | None, loaded: Callable[[type], None],
-                report: Callable[[], None], ravens: bool = False) -> None:
+                report: Callable[[], None], ravens: bool = False,
+                robot: str = "floating") -> None:
     try:
         result = import_cliport(path, seed=seed, on_loaded=loaded)
     except CliportImportError as exc:
@@ -130,16 +132,17 @@ def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
     rec["compiled"] = True
     report()
     if episodes > 0:
+        rec["robot"] = robot
         wins, failures, scores = 0, [], []
         for k in range(episodes):
             try:
                 if ravens:
-                    ep, score = scored_episode(result, seed + k)
+                    ep, score = scored_episode(result, seed + k, robot=robot)
                     scores.append({"seed": seed + k, "success": ep.success,
                                    "ravens_reward": score.reward,
                                    "ravens_success": score.success})
                 else:
-                    ep = run_episode(result.graph, seed=seed + k, robot="floating")
+                    ep = run_episode(result.graph, seed=seed + k, robot=robot)
             except Exception as exc:
                 rec["error"] = f"episode {k} failed: {type(exc).__name__}: {exc}"
                 break
@@ -169,6 +172,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--episodes", type=int, default=0)
     ap.add_argument("--graph-out", default=None)
     ap.add_argument("--ravens", action="store_true")
+    ap.add_argument("--robot", default="floating")
     args = ap.parse_args(argv)
     limit_memory()
     out = sys.stdout
@@ -183,7 +187,7 @@ def main(argv: list[str] | None = None) -> int:
     final: dict[str, Any] | None = None
     try:
         final = run_file(args.file, args.seed, args.episodes, args.graph_out, emit=emit,
-                         ravens=args.ravens)
+                         ravens=args.ravens, robot=args.robot)
     except Exception as exc:  # the last line of defence: always report, never hang the batch
         final = new_record(args.file)
         final["error"] = f"internal error: {type(exc).__name__}: {exc}"
