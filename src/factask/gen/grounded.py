@@ -32,6 +32,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from factask.gen import step_schemas as ss
+from factask.gen.capacity import prune
 from factask.gen.cover import GROUP_RELATIONS, covering_factors, paired_in_order
 from factask.gen.examples import library_task_examples, render_examples
 from factask.gen.mentions import Mention
@@ -409,6 +410,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
             branches = allowed.get("anyOf", [allowed]) if allowed else []
             factors = covering_factors(branches, movers, fixed, counts, paired_in_order(
                 [m.name in movers for m in found]))
+            factors = factors and prune(factors, found)  # shapes whose layouts fit
             if factors is not None:
                 break
     starts = kinds
@@ -426,7 +428,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},
-        "factors": factors,
+        "factors": prune(factors, found) or factors,  # goals whose layout fits only
     })
 
 

@@ -1,0 +1,122 @@
+"""Goals whose layout fits, by construction (factask.gen.capacity)."""
+
+from __future__ import annotations
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from test_gen_cover import proposals, sample
+
+from factask.gen import capacity, grounded
+from factask.gen.mentions import Mention, mentions
+from factask.gen.step_schemas import schema_problems
+from factask.model.palette import COLOR_NAMES
+
+
+def goals_of(schema: dict) -> list[dict]:
+    """Every goal branch (an object with a relation ``type`` const) in ``schema``."""
+    props = schema.get("properties")
+    if isinstance(props, dict) and "const" in props.get("type", {}):
+        return [schema]
+    out: list[dict] = []
+    for child in [*schema.get("anyOf", []), *schema.get("prefixItems", []),
+                  *([schema["items"]] if isinstance(schema.get("items"), dict) else []),
+                  *([props["goal"]] if isinstance(props, dict) and "goal" in props else [])]:
+        out.extend(goals_of(child))
+    return out
+
+
+def test_a_zone_too_small_for_the_blocks_is_not_offered() -> None:
+    found = mentions("put the five blocks in the zone")
+    assert [(m.name, m.count) for m in found] == [("blocks", 5), ("zone", 1)]
+    problem = capacity.layout_problem({"type": "in_zone", "objects": ["blocks"],
+                                       "zone": "zone"}, found)
+    assert problem is not None and "do not fit" in problem
+    schema = grounded.compact_graph_schema(found, "put the five blocks in the zone")
+    kinds = {g["properties"]["type"]["const"] for g in goals_of(schema["properties"]["factors"])}
+    assert "in_zone" not in kinds
+    few = mentions("put the four blocks in the zone")
+    assert capacity.layout_problem({"type": "in_zone", "objects": ["blocks"],
+                                    "zone": "zone"}, few) is None
+
+
+def test_a_stack_above_the_workspace_ceiling_is_not_offered() -> None:
+    found = [Mention("blocks", "block", None, 9), Mention("pallet", "pallet", None, 1)]
+    goal = {"type": "stack", "objects": ["blocks"], "base": "pallet", "ordered": True}
+    assert "above the workspace" in (capacity.layout_problem(goal, found) or "")
+    assert capacity.layout_problem(goal, [Mention("blocks", "block", None, 3), found[1]]) is None
+    schema = grounded.compact_graph_schema(found, "stack the nine blocks on the pallet")
+    assert all(g["properties"]["type"]["const"] != "stack"
+               for g in goals_of(schema["properties"]["factors"]))
+
+
+def test_a_row_offers_only_the_spacings_that_fit_its_line() -> None:
+    found = [Mention("blocks", "block", None, 4), Mention("line", "line", None, 1)]
+    schema = grounded.compact_graph_schema(found, "put the four blocks in a row on the line")
+    rows = [g for g in goals_of(schema["properties"]["factors"])
+            if g["properties"]["type"]["const"] == "row"]
+    assert rows
+    for row in rows:
+        spacing = row["properties"]["spacing"]
+        offered = [v for o in spacing.get("anyOf", [spacing]) for v in o.get("enum", [])]
+        assert 0.5 not in offered and offered and max(offered) <= 0.1
+        for s in offered:
+            goal = {"type": "row", "objects": ["blocks"], "spacing": s, "along": "line",
+                    "on": None, "ordered": False}
+            assert capacity.layout_problem(goal, found) is None
+
+
+def test_a_schema_nothing_fits_is_kept_as_it_was() -> None:
+    found = [Mention("blocks", "block", None, 12), Mention("zone", "zone", None, 1)]
+    goal = grounded.relation_over("in_zone", {"blocks": "block", "zone": "zone"},
+                                  {"blocks": 12, "zone": 1})
+    assert goal is not None
+    pinned = {**goal, "properties": {**goal["properties"],
+                                     "objects": {"type": "array",
+                                                 "prefixItems": [{"const": "blocks"}],
+                                                 "items": False, "minItems": 1,
+                                                 "maxItems": 1}}}
+    assert capacity.prune(pinned, found) is None
+    assert capacity.prune(goal, found) is None  # its only answer moves all 12 blocks
+    either = grounded.relation_over("in_zone", {"blocks": "block", "balls": "ball",
+                                                "zone": "zone"}, {"blocks": 12, "zone": 1})
+    assert either is not None
+    unpinned = {"type": "array", "items": {"type": "object", "properties": {"goal": either},
+                                           "required": ["goal"]}, "minItems": 1}
+    assert capacity.prune(unpinned, found) == unpinned  # objects not pinned: unchanged
+
+
+@settings(max_examples=40, deadline=None)
+@given(proposals, st.data())
+def test_every_pinned_goal_the_pruned_schema_allows_can_be_laid_out(proposal, data) -> None:
+    found = mentions(proposal)
+    if not grounded.applies(found):
+        return
+    schema = grounded.compact_graph_schema(found, proposal)
+    answer = sample(schema, data)
+    assert schema_problems(answer, schema) == []
+    factors = schema["properties"]["factors"]
+    if "items" in factors and factors["items"] is not False:
+        return  # the plain list: objects not pinned (checked at runtime)
+    for goal in (f["goal"] for f in answer["factors"]):
+        problem = capacity.layout_problem(goal, found)
+        assert problem is None or "budget" in problem, (proposal, goal, problem)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["block", "ball", "ell", "box", "cylinder", "zone",
+                                           "bowl", "pallet", "line", "fixture", "container"]),
+                          st.integers(1, 10), st.sampled_from(sorted(COLOR_NAMES))),
+                min_size=1, max_size=4, unique_by=lambda t: t[0]),
+       st.sampled_from(["in", "stack", "row", "on", "inside", "circle", "align"]))
+def test_prune_over_any_counts_keeps_a_schema_or_the_original(objects, word) -> None:
+    found = [Mention(f"{c}_{k}s", k, c, n) for k, n, c in objects]
+    if not grounded.applies(found):
+        return
+    proposal = f"{word} the objects"
+    schema = grounded.compact_graph_schema(found, proposal)
+    factors = schema["properties"]["factors"]
+    assert goals_of(factors), "an empty anyOf is no grammar"
+    for goal in goals_of(factors):
+        for field in goal["properties"].values():
+            assert field.get("anyOf", [None]) != []
+            assert field.get("enum", [None]) != []
