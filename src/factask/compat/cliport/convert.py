@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from factask.compat.cliport.errors import CliportImportError, Unsupported
+from factask.compat.cliport.errors import CliportImportError, NoGoals, Unsupported
 from factask.compat.cliport.goals import (
     RecordedGoal,
     read_goals,
@@ -349,7 +349,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     names = object_names(objects)
     goals = read_goals(task, session)
     if not goals:
-        raise CliportImportError("reset added no goals (add_goal was never called)")
+        raise NoGoals("reset added no goals (add_goal was never called)")
     piles = {p.goal: p for p in find_piles(task, goals, names)}
     in_piles = {o.obj_id for p in piles.values() for o in p.blocks}
     ropes = find_ropes(session, names, warn)

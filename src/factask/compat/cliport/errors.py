@@ -38,6 +38,21 @@ class Unsupported(CliportImportError):
             seen.append(str(self))
 
 
+class UnsupportedAttribute(Unsupported, AttributeError):
+    """An attribute of the recording env that factask does not provide. An
+    ``AttributeError`` too, so task code that probes for it (``hasattr(env, 'x')``,
+    ``getattr(env, 'x', None)``) takes its own fallback, as it would on an env
+    without it; the refusal is still remembered (a warning if the task goes on)."""
+
+
+class NoGoals(CliportImportError):
+    """``reset`` ran but queued no goal (``add_goal`` never called). ``derived``:
+    the class of the file that derives from the one imported, where there is
+    exactly one line of them (the import then tries that one)."""
+
+    derived: str | None = None
+
+
 @contextmanager
 def recording_refusals() -> Iterator[list[str]]:
     """Collect the messages of every :class:`Unsupported` raised in the block."""

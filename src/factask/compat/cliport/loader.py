@@ -30,6 +30,7 @@ from factask.compat.cliport import cameras, grippers, primitives, pybullet_stub,
 from factask.compat.cliport.convert import build_graph, kebab, object_names
 from factask.compat.cliport.errors import (
     CliportImportError,
+    NoGoals,
     PoseError,
     Unsupported,
     recording_refusals,
@@ -272,6 +273,34 @@ def import_cliport(path: str | Path, class_name: str | None = None,
             of CliportImportError).
     """
     p = Path(path)
+    try:
+        return _import_once(p, class_name, seed, on_loaded)
+    except NoGoals as exc:
+        if class_name is not None or exc.derived is None:
+            raise
+        # the class picked by default only sets the scene up; the one line of
+        # classes the file derives from it (``Extra(Base)``, whose ``reset`` calls
+        # ``super().reset(env)`` and queues the goals) ends in the task
+        result = _import_once(p, exc.derived, seed, on_loaded)
+        result.warnings.insert(0, f"the file's default class queues no goals ({exc}); "
+                                  f"imported {exc.derived}, the class derived from it")
+        return result
+
+
+def _most_derived(module: types.ModuleType, cls: type) -> str | None:
+    """The one class of the file deriving from ``cls`` that nothing else derives
+    from, when the file's subclasses of ``cls`` form one line; else None."""
+    subs = [v for v in vars(module).values()
+            if isinstance(v, type) and issubclass(v, cls) and v is not cls
+            and v.__module__ == module.__name__]
+    leaves = [c for c in subs if not any(o is not c and issubclass(o, c) for o in subs)]
+    if len(leaves) == 1 and all(issubclass(leaves[0], c) for c in subs):
+        return leaves[0].__name__
+    return None
+
+
+def _import_once(p: Path, class_name: str | None, seed: int,
+                 on_loaded: Callable[[type], None] | None) -> ImportResult:
     session = Session(seed=seed, rng=np.random.default_rng(seed))
     try:
         with cliport_aliases(), _seeded(seed), session_scope(session):
@@ -301,6 +330,10 @@ def import_cliport(path: str | Path, class_name: str | None = None,
                              f"{message}")
             try:
                 graph, goals = build_graph(instance, session, cls.__name__)
+            except NoGoals as exc:
+                err = NoGoals(f"{p}: {cls.__name__}: {exc}")
+                err.derived = _most_derived(module, cls) if class_name is None else None
+                raise err from exc
             except CliportImportError as exc:
                 raise type(exc)(f"{p}: {cls.__name__}: {exc}") from exc
             except PoseError as exc:  # a malformed pose in a goal: not a graph problem

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from factask.compat.cliport.errors import Unsupported
+from factask.compat.cliport.errors import Unsupported, UnsupportedAttribute
 from factask.compat.cliport.transforms import split_pose
 from factask.compat.cliport.urdf_map import asset_key, resolve_asset
 from factask.model.limits import MAX_OBJECTS
@@ -302,5 +302,5 @@ class RecordingEnv:
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__"):
             raise AttributeError(name)
-        raise Unsupported(f"env.{name} is not available while recording a task's reset "
+        raise UnsupportedAttribute(f"env.{name} is not available while recording a task's reset "
                           "(factask records objects and goals only)")
