@@ -120,3 +120,15 @@ def test_prune_over_any_counts_keeps_a_schema_or_the_original(objects, word) -> 
         for field in goal["properties"].values():
             assert field.get("anyOf", [None]) != []
             assert field.get("enum", [None]) != []
+
+
+def test_a_circle_offers_only_the_radii_that_fit_the_workspace() -> None:
+    found = [Mention("blocks", "block", None, 2), Mention("ells", "ell", None, 1)]
+    schema = grounded.compact_graph_schema(found, "put the blocks and the ell in a circle")
+    circles = [g for g in goals_of(schema["properties"]["factors"])
+               if g["properties"]["type"]["const"] == "circle"]
+    assert circles
+    for circle in circles:
+        radius = circle["properties"]["radius"]
+        offered = [v for o in radius.get("anyOf", [radius]) for v in o.get("enum", [])]
+        assert offered and max(offered) < 0.25  # 0.527 m across at 0.2 m: wider than 0.50 m

@@ -12,9 +12,10 @@ pinned goal variant is laid out alone by the same code the runtime level runs
 :func:`factask.sim.solving.solve_targets`: the relations' packing, height and
 row-length checks, one definition of each fact), and the variants that cannot be
 are left out of the grammar: an anchor that cannot hold the objects, a row's
-spacing that does not fit its line (the spacing becomes an ``enum`` of the
-:data:`SPACINGS` that fit). A shape of goals with a goal left with no variant is
-dropped; a schema pruned to nothing is kept as it was (the ladder reports it).
+spacing that does not fit its line, a circle wider than the workspace (such a
+length becomes an ``enum`` of the :data:`LENGTHS` that fit). A shape of goals
+with a goal left with no variant is dropped; a schema pruned to nothing is kept
+as it was (the ladder reports it).
 
 Only a goal alone is checked: two goals sharing an anchor, or a goal met at the
 start, are still the runtime level's to find.
@@ -40,8 +41,9 @@ from factask.sim.solving import solve_targets
 
 Schema = dict[str, Any]
 
-#: Row spacings (m) a pinned row may take: those whose row fits are offered.
-SPACINGS = (0.05, 0.06, 0.08, 0.1, 0.12, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5)
+#: Lengths (m) a pinned goal's free length (a row's ``spacing``, a circle's
+#: ``radius``) may take: those within the field's bounds whose layout fits are offered.
+LENGTHS = (0.05, 0.06, 0.08, 0.1, 0.12, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5)
 #: Layouts tried per goal before it is judged not to fit (a retryable failure each).
 TRIES = 2
 #: Wall-clock seconds one goal's layout may search (a timeout counts as fitting).
@@ -60,7 +62,25 @@ def _value(field: Schema) -> tuple[bool, Any]:
         return True, field["enum"][0]
     if field.get("type") == "boolean":
         return True, False
+    if field.get("type") in ("number", "integer"):  # not a length this check narrows
+        lo = field.get("minimum", field.get("exclusiveMinimum", 0))
+        return True, (lo + field.get("maximum", lo + 1)) / 2
     return False, None
+
+
+def _length_field(field: Schema) -> Schema | None:
+    """The number option of a nullable length field (``spacing``, ``radius``), else None."""
+    options = field.get("anyOf", [])
+    numbers = [o for o in options if o.get("type") == "number" and "enum" not in o]
+    if len(numbers) == 1 and any(o.get("type") == "null" for o in options):
+        return numbers[0]
+    return None
+
+
+def _within(value: float, number: Schema) -> bool:
+    return (value > number.get("exclusiveMinimum", -1e9)
+            and value >= number.get("minimum", -1e9)
+            and value <= number.get("maximum", 1e9))
 
 
 def _pinned_objects(field: Schema) -> list[str] | None:
@@ -131,9 +151,9 @@ def fit_variant(branch: Schema, found: Sequence[Mention]) -> Schema | None:
     """A pinned goal branch narrowed to what can be laid out, or None (nothing can).
 
     Its anchor fields keep the names (and null) whose goal fits, the others set to
-    their pinned or null value; a row's ``spacing`` becomes the :data:`SPACINGS`
-    that fit (and null where the default spacing fits). A branch whose ``objects``
-    are not pinned comes back unchanged.
+    their pinned or null value; a free length (a row's ``spacing``, a circle's
+    ``radius``) becomes the :data:`LENGTHS` that fit (and null where the default
+    fits). A branch whose ``objects`` are not pinned comes back unchanged.
     """
     props = branch.get("properties", {})
     relation = props.get("type", {}).get("const")
@@ -169,15 +189,15 @@ def fit_variant(branch: Schema, found: Sequence[Mention]) -> Schema | None:
             return None
         new[field] = kept[0] if len(kept) == 1 else {"anyOf": kept}
         base[field] = _value(new[field])[1]
-    if "spacing" in props:
-        spacings = [s for s in SPACINGS if fits({**base, "spacing": s})]
-        default = fits({**base, "spacing": None})
-        options = ([{"type": "number", "enum": spacings}] if spacings else []) + \
-            ([{"type": "null"}] if default else [])
+    lengths = {f: n for f, schema in props.items() if (n := _length_field(schema)) is not None}
+    for field, number in lengths.items():
+        values = [x for x in LENGTHS if _within(x, number) and fits({**base, field: x})]
+        options = ([{"type": "number", "enum": values}] if values else []) + \
+            ([{"type": "null"}] if fits({**base, field: None}) else [])
         if not options:
             return None
-        new["spacing"] = options[0] if len(options) == 1 else {"anyOf": options}
-    elif not fits(base):
+        new[field] = options[0] if len(options) == 1 else {"anyOf": options}
+    if not lengths and not fits(base):
         return None
     return {**branch, "properties": new}
 
