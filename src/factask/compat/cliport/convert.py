@@ -46,7 +46,11 @@ from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.ropes import find_ropes, rope_goal
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.sharing import separate_targets, share_targets, zone_parts
-from factask.compat.cliport.starts import fits_inside, separate_starts
+from factask.compat.cliport.starts import (
+    fits_inside,
+    scatter_added_at_targets,
+    separate_starts,
+)
 from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
 from factask.geometry import Pose, tilt_deg
 from factask.model.errors import GraphValidationError
@@ -350,6 +354,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     goals = read_goals(task, session)
     if not goals:
         raise NoGoals("reset added no goals (add_goal was never called)")
+    scatter_added_at_targets(goals, names, warn)
     piles = {p.goal: p for p in find_piles(task, goals, names)}
     in_piles = {o.obj_id for p in piles.values() for o in p.blocks}
     ropes = find_ropes(session, names, warn)

@@ -88,3 +88,44 @@ def separate_starts(objects: list[RecordedObject], movable: set[int], names: dic
     warn(f"{', '.join(touched)} start overlapping where the task put them by hand; moved "
          f"apart until they touch, each by at most {most * 1000:.1f} mm (PyBullet pushes "
          "overlapping objects apart at its first step)")
+
+
+#: How close (m) an object's start must be to a target to count as added there.
+AT_TARGET_EPS = 1e-4
+
+
+def scatter_added_at_targets(goals: list[Any], names: dict[int, str], warn: Any) -> None:
+    """Objects a goal finds at its targets before any action start at random spots.
+
+    A task that computes a packing plan adds each box at its planned pose and then
+    moves it out (Ravens' packing tasks ``resetBasePositionAndOrientation`` it to a
+    random pose); one that forgets leaves a goal met before the robot acts (Ravens
+    scores it done at once; factask refuses a goal met at the start). When every
+    movable object of a goal — the first goal that moves each — starts at one of the
+    targets its ``matches`` row allows (within 0.1 mm, z included), they start at
+    random free spots instead, as ``get_random_pose`` would give them (warning).
+    """
+    first: dict[int, int] = {}
+    for g in goals:
+        for o in g.objs:
+            first.setdefault(o.obj_id, g.index)
+    for g in goals:
+        objs = list(g.objs)
+        if not objs or not g.targets or any(
+                first[o.obj_id] != g.index or o.category == "fixed" or o.random_start
+                for o in objs):
+            continue
+        at = []
+        for i, o in enumerate(objs):
+            row = g.matches[i] if i < len(g.matches) else []
+            at.append(any(j < len(row) and row[j] and float(np.linalg.norm(
+                np.asarray(o.pos, dtype=float) - np.asarray(t[0], dtype=float)[:3]))
+                < AT_TARGET_EPS for j, t in enumerate(g.targets)))
+        if not all(at):
+            continue
+        for o in objs:
+            o.random_start = True
+        warn(f"goal {g.index}: {', '.join(names[o.obj_id] for o in objs)} start at the "
+             "targets the goal gives them (added in place and never moved out), so the "
+             "goal would be met before any action; they start at random free spots "
+             "instead")
