@@ -165,3 +165,19 @@ def test_boxes_added_at_their_targets_start_at_random_spots(tmp_path: Path) -> N
                                     "import numpy as np\nimport pybullet as p\n"))
     other = import_cliport(moved)
     assert not any("start at the targets" in w for w in other.warnings)
+
+
+def test_the_palette_iterates_gensims_colours_and_looks_up_factasks() -> None:
+    names = list(cutils.COLORS)
+    assert len(cutils.COLORS) == 16 and names == cutils.COLORS_NAMES
+    assert names[:11] == ["blue", "red", "green", "orange", "yellow", "purple", "pink",
+                          "cyan", "brown", "white", "gray"]
+    assert cutils.COLORS["olive"] and "olive" not in cutils.COLORS  # looked up, not iterated
+    assert cutils.COLORS.get("no-such-colour") is None
+    with pytest.raises(KeyError):
+        cutils.COLORS["no-such-colour"]
+    assert cutils.get_colors_names("train") == cutils.TRAIN_COLORS
+    assert cutils.get_colors_names("test") == cutils.EVAL_COLORS
+    assert cutils.get_colors_names("full") == cutils.TRAIN_COLORS + cutils.EVAL_COLORS
+    rgb, picked = cutils.get_colors("train", n_colors=3)
+    assert len(set(picked)) == 3 and set(picked) <= set(cutils.TRAIN_COLORS) and len(rgb) == 3

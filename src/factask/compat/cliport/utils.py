@@ -18,35 +18,56 @@ from scipy.spatial.transform import Rotation
 from factask.compat.cliport import transforms
 from factask.compat.cliport.errors import UnknownColorNameError, Unsupported
 from factask.geometry import quat_mul
-from factask.model.palette import COLOR_NAMES
 from factask.model.palette import COLORS as PALETTE
+
+#: The names GenSim's ``utils.COLORS`` holds, in its order: what task code iterating
+#: over the palette (``for c in utils.COLORS``, ``utils.COLORS_NAMES[:n]``) sees.
+#: factask's palette has more colours; they are looked up, never iterated.
+GENSIM_COLOR_NAMES = ("blue", "red", "green", "orange", "yellow", "purple", "pink", "cyan",
+                      "brown", "white", "gray", "indigo", "violet", "black", "silver", "gold")
 
 
 class _Colors(dict):  # type: ignore[type-arg]
-    """Name -> RGB list; a copy on every lookup (callers append alpha in place)."""
+    """Name -> RGB list; a copy on every lookup (callers append alpha in place).
+    Iterates GenSim's names; any name of factask's palette is looked up."""
 
     def __getitem__(self, key: Any) -> list[float]:
-        if key not in self:
-            raise UnknownColorNameError(f"unknown colour {key!r}; valid colours: {', '.join(self)}")
-        return list(dict.__getitem__(self, key))
+        if key in self:
+            return list(dict.__getitem__(self, key))
+        if isinstance(key, str) and key in PALETTE:
+            return list(PALETTE[key])
+        raise UnknownColorNameError(f"unknown colour {key!r}; valid colours: {', '.join(self)}")
+
+    def get(self, key: Any, default: Any = None) -> Any:
+        try:
+            return self[key]
+        except KeyError:
+            return default
 
 
 #: Colour name -> [r, g, b] in [0, 1].
-COLORS: dict[str, list[float]] = _Colors({n: list(PALETTE[n]) for n in COLOR_NAMES})
-COLORS_NAMES = list(COLOR_NAMES)
+COLORS: dict[str, list[float]] = _Colors({n: list(PALETTE[n]) for n in GENSIM_COLOR_NAMES})
+COLORS_NAMES = list(GENSIM_COLOR_NAMES)
 #: Ravens' colour splits.
 TRAIN_COLORS = ["blue", "red", "green", "yellow", "brown", "gray", "cyan"]
 EVAL_COLORS = ["blue", "red", "green", "orange", "purple", "pink", "white"]
 
 
 def get_colors_names(mode: str = "train") -> list[str]:
-    """Colour names a task may sample from (GenSim returns the train split always)."""
-    return list(TRAIN_COLORS)
+    """Colour names of a split, as CLIPort/GenSim give them: ``train`` the train
+    colours, ``full`` train then eval (three names twice, as there), any other
+    mode the eval colours."""
+    if mode == "train":
+        return list(TRAIN_COLORS)
+    if mode == "full":
+        return TRAIN_COLORS + EVAL_COLORS
+    return list(EVAL_COLORS)
 
 
 def get_colors(mode: str = "train", n_colors: int = -1, **kwargs: Any
                ) -> tuple[list[list[float]], list[str]]:
-    """``n_colors`` distinct colours (all of them if -1): (RGB lists, names)."""
+    """``n_colors`` colours of the mode's split, drawn without replacement (all of
+    them if -1): (RGB lists, names)."""
     names = get_colors_names(mode)
     if n_colors != -1:
         names = random.sample(names, n_colors)
