@@ -33,7 +33,7 @@ from pydantic import ValidationError
 
 from factask.gen import step_schemas as ss
 from factask.gen.capacity import prune
-from factask.gen.cover import GROUP_RELATIONS, covering_factors, paired_in_order
+from factask.gen.cover import GROUP_RELATIONS, covering_factors, names_of, paired_in_order
 from factask.gen.examples import library_task_examples, render_examples
 from factask.gen.mentions import Mention
 from factask.model.errors import FactaskError, InvalidValueError
@@ -234,11 +234,6 @@ def relation_over(relation: str, kinds: dict[str, str],
     return _split_by_anchor(schema, relation, movers)
 
 
-def _enum_of(field: Schema) -> list[str]:
-    """The names an anchor field's schema allows (through a nullable ``anyOf``)."""
-    return [n for o in field.get("anyOf", [field]) for n in o.get("enum", [])]
-
-
 def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema | None:
     """The relation as one branch per value of its first anchor that could also be
     moved, that anchor written first and ``objects`` listing the others -- so
@@ -246,7 +241,7 @@ def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema
     Unchanged when no anchor names a movable variable."""
     props = schema["properties"]
     field = next((f for f in RELATION_TYPES[relation].anchor_fields
-                  if f in props and set(_enum_of(props[f])) & set(movers)), None)
+                  if f in props and set(names_of(props[f])) & set(movers)), None)
     if field is None:
         return schema
     objects = props["objects"]
@@ -255,7 +250,7 @@ def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema
     # Anchors that stay put (a pallet, a zone, a bowl) first, then none, then a movable
     # one: what a proposal's "on the platform" names; a small model tends to take the
     # first branch a grammar offers.
-    anchors = sorted(_enum_of(props[field]), key=lambda a: a in movers)
+    anchors = sorted(names_of(props[field]), key=lambda a: a in movers)
     for anchor in (a for a in anchors if a not in movers):
         branches.append(ss.obj({"type": props["type"], field: {"const": anchor},
                                 "objects": objects, **rest}))

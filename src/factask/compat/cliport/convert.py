@@ -35,6 +35,7 @@ import numpy as np
 from factask.compat.cliport.errors import CliportImportError, NoGoals, Unsupported
 from factask.compat.cliport.goals import (
     RecordedGoal,
+    half_xy,
     read_goals,
     resting_heights,
     target_pose,
@@ -252,9 +253,7 @@ def _make_room(host: RecordedObject, goal: RecordedGoal, poses: list[Any],
     for o, pose in zip(goal.objs, poses, strict=True):
         dx, dy = pose.x - float(host.pos[0]), pose.y - float(host.pos[1])
         local = np.abs([c * dx + s * dy, -s * dx + c * dy])
-        rel_yaw = math.radians(pose.yaw_deg) - yaw
-        cr, sr = abs(math.cos(rel_yaw)), abs(math.sin(rel_yaw))
-        half = np.array([cr * o.size[0] + sr * o.size[1], sr * o.size[0] + cr * o.size[1]]) / 2
+        half = np.array(half_xy(o.size, math.radians(pose.yaw_deg) - yaw))
         need = np.maximum(need, local + half + WALL_THICKNESS + WALL_CLEARANCE)
     grown = (float(2 * need[0]), float(2 * need[1]), host.size[2])
     if grown[:2] != host.size[:2]:

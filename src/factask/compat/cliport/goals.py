@@ -156,7 +156,7 @@ class _Slot:
     floor: float | None = None
 
 
-def _half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
+def half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]:
     """Half extents of the axis-aligned box around a footprint turned by ``yaw``."""
     c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
     hx, hy = size[0] / 2, size[1] / 2
@@ -196,7 +196,7 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             size = max((o.size for o in allowed), key=lambda s: s[2])
             receptacle = all(kind_spec(o.kind).receptacle for o in allowed)
             slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
-                               _half_xy(size, yaw), size[2],
+                               half_xy(size, yaw), size[2],
                                frozenset(o.obj_id for o in allowed),
                                len(g.objs) >= len(g.targets),
                                max(floor_thickness(o.kind) for o in allowed)
@@ -212,7 +212,7 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         # factask builds taller than the author's size hint still carries the row
         # the author put 3.5 cm up, and every layer stacked on that row).
         placed = top if o.placed_top is None else o.placed_top
-        fixed.append((float(o.pos[0]), float(o.pos[1]), _half_xy(o.size, yaw_of_xyzw(o.quat)),
+        fixed.append((float(o.pos[0]), float(o.pos[1]), half_xy(o.size, yaw_of_xyzw(o.quat)),
                       top, placed, spec.receptacle))
     out: dict[tuple[int, int], float] = {}
     done: list[tuple[_Slot, float]] = []

@@ -10,11 +10,11 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
+from factask.compat.cliport.goals import half_xy
 from factask.compat.cliport.recorder import RecordedObject
 from factask.compat.cliport.sharing import SEPARATE_GAP, SEPARATE_ROUNDS, _separation
 from factask.compat.cliport.transforms import yaw_of_xyzw
@@ -27,9 +27,7 @@ START_NUDGE = 0.02
 
 def _half_extents(o: RecordedObject, yaw: float) -> np.ndarray:
     """Half extents (x, y) of the box around ``o``'s footprint in a frame at ``yaw``."""
-    rel = yaw_of_xyzw(o.quat) - yaw
-    c, s = abs(math.cos(rel)), abs(math.sin(rel))
-    return np.array([c * o.size[0] + s * o.size[1], s * o.size[0] + c * o.size[1]]) / 2
+    return np.array(half_xy(o.size, yaw_of_xyzw(o.quat) - yaw))
 
 
 def fits_inside(o: RecordedObject, host: RecordedObject) -> bool:
