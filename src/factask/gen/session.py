@@ -100,7 +100,8 @@ def open_client(config: LLMConfig, cache: ResponseCache | None = None,
                         context=server.n_ctx, counter=server.count_messages,
                         on_abandon=server.restart, before_call=server.revive,
                         seconds_per_token=LOCAL_SECONDS_PER_TOKEN,
-                        prompt_budget=LOCAL_PROMPT_BUDGET)
+                        prompt_budget=LOCAL_PROMPT_BUDGET,
+                        system_role=server.spec.system_role)
     finally:
         server.stop()
         if previous is not None:
