@@ -218,3 +218,25 @@ def test_paired_in_order_reads_x_in_a_and_y_in_b() -> None:
     assert not cover.paired_in_order([True, False])           # one pair: nothing to choose
     assert not cover.paired_in_order([True, True, False, False])  # "red and blue ... in"
     assert not cover.paired_in_order([True, False, True])
+
+
+def test_objects_pair_by_colour_where_the_words_say_same_colour() -> None:
+    colours = {"red_ball": "red", "blue_ball": "blue", "blue_zone": "blue", "red_zone": "red"}
+    assert cover.paired_by_colour(["red_ball", "blue_ball"], ["blue_zone", "red_zone"],
+                                  colours) == ["red_zone", "blue_zone"]
+    assert cover.paired_by_colour(["red_ball", "blue_ball"], ["blue_zone"], colours) is None
+    assert cover.paired_by_colour(["red_ball", "blue_ball"], ["zone", "red_zone"],
+                                  {**colours, "zone": None}) is None
+    # Crossed colours in the words ("the red ball in the blue zone ...") pair by order.
+    assert cover.pair_fixed(["red_ball", "blue_ball"], ["blue_zone", "red_zone"], colours,
+                            False, [True, False, True, False]) == (["blue_zone", "red_zone"], True)
+    proposal = "put the blue ball and the red ball in the zones of the matching colour"
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    right = [{"goal": {"type": "in_zone", "objects": [b], "zone": z}}
+             for b, z in (("blue_ball", "blue_zone"), ("red_ball", "red_zone"))]
+    crossed = [{"goal": {"type": "in_zone", "objects": [b], "zone": z}}
+               for b, z in (("blue_ball", "red_zone"), ("red_ball", "blue_zone"))]
+    assert schema_problems({"variables": variables, "factors": right}, schema) == []
+    assert schema_problems({"variables": variables, "factors": crossed}, schema)

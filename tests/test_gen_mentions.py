@@ -9,7 +9,7 @@ import re
 from hypothesis import given
 from hypothesis import strategies as st
 
-from factask.gen.mentions import MAX_MENTIONS, mentions, mentions_text
+from factask.gen.mentions import MAX_SPLIT_MENTIONS, mentions, mentions_text
 from factask.model.kinds import ASSET_KINDS
 from factask.model.names import NAME_PATTERN
 from factask.model.palette import COLOR_NAMES
@@ -43,7 +43,7 @@ def test_a_proposal_naming_nothing_says_so() -> None:
     max_size=60).map(" ".join))
 def test_any_text_gives_valid_distinct_bounded_mentions(text: str) -> None:
     found = mentions(text)
-    assert len(found) <= MAX_MENTIONS
+    assert len(found) <= MAX_SPLIT_MENTIONS
     assert len({m.name for m in found}) == len(found)
     for m in found:
         assert re.fullmatch(NAME_PATTERN, m.name) and "__" not in m.name, m
@@ -197,3 +197,65 @@ def test_a_noun_before_the_kind_word_does_not_hide_the_count() -> None:
     # A function word between them is no noun: the count is not the kind's.
     assert _names("three of the blocks") == [("blocks", "block", None, 2)]
     assert _names("put two in each bowl") == [("bowl", "bowl", None, 1)]
+
+
+def test_a_matching_colour_phrase_splits_groups_into_one_object_per_colour() -> None:
+    # The list of colours is both groups' when they are as large as it.
+    assert _names("There are four spheres and four boxes of different colors (red, blue, "
+                  "green, and yellow). Place each sphere in the box of the same color.") == [
+        (f"{c}_{k}", kind, c, 1) for k, kind in (("ball", "ball"), ("box", "box"))
+        for c in ("red", "blue", "green", "yellow")]
+    # The phrase qualifies its own noun ("bowls of the same colour") with the colours
+    # named for the others, one each when the words give fewer.
+    assert _names("sort the red and blue blocks into the bowls of the same colour") == [
+        ("red_block", "block", "red", 1), ("blue_block", "block", "blue", 1),
+        ("red_bowl", "bowl", "red", 1), ("blue_bowl", "bowl", "blue", 1)]
+    assert _names("put the red block in the bowl of the matching color") == [
+        ("red_block", "block", "red", 1), ("red_bowl", "bowl", "red", 1)]
+    # Counts per colour stay with their colour; other objects are left alone.
+    assert _names("twelve blocks of three colors (four red, four green, four blue) go into "
+                  "the zones of their colour on a pallet") == [
+        ("red_blocks", "block", "red", 4), ("green_blocks", "block", "green", 4),
+        ("blue_blocks", "block", "blue", 4), ("red_zone", "zone", "red", 1),
+        ("green_zone", "zone", "green", 1), ("blue_zone", "zone", "blue", 1),
+        ("pallet", "pallet", None, 1)]
+
+
+def test_without_a_matching_phrase_a_listed_group_stays_one_group() -> None:
+    assert _names("put the balls of different colors (red, blue, green) in the zone") == [
+        ("balls", "ball", None, 3), ("zone", "zone", None, 1)]
+    from factask.gen.mentions import colour_matched
+
+    assert colour_matched("color-coordinated-ball-insertion")
+    assert colour_matched("zones correspondingly colored")
+    assert colour_matched("sort the blocks by colour")
+    assert not colour_matched("put the red block on the blue colored pallet")
+
+
+def test_each_colour_may_have_its_own_count_and_an_adjective_may_say_the_kind() -> None:
+    assert _names("stack three red, three blue, and three green blocks on a pallet") == [
+        ("red_blocks", "block", "red", 3), ("blue_blocks", "block", "blue", 3),
+        ("green_blocks", "block", "green", 3), ("pallet", "pallet", None, 1)]
+    assert _names("two red and three blue blocks") == [
+        ("red_blocks", "block", "red", 2), ("blue_blocks", "block", "blue", 3)]
+    assert [m.kind for m in mentions("pick up the cylindrical blocks and spherical objects")] \
+        == ["cylinder", "ball"]
+
+
+@given(st.lists(st.sampled_from([*COLOR_NAMES[:6], "and", "four", "two", "blocks", "bowls",
+                                 "zones", "of", "the", "same", "colour", "matching",
+                                 "(", ")", ","]), max_size=40).map(" ".join))
+def test_splitting_by_colour_keeps_names_distinct_and_coloured(text: str) -> None:
+    found = mentions(text)
+    assert len(found) <= MAX_SPLIT_MENTIONS
+    assert len({m.name for m in found}) == len(found)
+    for m in found:
+        assert m.name == (f"{m.color}_" if m.color else "") + m.name.split("_")[-1]
+        assert 1 <= m.count <= 16
+
+
+def test_under_a_matching_phrase_an_uncoloured_object_is_the_group_of_its_coloured_kin() -> None:
+    assert _names("put each ball in the container of its colour: a red ball and a green "
+                  "ball") == [("red_container", "container", "red", 1),
+                              ("green_container", "container", "green", 1),
+                              ("red_ball", "ball", "red", 1), ("green_ball", "ball", "green", 1)]

@@ -300,6 +300,38 @@ def paired_in_order(movable: Sequence[bool]) -> bool:
         all(m == (i % 2 == 0) for i, m in enumerate(movable))
 
 
+def paired_by_colour(movers: Sequence[str], fixed: Sequence[str],
+                     colours: dict[str, str | None]) -> list[str] | None:
+    """The fixed objects reordered so that the i-th is the i-th movable object's
+    colour ("each ball in the zone of its colour"), or None when the colours do
+    not pair them one to one (then the words' pairing, if any, decides).
+
+    Args:
+        movers: The movable named objects, in the proposal's order.
+        fixed: The fixed named objects.
+        colours: Name -> colour (None: uncoloured).
+    """
+    if len(movers) < 2 or len(fixed) != len(movers):
+        return None
+    by_colour = {colours.get(f): f for f in fixed}
+    if None in by_colour or len(by_colour) != len(fixed):
+        return None
+    out = [by_colour.get(colours.get(m)) for m in movers]
+    return [f for f in out if f is not None] if None not in out else None
+
+
+def pair_fixed(movers: Sequence[str], fixed: Sequence[str], colours: dict[str, str | None],
+               by_colour: bool, movable_in_order: Sequence[bool]) -> tuple[list[str], bool]:
+    """The fixed objects in the order that pairs them with the movable ones, and
+    whether they pair: by colour where the words pair by colour and the colours
+    allow (:func:`paired_by_colour`), else as the words alternate
+    (:func:`paired_in_order`), else unpaired in their own order."""
+    matched = paired_by_colour(movers, fixed, colours) if by_colour else None
+    if matched is not None:
+        return matched, True
+    return list(fixed), paired_in_order(movable_in_order)
+
+
 def used_names(goal: dict[str, Any], names: Iterable[str]) -> set[str]:
     """The ``names`` a goal (JSON) uses, moved or as an anchor."""
     known = set(names)
@@ -308,5 +340,6 @@ def used_names(goal: dict[str, Any], names: Iterable[str]) -> set[str]:
 
 
 __all__ = ["GROUP_RELATIONS", "MAX_PATTERNS", "covering_factors", "each_shapes",
-           "group_shapes", "must_use", "names_of", "nullable", "paired_in_order",
+           "group_shapes", "must_use", "names_of", "nullable", "pair_fixed", "paired_by_colour",
+           "paired_in_order",
            "per_anchor_shapes", "pin", "used_names"]

@@ -33,9 +33,9 @@ from pydantic import ValidationError
 
 from factask.gen import step_schemas as ss
 from factask.gen.capacity import prune
-from factask.gen.cover import GROUP_RELATIONS, covering_factors, names_of, paired_in_order
+from factask.gen.cover import GROUP_RELATIONS, covering_factors, names_of, pair_fixed
 from factask.gen.examples import library_task_examples, render_examples
-from factask.gen.mentions import Mention
+from factask.gen.mentions import Mention, colour_matched
 from factask.model.errors import FactaskError, InvalidValueError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph
@@ -400,11 +400,12 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     factors: Schema | None = None
     if cover:
         movers = [m.name for m in movable(found)]
-        fixed = [m.name for m in found if m.name not in movers]
+        fixed, paired = pair_fixed(movers, [m.name for m in found if m.name not in movers],
+                                   {m.name: m.color for m in found}, colour_matched(proposal),
+                                   [m.name in movers for m in found])
         for allowed in (goal, _goal(kinds, None, counts)):
             branches = allowed.get("anyOf", [allowed]) if allowed else []
-            factors = covering_factors(branches, movers, fixed, counts, paired_in_order(
-                [m.name in movers for m in found]))
+            factors = covering_factors(branches, movers, fixed, counts, paired)
             factors = factors and prune(factors, found)  # shapes whose layouts fit
             if factors is not None:
                 break

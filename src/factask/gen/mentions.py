@@ -65,6 +65,9 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
                 r"(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"), ""),
     (re.compile(r"\b(?:l|ell)\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|"
                 r"bar))?(s?)\b"), r"ell\1"),
+    # "cylindrical blocks", "spherical objects": the adjective says the kind.
+    (re.compile(r"\bcylindrical\s+(?:block|object|piece|item|shape)(s?)\b"), r"cylinder\1"),
+    (re.compile(r"\bspherical\s+(?:block|object|piece|item|shape)(s?)\b"), r"ball\1"),
     # "ell blocks", "ell pieces": the ell is the shape, the noun the object.
     (re.compile(r"\bell\s+(?:block|piece|object|part|shape|brick|cube|bar)(s?)\b"),
      r"ell\1"),
@@ -105,6 +108,23 @@ FUNCTION_WORDS = frozenset({
 })
 #: Most mentions listed (a proposal is a sentence or two, not an inventory).
 MAX_MENTIONS = 8
+#: Most mentions after groups are split by colour (six balls into six zones of
+#: their colours: twelve; the graph schemas take twelve variables).
+MAX_SPLIT_MENTIONS = 12
+#: Words of colour, qualified by a matching word in a matching phrase.
+COLOUR_WORDS = frozenset({"color", "colour", "colors", "colours", "colored", "coloured"})
+#: Words before a colour word that pair by colour: "of the same colour", "matching
+#: colored", "its colour", "sort by colour".
+MATCH_BEFORE = frozenset({"same", "matching", "matched", "corresponding", "correspondingly",
+                          "its", "their", "own", "respective", "by", "identical",
+                          "similar", "similarly"})
+#: Words after a colour word that do: "colour-coordinated", "colour-matched", "color
+#: coded", "colored correspondingly".
+MATCH_AFTER = frozenset({"coordinated", "matched", "matching", "corresponding",
+                         "correspondingly", "coded"})
+#: How many words back a matching phrase looks for the kind it qualifies ("the
+#: containers of the matching color": 4).
+MATCH_REACH = 6
 #: Largest count read from a proposal (the graph model's count limit is larger).
 MAX_COUNT = 16
 
@@ -121,6 +141,9 @@ class Mention:
         color: Its colour, or None when the proposal gives none.
         count: How many (1 unless the proposal says).
         also: Other kinds the proposal's word may mean (:data:`ALSO_KINDS`).
+        listed: The colours listed right after an uncoloured group ("blocks of
+            different colors (red, blue, green)"), each with its count where the
+            list gives one ("(two red, two blue)"; 0: not given).
     """
 
     name: str
@@ -128,6 +151,7 @@ class Mention:
     color: str | None
     count: int
     also: tuple[str, ...] = ()
+    listed: tuple[tuple[str, int], ...] = ()
 
     def describe(self) -> str:
         """``red_blocks: kind block, colour red, count 3``."""
@@ -190,11 +214,110 @@ def mentions(proposal: str) -> list[Mention]:
     else:
         desc, name = text, ""
     found: dict[str, Mention] = {}
-    _scan(_words(desc), found)
+    words = _words(desc)
+    _scan(words, found)
     if name:
         said = {_kind_of(w)[2] for w in _WORD.findall(desc.replace("-", " "))}
         _scan([w for w in _words(name) if _kind_of(w)[2] not in said], found)
+    matched = _matched_kinds(words)
+    if matched is not None or colour_matched(name):
+        return _split_by_colour(list(found.values()), matched or set())
     return list(found.values())
+
+
+def colour_matched(text: str) -> bool:
+    """Whether ``text`` pairs objects by colour: "the bowl of the same colour",
+    "zones correspondingly colored", "colour-coordinated", "sort by colour"."""
+    words = _WORD.findall(text.lower().replace("-", " ").replace("_", " "))
+    return any(_matching_at(words, k) for k in range(len(words)))
+
+
+def _matching_at(words: list[str], k: int) -> bool:
+    """Whether ``words[k]`` is a colour word that a matching word qualifies."""
+    if words[k] not in COLOUR_WORDS:
+        return False
+    before = words[k - 1] if k else ""
+    after = words[k + 1] if k + 1 < len(words) else ""
+    return before in MATCH_BEFORE or after in MATCH_AFTER
+
+
+def _matched_kinds(words: list[str]) -> set[str] | None:
+    """The kinds whose objects a matching phrase gives the colours of the others
+    ("containers of matching color": container), or None when no phrase pairs by
+    colour. The phrase qualifies the nearest kind word before it (at most
+    :data:`MATCH_REACH` words back), else the one right after it ("the matching
+    colored zone")."""
+    out: set[str] | None = None
+    for k in range(len(words)):
+        if not _matching_at(words, k):
+            continue
+        out = out if out is not None else set()
+        for j in [*range(k - 1, max(k - 1 - MATCH_REACH, -1), -1), k + 1, k + 2]:
+            if 0 <= j < len(words) and (kind := _kind_of(words[j])[0]) is not None:
+                out.add(kind)
+                break
+    return out
+
+
+def _split_by_colour(found: list[Mention], matched: set[str]) -> list[Mention]:
+    """Under a matching phrase, groups become one object per colour: a group
+    whose colours the words list ("balls of different colors (red, blue)") by its
+    list, and an uncoloured group of a kind the phrase qualifies ("zones
+    correspondingly colored") by the colours named for the others (their
+    lists and coloured objects, in order). A group keeps its count spread over
+    its colours; one named with fewer objects than colours ("the bowl of the
+    same colour") gets one per colour. Nothing is split past
+    :data:`MAX_SPLIT_MENTIONS` mentions. An uncoloured object of a kind that
+    coloured ones also have is their group ("each ball ... a red ball, a green
+    ball"), not one more."""
+    palette: list[str] = []
+    for m in found:
+        for c in ([c for c, _ in m.listed] or ([m.color] if m.color else [])):
+            if c not in palette:
+                palette.append(c)
+    out: list[Mention] = []
+    names = {m.name for m in found}
+    for idx, m in enumerate(found):
+        parts = _colour_parts(m, palette, matched)
+        fresh = [p for p in parts if p.name not in names and _plural(p.name) not in names
+                 and p.name.removesuffix("s") not in names]
+        rest = len(found) - idx - 1
+        if not parts or len(fresh) != len(parts) or \
+                len(out) + len(parts) + rest > MAX_SPLIT_MENTIONS:
+            out.append(m)
+            continue
+        out.extend(parts)
+        names.update(p.name for p in parts)
+    # "each ball ... a red ball, a green ball": the coloured ones are its members.
+    coloured = {m.kind for m in out if m.color}
+    return [m for m in out if m.color or m.kind not in coloured]
+
+
+def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Mention]:
+    """One mention per colour of ``m`` (see :func:`_split_by_colour`), or [] to keep it."""
+    if m.color is not None:
+        return []
+    if m.listed:
+        colours = [c for c, _ in m.listed]
+        counts = [n or max(m.count // len(colours), 1) for _, n in m.listed]
+    elif palette and (m.kind in matched or m.count == len(palette) > 1):
+        # A group the phrase qualifies, or one as large as the palette ("four
+        # spheres and four boxes of different colors (...)": the list is both's).
+        colours = palette
+        if m.count < len(colours):
+            counts = [1] * len(colours)
+        elif m.count % len(colours) == 0:
+            counts = [m.count // len(colours)] * len(colours)
+        else:
+            return []
+    else:
+        return []
+    out = []
+    for colour, count in zip(colours, counts, strict=True):
+        stem = f"{colour}_{m.kind}"
+        out.append(Mention(_plural(stem) if count > 1 else stem, m.kind, colour,
+                           min(count, MAX_COUNT), m.also))
+    return out
 
 
 def _words(text: str) -> list[str]:
@@ -215,10 +338,15 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             continue
         earlier = [m for m in found.values() if m.kind == kind]
         colors: list[str] = []
+        own_counts: dict[str, int] = {}  # "three red, three blue and three green blocks"
         j = i - 1
         while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or") and colors)):
             if words[j] in COLOR_NAMES:
                 colors.insert(0, words[j])
+                if j >= 2 and _count_of(words[j - 1]) and (
+                        words[j - 2] in ("and", "or") or words[j - 2] in COLOR_NAMES):
+                    own_counts[words[j]] = _count_of(words[j - 1])
+                    j -= 1
             j -= 1
         if earlier and (not colors or any(m.color is None and m.count > 1
                                            for m in earlier)):
@@ -229,10 +357,19 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
         total = _count_of(before)
         if not total and j >= 1 and _is_adjunct(words[j]) and _count_of(words[j - 1]):
             total = _count_of(words[j - 1])  # "three insertion fixtures"
-        if not total and plural and not colors:
-            total = _listed_colours(words, i + 1)  # "blocks (red, blue, green)"
+        listed: tuple[tuple[str, int], ...] = ()
+        if plural and not colors:
+            listed = _listed_colours(words, i + 1)  # "blocks (red, blue, green)"
+            if not total and listed:
+                total = sum(n for _, n in listed) if all(n for _, n in listed) \
+                    else len(listed)
+        if own_counts and len(own_counts) == len(colors) - 1:
+            # The first colour's count is the one read before the list.
+            own_counts.update({c: total or 1 for c in colors if c not in own_counts})
         for color in colors or [None]:
-            if total and len(colors) > 1:
+            if color in own_counts and len(own_counts) == len(colors):
+                count = own_counts[color]
+            elif total and len(colors) > 1:
                 count = max(total // len(colors), 1)
             elif len(colors) > 1:
                 count = 1  # "red and green zones": one of each
@@ -243,7 +380,8 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             name = _plural(stem) if count > 1 else stem
             if stem in found or _plural(stem) in found:
                 continue
-            found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()))
+            found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()),
+                                  listed)
             if len(found) >= MAX_MENTIONS:
                 return
 
@@ -260,21 +398,34 @@ def _is_adjunct(word: str) -> bool:
             and _kind_of(word)[0] is None and word.isalpha())
 
 
-def _listed_colours(words: list[str], start: int) -> int:
-    """How many colours the list right after a plural kind word names ("blocks of
-    different colors (red, blue, green, yellow)": 4), or 0 when none follows or the
-    colours are another noun's ("blocks in the red and blue bowls")."""
+def _listed_colours(words: list[str], start: int) -> tuple[tuple[str, int], ...]:
+    """The colours the list right after a plural kind word names, each with the
+    count before it where the list gives one ("blocks of different colors (red,
+    blue, green, yellow)": four colours, counts 0; "blocks in two colours (three red
+    and three blue)": red 3, blue 3), or () when none follows or the colours are
+    another noun's ("blocks in the red and blue bowls")."""
     k = start
-    while k < len(words) and k - start < 4 and words[k] in COLOUR_LIST_LEAD:
+    while k < len(words) and k - start < 4 and (words[k] in COLOUR_LIST_LEAD
+                                                 or words[k] in NUMBER_WORDS
+                                                 or words[k].isdigit()):
+        if _count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
+            break  # "(three red and three blue)": the list starts at its first count
         k += 1
-    listed = 0
-    while k < len(words) and (words[k] in COLOR_NAMES or (words[k] in ("and", "or")
-                                                           and listed)):
-        listed += words[k] in COLOR_NAMES
+    listed: list[tuple[str, int]] = []
+    while k < len(words):
+        if words[k] in COLOR_NAMES:
+            listed.append((words[k], 0))
+        elif _count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
+            listed.append((words[k + 1], min(_count_of(words[k]), MAX_COUNT)))
+            k += 1
+        elif not (words[k] in ("and", "or") and listed):
+            break
         k += 1
-    if listed < 2 or (k < len(words) and _kind_of(words[k])[0] is not None):
-        return 0
-    return listed
+    if len(listed) < 2 or (k < len(words) and _kind_of(words[k])[0] is not None):
+        return ()
+    if len({c for c, _ in listed}) < len(listed):
+        return ()
+    return tuple(listed)
 
 
 def mentions_text(proposal: str) -> str:
@@ -315,5 +466,6 @@ def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
             f"for each (with this kind and colour):\n{lines}")
 
 
-__all__ = ["ALSO_KINDS", "KIND_WORDS", "MAX_MENTIONS", "Mention", "grounding_feedback", "mentions",
+__all__ = ["ALSO_KINDS", "KIND_WORDS", "MAX_MENTIONS", "MAX_SPLIT_MENTIONS", "Mention",
+           "colour_matched", "grounding_feedback", "mentions",
            "mentions_text", "missing_mentions"]
