@@ -186,7 +186,8 @@ def test_llama_grammar_schema_keeps_the_length_bound_and_drops_only_the_text_pat
     desc = sent["schema"]["properties"]["subtasks"]["items"]["properties"]["description"]
     assert desc == {"type": "string", "maxLength": 100}
     name = sent["schema"]["properties"]["subtasks"]["items"]["properties"]["name"]
-    assert name["pattern"] == "^[a-z][a-z0-9]*(_[a-z0-9]+)*$"  # no bounded repetition
+    # No character class repeated a bounded number of times; the parts still bounded.
+    assert name["pattern"] == "^[a-z][a-z0-9]*(_[a-z0-9]+)?(_[a-z0-9]+)?(_[a-z0-9]+)?$"
     assert for_llama_grammar(schema) != schema and schema_problems(
         {"subtasks": [{"name": "a", "description": "x\ny"}]}, schema)  # the check keeps it
 
@@ -248,3 +249,43 @@ def test_a_text_field_ending_in_a_newline_is_refused() -> None:
     # Python's ``$`` matches before a final newline; JSON Schema's does not.
     answer = {"subtasks": [{"name": "place_it", "description": "ok\n"}]}
     assert schema_problems(answer, SCHEMAS["subtask_outline"])
+
+
+@given(st.lists(st.from_regex(r"[a-z][a-z0-9]{0,5}", fullmatch=True), min_size=1, max_size=6))
+def test_the_grammar_name_pattern_bounds_the_parts_as_the_check_does(parts: list[str]) -> None:
+    import re
+
+    from factask.gen.providers import for_llama_grammar
+    from factask.gen.step_schemas import NAME_REGEX
+
+    name = "_".join(parts)
+    loose = for_llama_grammar({"type": "string", "pattern": NAME_REGEX})["pattern"]
+    # Parts of at most 15 characters: the grammar allows a name iff the check does.
+    assert bool(re.fullmatch(loose, name)) == bool(re.fullmatch(NAME_REGEX, name))
+
+
+@given(st.lists(st.sampled_from(["a", "b", "a_2", "put_x"]), max_size=8),
+       st.lists(st.sampled_from(["a", "b", "c"]), max_size=3))
+def test_distinct_names_are_distinct_and_keep_first_uses(names, taken) -> None:
+    from factask.gen.fragments import distinct_names
+
+    out = distinct_names(names, taken)
+    assert len(out) == len(names) and len(set(out)) == len(out)
+    assert not set(out) & set(taken)
+    for n, o in zip(names, out, strict=True):
+        assert o == n or o.startswith(f"{n}_")
+    for i, n in enumerate(names):  # a first use of a free name is kept as it is
+        if n not in taken and n not in names[:i] and n not in out[:i]:
+            assert out[i] == n
+
+
+def test_a_repeated_variable_is_dropped_only_where_nothing_is_lost() -> None:
+    from factask.gen.fragments import without_repeats
+    from factask.model.variables import StateVariable
+
+    red = StateVariable(name="blocks", kind="block", color="red", count=2)
+    again = red.model_copy(update={"description": "the same, described again"})
+    blue = StateVariable(name="blocks", kind="block", color="blue", count=2)
+    assert without_repeats([red, again]) == [red]
+    assert without_repeats([red, blue]) == [red, blue]  # two objects: the check reports it
+    assert without_repeats([red, blue], named=["blocks"]) == [red]  # the proposal's wins

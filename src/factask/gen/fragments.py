@@ -8,6 +8,7 @@ with a message for the model.
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 from pydantic import ValidationError
@@ -149,6 +150,54 @@ def merge_problems(design: SubtaskDesign,
                                     f"({'; '.join(diff)})",
                                     "repeat it exactly, leave it out, or use a new name"))
     return problems
+
+
+def distinct_names(names: Sequence[str], taken: Iterable[str] = ()) -> list[str]:
+    """``names`` made distinct from each other and from ``taken``: a repeat gets the
+    first free suffix (``put_block``, ``put_block_2``). A subtask's name is a label
+    that nothing refers to when it is given (a small model repeats one, or reuses a
+    variable's), so it is made distinct rather than sent back.
+
+    Args:
+        names: The names, in order.
+        taken: Names already in use (the variables').
+
+    Returns:
+        The names, the first of each kept as it is.
+    """
+    used = set(taken)
+    out = []
+    for n in names:
+        new, k = n, 2
+        while new in used:
+            new, k = f"{n}_{k}", k + 1
+        used.add(new)
+        out.append(new)
+    return out
+
+
+def without_repeats(variables: Sequence[StateVariable],
+                    named: Iterable[str] = ()) -> list[StateVariable]:
+    """The variables with repeats of an earlier one's name dropped where that loses
+    nothing: the same object again (every field but the description equal), or, for
+    a name in ``named`` (the proposal's own objects, already declared as it says),
+    any later declaration. Other repeats stay, for the check to report.
+
+    Args:
+        variables: The answer's variables, in order.
+        named: Names whose first declaration is authoritative.
+    """
+    first: dict[str, StateVariable] = {}
+    fixed_names = set(named)
+    out = []
+    for v in variables:
+        seen = first.get(v.name)
+        if seen is not None and (v.name in fixed_names or seen.model_dump(
+                exclude={"description"}) == v.model_dump(exclude={"description"})):
+            continue
+        first.setdefault(v.name, v)
+        out.append(v)
+    return out
 
 
 def plan_problems(plan: SubtaskPlan, variables: list[StateVariable]) -> list[Problem]:

@@ -119,7 +119,9 @@ def for_llama_grammar(schema: Any) -> Any:
 
     A bounded repetition in a pattern makes the grammar slow (measured: a whole
     task graph decoded 2.5 times slower with the name pattern's ``{0,15}`` than
-    with ``*``), so ``{0,n}`` becomes ``*`` and ``{1,n}`` becomes ``+``; a string
+    with ``*``), so ``{0,n}`` becomes ``*`` and ``{1,n}`` becomes ``+`` -- except a
+    group repeated at most four times, written out as that many optional copies,
+    so that a name keeps its bounded number of parts; a string
     with both a ``pattern`` and a ``maxLength`` keeps only the length (the
     converter ignores ``maxLength`` beside a pattern, so a small model would write
     text until its token budget ran out). The converter ignores a number's
@@ -138,7 +140,7 @@ def for_llama_grammar(schema: Any) -> Any:
         if "maxLength" in out:
             del out["pattern"]
         else:
-            out["pattern"] = _UNBOUNDED_ONE.sub("+", _UNBOUNDED_ZERO.sub("*", out["pattern"]))
+            out["pattern"] = _loosen(out["pattern"])
     if out.get("type") == "number" and "enum" not in out:
         values = grid_within(out)
         if values:
@@ -211,6 +213,18 @@ def grid_within(schema: Mapping[str, Any]) -> list[float]:
 
 _UNBOUNDED_ZERO = re.compile(r"\{0,\d+\}")
 _UNBOUNDED_ONE = re.compile(r"\{1,\d+\}")
+#: A group repeated at most a few times (a name's ``(_[a-z0-9]{1,15}){0,3}``): written
+#: out as that many optional copies, it stays bounded and cheap (only a character
+#: class repeated many times makes the grammar slow).
+_FEW_GROUPS = re.compile(r"(\([^()]*\))\{0,([1-4])\}")
+
+
+def _loosen(pattern: str) -> str:
+    """A pattern as the grammar should see it: a few repeats of a group written out,
+    then a character class's bounded repetition unbounded (see
+    :func:`for_llama_grammar`)."""
+    pattern = _FEW_GROUPS.sub(lambda m: f"{m.group(1)}?" * int(m.group(2)), pattern)
+    return _UNBOUNDED_ONE.sub("+", _UNBOUNDED_ZERO.sub("*", pattern))
 
 
 def constrained(form: str) -> bool:

@@ -33,12 +33,14 @@ from factask.gen.fragments import (
     check_goal_scope,
     checked_fragment,
     closure,
+    distinct_names,
     earlier_text,
     fragment,
     make_factor,
     merge_problems,
     plan_problems,
     vars_json,
+    without_repeats,
 )
 from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
 from factask.gen.memory import SubtaskMemory
@@ -352,6 +354,7 @@ class Generator(StepRunner):
         found = mentions(f"{desc} {task}")
         use = self.grounded and grounded.applies(found)
         schema = grounded.variables_answer(found) if use else ss.variables_answer()
+        named = [m.name for m in found] if use else []
 
         def prompt(lv: PromptLevel) -> str:
             return render("variables", task_name=task, task_description=desc,
@@ -361,6 +364,7 @@ class Generator(StepRunner):
 
         def evaluate(text: str) -> Evaluation:
             answer = validate_answer(read_strict(text, schema), VariablesAnswer)
+            answer.variables = without_repeats(answer.variables, named)
             found = graph_problems(TaskGraph(name=task, variables=answer.variables))
             if found:
                 return None, "none", ("The variables are not consistent:\n"
@@ -389,6 +393,10 @@ class Generator(StepRunner):
 
         def evaluate(text: str) -> Evaluation:
             plan = validate_answer(read_strict(text, schema), SubtaskPlan)
+            labels = distinct_names([s.name for s in plan.subtasks], names)
+            plan = plan.model_copy(update={"subtasks": [
+                s.model_copy(update={"name": n}) for s, n in zip(plan.subtasks, labels,
+                                                                  strict=True)]})
             problems = plan_problems(plan, variables)
             if problems:
                 return None, "none", ("The subtask plan has problems:\n"
@@ -481,11 +489,10 @@ class Generator(StepRunner):
 
         def evaluate(text: str) -> Evaluation:
             outline = validate_answer(read_strict(text, schema), SubtaskOutline)
-            names = [s.name for s in outline.subtasks]
-            dup = sorted({n for n in names if names.count(n) > 1})
-            if dup:
-                return None, "none", f"Subtask names must be unique; repeated: {dup}"
-            return outline, "syntax", None
+            labels = distinct_names([s.name for s in outline.subtasks])
+            return outline.model_copy(update={"subtasks": [
+                s.model_copy(update={"name": n}) for s, n in zip(outline.subtasks, labels,
+                                                                  strict=True)]}), "syntax", None
 
         out = self.ask("subtask_outline", prompt, schema, "subtask_outline", evaluate)
         if not out.ok:
