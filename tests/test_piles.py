@@ -270,6 +270,42 @@ class MixPiles(Task):
     piles = sorted((v.color, v.count) for v in graph.variables if v.kind == "pile")
     assert piles == [("blue", 10), ("red", 10)]
     assert [f.goal.type for f in graph.factors] == ["pile_in_zone", "pile_in_zone"]
+    # make_piles spawned both in one square: the second starts apart, at a free spot.
+    starts = {v.color: type(v.initial).__name__ for v in graph.variables if v.kind == "pile"}
+    assert starts == {"red": "AtFixedPose", "blue": "OnTable"}
+
+
+def test_one_zone_goal_over_two_colours_is_a_pile_per_colour_in_one_factor(tmp_path) -> None:
+    from factask.compat.cliport import import_cliport
+
+    path = tmp_path / "mixed.py"
+    path.write_text('''\
+import numpy as np
+from cliport.tasks.task import Task
+
+
+class MixedPile(Task):
+    def __init__(self):
+        super().__init__()
+        self.lang_template = "push the piles into the zone"
+        self.num_blocks = 8
+
+    def reset(self, env):
+        super().reset(env)
+        zone_pose = self.get_random_pose(env, (0.12, 0.12, 0))
+        env.add_object('zone/zone.urdf', zone_pose, 'fixed')
+        ids = self.make_piles(env, block_color='red') + self.make_piles(env, block_color='blue')
+        self.add_goal(objs=ids, matches=np.ones((len(ids), 1)), targ_poses=[zone_pose],
+                      replace=True, rotations=False, metric='zone',
+                      params=[(zone_pose, (0.12, 0.12, 0))], step_max_reward=1)
+''')
+    result = import_cliport(path, seed=0)
+    piles = {v.name: (v.color, v.count) for v in result.graph.variables if v.kind == "pile"}
+    assert piles == {"pile_red": ("red", 8), "pile_blue": ("blue", 8)}  # was one red pile of 16
+    (factor,) = result.graph.factors
+    assert factor.goal.type == "pile_in_zone" and factor.goal.objects == ["pile_red", "pile_blue"]
+    (goal,) = result.goals  # Ravens' metric still scores all 16 blocks of the one goal
+    assert len(goal.objects) == 16
 
 
 # ------------------------------------------------------------------ physics health

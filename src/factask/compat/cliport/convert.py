@@ -12,7 +12,7 @@ Rules (documented in docs/compat.md):
   author's own target for each object as its ``poses`` when every object has one
   inside the zone (a packing plan); goals are read by
   :mod:`factask.compat.cliport.goals`;
-* a pushing task's zone goal over small blocks only -> one ``pile`` variable and
+* a pushing task's zone goal over small blocks only -> a ``pile`` variable per colour and
   a ``PileInZone`` factor (:mod:`factask.compat.cliport.piles`);
 * multibodies linked in a chain by constraints -> one ``rope`` variable, and a
   pose goal over its beads -> a ``RopeAlong`` on the beads' targets
@@ -42,7 +42,7 @@ from factask.compat.cliport.goals import (
     zone_poses,
 )
 from factask.compat.cliport.grippers import Spatula
-from factask.compat.cliport.piles import RAVENS_PILE_FRACTION, find_piles
+from factask.compat.cliport.piles import RAVENS_PILE_FRACTION, find_piles, pile_variables
 from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.ropes import find_ropes, rope_goal
 from factask.compat.cliport.scoring import RavensGoal
@@ -354,8 +354,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     if not goals:
         raise NoGoals("reset added no goals (add_goal was never called)")
     scatter_added_at_targets(goals, names, warn)
-    piles = {p.goal: p for p in find_piles(task, goals, names)}
-    in_piles = {o.obj_id for p in piles.values() for o in p.blocks}
+    found = find_piles(task, goals, names)
+    in_piles = {o.obj_id for p in found for o in p.blocks}
+    piles = {g: [p.name for p in found if p.goal == g] for g in {p.goal for p in found}}
     ropes = find_ropes(session, names, warn)
     in_ropes = {oid for r in ropes for oid in r.ids}
     # The beads are the ropes' segments: no object of their own, host of nothing.
@@ -438,10 +439,10 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                      for j, (p, q) in enumerate(g.targets)]
             rel = AtPose(objects=objs, poses=poses,
                               matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
-        elif g.index in piles:  # small blocks swept with a spatula: one pile
+        elif g.index in piles:  # small blocks swept with a spatula: a pile per colour
             zone = _zone_variable(g, objects, names, extra, warn)
             taken.add(zone)
-            rel = PileInZone(objects=[piles[g.index].name], zone=zone,
+            rel = PileInZone(objects=piles[g.index], zone=zone,
                              fraction=RAVENS_PILE_FRACTION)
         else:  # one factor per zone (several zones: sorted by matches)
             for part in zone_parts(g, warn):
@@ -498,7 +499,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             name=name, description=f"{o.urdf} (CLIPort object {o.obj_id})", kind=o.kind,
             size=o.size, color=o.color, fixed=fixed, symmetry_deg=sym_deg,
             initial=_placement(o, objects[:k] + objects[k + 1:], names, moved, warn)))
-    variables.extend(p.variable() for p in piles.values())
+    variables.extend(pile_variables(found, warn))
     variables.extend(r.variable() for r in ropes)
     variables.extend(extra)
 

@@ -9,11 +9,21 @@ has a ``zone`` goal over small blocks only (``block/small.urdf``, what
 the zone metric is within 1 % of the goal's reward (:data:`RAVENS_PILE_FRACTION`).
 The Ravens goal queue names the blocks by the pile's instance names, so Ravens'
 zone metric scores the same blocks.
+
+A goal over blocks of several colours (GenSim's mix-piles: two ``make_piles``
+calls, one goal over both) gets one pile per colour, all in its one factor (the
+share is over all of them, as Ravens' metric): a single pile variable has one
+colour, and the blue blocks were drawn red. ``make_piles`` spawns every pile in the
+same 20 x 20 cm square, so a pile whose starting cluster would overlap an earlier
+pile's starts at a random free spot instead (warning, :func:`pile_variables`):
+factask's piles are separate clusters, and pinned on top of each other the reset
+found no layout in any episode.
 """
 
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -24,8 +34,9 @@ from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.grippers import Spatula
 from factask.compat.cliport.recorder import RecordedObject
 from factask.model.names import instance_names
-from factask.model.variables import AtFixedPose, StateVariable
+from factask.model.variables import AtFixedPose, OnTable, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.sim.pile import pile_half_extent
 
 #: Ravens ends an episode when the zone metric is within 1 % of the goal's reward.
 RAVENS_PILE_FRACTION = 0.99
@@ -96,16 +107,56 @@ def find_piles(task: Any, goals: list[RecordedGoal], names: dict[int, str]) -> l
         ids = [o.obj_id for o in g.objs]
         if not _pile_blocks(g) or claimed & set(ids):
             continue
-        color = Counter(o.color for o in g.objs).most_common(1)[0][0]
-        k, name = 0, f"pile_{color}"
-        while name in taken:
-            k += 1
-            name = f"pile_{color}_{k}"
-        taken.add(name)
         claimed |= set(ids)
-        for obj_id, inst in zip(ids, instance_names(name, len(ids)), strict=True):
-            names[obj_id] = inst
-        out.append(Pile(name, g.index, list(g.objs)))
+        by_color: dict[str, list[RecordedObject]] = {}
+        for o in g.objs:  # one pile per colour, in the order the colours first appear
+            by_color.setdefault(o.color, []).append(o)
+        for color, blocks in by_color.items():
+            k, name = 0, f"pile_{color}"
+            while name in taken:
+                k += 1
+                name = f"pile_{color}_{k}"
+            taken.add(name)
+            for o, inst in zip(blocks, instance_names(name, len(blocks)), strict=True):
+                names[o.obj_id] = inst
+            out.append(Pile(name, g.index, blocks))
+    return out
+
+
+def pile_variables(piles: list[Pile], warn: Callable[[str], None]) -> list[StateVariable]:
+    """The piles' variables: each a cluster where the task spawned its blocks, unless
+    that cluster would overlap the cluster of an earlier pile kept there; such a pile
+    starts at a random free spot (``OnTable``).
+
+    Why: GenSim's ``make_piles`` spawns every pile in one 20 x 20 cm square, its
+    blocks mixed; factask's piles are separate clusters, and two pinned at one
+    centre left the reset no layout in any episode.
+
+    Args:
+        piles: The piles, in goal order.
+        warn: Receives one warning per pile moved.
+
+    Returns:
+        One variable per pile, in the same order.
+    """
+    out: list[StateVariable] = []
+    kept: list[tuple[str, np.ndarray, float]] = []  # (name, centre, half side)
+    for p in piles:
+        var = p.variable()
+        init = var.initial
+        if not isinstance(init, AtFixedPose):  # never: a pile starts where it was spawned
+            out.append(var)
+            continue
+        centre, half = np.array([init.x, init.y]), pile_half_extent(var)
+        clash = [name for name, c, h in kept if np.all(np.abs(centre - c) < half + h)]
+        if clash:
+            warn(f"{p.name}: its blocks were spawned where {', '.join(clash)} starts (GenSim's "
+                 "make_piles spawns every pile in one square, mixed); it starts as a "
+                 "separate cluster at a random free spot")
+            var = var.model_copy(update={"initial": OnTable()})
+        else:
+            kept.append((p.name, centre, half))
+        out.append(var)
     return out
 
 
