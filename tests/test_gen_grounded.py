@@ -311,3 +311,26 @@ def test_a_step_whose_schema_admits_no_answer_makes_no_call() -> None:
         {"name": "place", "description": "d", "variables": ["red_block", "green_zone"],
          "initial_setup": ""}]})
     assert [(p.node, p.field) for p in plan_problems(plan, variables)] == [("mark", "variables")]
+
+
+def test_a_bowl_the_words_move_is_carried_and_one_they_do_not_stays_fixed() -> None:
+    proposal = ("pick up the pink ball and drop it into the yellow bowl, then put the bowl "
+                "in the green zone")
+    found = mentions(proposal)
+    assert [(m.name, m.moved) for m in found] == [
+        ("pink_ball", False), ("yellow_bowl", True), ("green_zone", False)]
+    assert [m.moved for m in mentions("put the red ball in the yellow bowl")] == [False, False]
+    schema = grounded.compact_graph_schema(found, proposal)
+    answer = {"variables": [{"name": m.name, "initial": {"type": "table"}} for m in found],
+              "factors": [{"goal": {"type": "inside", "objects": ["pink_ball"],
+                                    "container": "yellow_bowl"}},
+                          {"goal": {"type": "in_zone", "objects": ["yellow_bowl"],
+                                    "zone": "green_zone"}}]}
+    assert schema_problems(answer, schema) == []
+    graph = TaskGraph.model_validate(grounded.expand_graph(answer, found, "t", proposal))
+    graph.ensure_valid()
+    assert not graph.variable("yellow_bowl").is_fixed
+    # Where the words do not move it, a bowl is never a goal's object.
+    still = mentions("drop the pink ball into the yellow bowl in the green zone")
+    answer["factors"][1]["goal"]["objects"] = ["yellow_bowl"]
+    assert schema_problems(answer, grounded.compact_graph_schema(still, "drop ... zone"))

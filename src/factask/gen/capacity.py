@@ -119,9 +119,7 @@ def _problem(key: tuple[tuple[str, Any], ...], found: tuple[Mention, ...]) -> st
     goal = {k: list(v) if isinstance(v, tuple) else v for k, v in key}
     used = {n for v in goal.values() for n in (v if isinstance(v, list) else [v])
             if isinstance(n, str)}
-    variables = [{"name": m.name, "description": m.describe(), "kind": m.kind, "size": None,
-                  "color": m.color or "gray", "count": m.count, "initial": {"type": "table"}}
-                 for m in found if m.name in used]
+    variables = [m.as_variable() for m in found if m.name in used]
     try:
         graph = TaskGraph.model_validate({
             "name": "capacity", "description": "one goal alone", "variables": variables,

@@ -21,12 +21,16 @@ choose, so the schemas here fix it:
 The answer stays data checked against the schema, by pydantic and by the
 ladder; a proposal that names no movable object gets the ungrounded schemas of
 :mod:`factask.gen.step_schemas`.
+
+Why one file (past 500 lines): every schema here is built from the same
+placement and relation builders over the same mentions; split, each part would
+import the others' private helpers.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import Any
 
 from pydantic import ValidationError
@@ -54,10 +58,10 @@ MAX_EXTRA = 2
 GROUNDED_TEXT = 60
 
 
-def _placement(own: str, kinds: dict[str, str]) -> Schema:
+def _placement(own: str, kinds: dict[str, str], moved: Collection[str] = ()) -> Schema:
     """``table``, or ``on`` a support / ``inside`` a receptacle among ``kinds``
-    (only ``table`` for a kind that stays fixed: a zone, a bowl)."""
-    if own and not kind_spec(kinds[own]).movable:
+    (only ``table`` for an object that stays fixed: a zone, a bowl not ``moved``)."""
+    if own and not kind_spec(kinds[own]).movable and own not in moved:
         return ss.obj({"type": {"const": "table"}})
     supports = [n for n, k in kinds.items() if n != own and kind_spec(k).support]
     receptacles = [n for n, k in kinds.items() if n != own and kind_spec(k).receptacle]
@@ -89,7 +93,8 @@ def mention_variable(mention: Mention, kinds: dict[str, str]) -> Schema:
         "size": {"type": "null"},
         "color": color,
         "count": {"const": mention.count},
-        "initial": _placement(mention.name, kinds),
+        "initial": _placement(mention.name, kinds, _moved([mention])),
+        **({"fixed": {"const": False}} if mention.moved else {}),
     })
 
 
@@ -107,8 +112,13 @@ def _extra_variable(kinds: dict[str, str]) -> Schema:
 
 
 def movable(found: Sequence[Mention]) -> list[Mention]:
-    """The named objects the robot can move."""
-    return [m for m in found if kind_spec(m.kind).movable]
+    """The named objects the robot can move (by kind, or as the words say)."""
+    return [m for m in found if m.movable]
+
+
+def _moved(found: Sequence[Mention]) -> frozenset[str]:
+    """The named objects of a kind fixed by default that the words move."""
+    return frozenset(m.name for m in found if m.moved)
 
 
 def applies(found: Sequence[Mention]) -> bool:
@@ -116,8 +126,8 @@ def applies(found: Sequence[Mention]) -> bool:
     and some goal relation can be written over the named objects alone ("put the
     block in the hole" names one block and nothing a relation can anchor on)."""
     kinds = {m.name: m.kind for m in found}
-    return bool(movable(found)) and _goal(kinds, None, {m.name: m.count for m in found}) \
-        is not None
+    return bool(movable(found)) and _goal(kinds, None, {m.name: m.count for m in found},
+                                          _moved(found)) is not None
 
 
 def grounded_variables(found: Sequence[Mention], extra: int = MAX_EXTRA) -> Schema:
@@ -196,7 +206,8 @@ def _without(field: Schema, name: str) -> Schema | None:
 
 
 def relation_over(relation: str, kinds: dict[str, str],
-                  counts: dict[str, int] | None = None) -> Schema | None:
+                  counts: dict[str, int] | None = None,
+                  moved: Collection[str] = ()) -> Schema | None:
     """One relation's goal over the named objects, or None if none can fill it.
 
     ``objects`` lists only the variables the relation can move (piles for
@@ -206,9 +217,9 @@ def relation_over(relation: str, kinds: dict[str, str],
     move, a row or circle is left out and a stack needs its base.
     """
     wanted = OBJECT_KINDS.get(relation)
-    movers = [n for n, k in kinds.items() if kind_spec(k).movable
+    movers = [n for n, k in kinds.items() if (kind_spec(k).movable or n in moved)
               and (k in wanted if wanted else k not in _SPECIAL_KINDS)]
-    schema = ss.relation_schema(relation, kinds) if movers else None
+    schema = ss.relation_schema(relation, kinds, moved) if movers else None
     if schema is None:
         return None
     props = schema["properties"]
@@ -294,12 +305,12 @@ def named_relations(proposal: str) -> set[str]:
 
 
 def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
-          counts: dict[str, int] | None = None) -> Schema | None:
+          counts: dict[str, int] | None = None, moved: Collection[str] = ()) -> Schema | None:
     """The goal's schema over ``kinds``: the ``wanted`` relations that fit, else every
     one that fits; None when none does (an empty ``anyOf`` is no schema: llama.cpp's
     grammar parser fails on it and its server goes down)."""
     options = {r: s for r in RELATION_TYPES if r not in COORDINATE_RELATIONS
-               and (s := relation_over(r, kinds, counts)) is not None}
+               and (s := relation_over(r, kinds, counts, moved)) is not None}
     named = {r: s for r, s in options.items() if r in (wanted or ())}
     # An arrangement the proposal names (a stack, a row, a circle) is its task; "on"
     # or "into" beside it say where: the arrangement's branches come first.
@@ -327,7 +338,8 @@ def goal_answer(variables: Sequence[StateVariable], text: str) -> Schema:
     """
     kinds = {v.name: v.kind for v in variables}
     counts = {v.name: v.count for v in variables}
-    goal = _goal(kinds, named_relations(text), counts)
+    moved = {v.name for v in variables if not v.is_fixed and not kind_spec(v.kind).movable}
+    goal = _goal(kinds, named_relations(text), counts, moved)
     if goal is None:
         return ss.goal_answer(kinds)
     return ss.obj({"goal": goal, "description": ss.text(GROUNDED_TEXT)})
@@ -393,7 +405,8 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     """
     kinds = {m.name: m.kind for m in found}
     counts = {m.name: m.count for m in found}
-    goal = _goal(kinds, named_relations(proposal), counts)
+    moved = _moved(found)
+    goal = _goal(kinds, named_relations(proposal), counts, moved)
     if goal is None:
         raise InvalidValueError("no goal relation fits the named objects alone "
                                 "(check applies() first)")
@@ -403,7 +416,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
         fixed, paired = pair_fixed(movers, [m.name for m in found if m.name not in movers],
                                    {m.name: m.color for m in found}, colour_matched(proposal),
                                    [m.name in movers for m in found])
-        for allowed in (goal, _goal(kinds, None, counts)):
+        for allowed in (goal, _goal(kinds, None, counts, moved)):
             branches = allowed.get("anyOf", [allowed]) if allowed else []
             factors = covering_factors(branches, movers, fixed, counts, paired)
             factors = factors and prune(factors, found)  # shapes whose layouts fit
@@ -416,10 +429,10 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     else:
         # Every fixed named object is some goal's anchor: an object starting on or in
         # one would start where a goal may put it (a goal met at the start).
-        starts = {n: k for n, k in kinds.items() if kind_spec(k).movable}
+        starts = {m.name: m.kind for m in found if m.movable}
     items = [ss.obj({"name": {"const": m.name},
-                     "initial": _placement(m.name, starts) if m.name in starts
-                     else _placement(m.name, kinds)})
+                     "initial": _placement(m.name, starts, moved) if m.name in starts
+                     else _placement(m.name, kinds, moved)})
              for m in found]
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
@@ -459,9 +472,7 @@ def expand_graph(data: dict[str, Any], found: Sequence[Mention], task: str,
         after it, the earlier one a milestone: :func:`factask.model.order.in_listed_order`).
     """
     initial = {v["name"]: v["initial"] for v in data.get("variables", [])}
-    variables = [{"name": m.name, "description": m.describe(), "kind": m.kind, "size": None,
-                  "color": m.color or "gray", "count": m.count,
-                  "initial": initial.get(m.name, {"type": "table"})} for m in found]
+    variables = [m.as_variable(initial.get(m.name)) for m in found]
     answered = list(data.get("factors", []))
     names = factor_names([f["goal"] for f in answered])
     factors = [{"name": n, "description": f"{n.replace('_', ' ')}: {description}"[:200],
@@ -505,7 +516,7 @@ def compact_examples(query: str, k: int, exclude: str | None = None) -> str:
 
 def plan_bound(variables: Sequence[StateVariable]) -> int:
     """Most subtasks of a plan over ``variables``: one per movable variable (1..8)."""
-    n = sum(1 for v in variables if kind_spec(v.kind).movable)
+    n = sum(1 for v in variables if not v.is_fixed)
     return max(1, min(n, ss.STEP_MAX_SUBTASKS))
 
 

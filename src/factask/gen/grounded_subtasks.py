@@ -55,7 +55,6 @@ from factask.gen.schemas import (
 )
 from factask.gen.steps import Abort, Evaluation, StepRunner, read_strict
 from factask.model.graph import TaskGraph
-from factask.model.kinds import kind_spec
 from factask.model.names import slugify
 from factask.model.variables import StateVariable
 
@@ -154,13 +153,9 @@ def outline_objects(outline: SubtaskOutline, found: Sequence[Mention]) -> dict[s
 
 
 def named_variables(found: Sequence[Mention]) -> list[StateVariable]:
-    """The named objects as variables, declared from the proposal's words: kind,
-    colour (grey when none is named), count; size null (the kind's default); on
-    the table."""
-    return [StateVariable.model_validate({
-        "name": m.name, "description": m.describe(), "kind": m.kind, "size": None,
-        "color": m.color or "gray", "count": m.count, "initial": {"type": "table"}})
-        for m in found]
+    """The named objects as variables, declared from the proposal's words
+    (:meth:`~factask.gen.mentions.Mention.as_variable`), on the table."""
+    return [StateVariable.model_validate(m.as_variable()) for m in found]
 
 
 def design_schema(variables: Sequence[StateVariable], obj: str, proposal: str,
@@ -188,7 +183,7 @@ def design_schema(variables: Sequence[StateVariable], obj: str, proposal: str,
     if not narrow or "goal" not in schema.get("properties", {}):
         return schema
     counts = {v.name: v.count for v in variables}
-    movable = [v.name for v in variables if kind_spec(v.kind).movable]
+    movable = [v.name for v in variables if not v.is_fixed]
     goal = must_use(schema["properties"]["goal"], obj, unused, remaining, counts, movable)
     if goal is None:
         return schema

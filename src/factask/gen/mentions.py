@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
-from factask.model.kinds import ASSET_KINDS
+from factask.model.kinds import ASSET_KINDS, kind_spec
 from factask.model.palette import COLOR_NAMES
 
 #: Words that name a kind, singular (a plural ``s``/``es`` is also read).
@@ -106,6 +106,21 @@ FUNCTION_WORDS = frozenset({
     "less", "them", "it", "is", "are", "be", "as", "so", "its", "their", "other", "next",
     "over", "under", "between", "near", "beside", "behind", "around", "inside", "top",
 })
+#: Verbs that move their object: "put the bowl in the zone" moves the bowl, which
+#: is fixed by default (:attr:`Mention.moved`).
+MOVE_VERBS = frozenset({
+    "put", "place", "move", "push", "slide", "carry", "stack", "insert", "drop",
+    "transfer", "bring", "set", "lift", "pick", "arrange", "position", "relocate",
+    "shift", "take", "lay", "deliver", "rearrange", "align", "pack", "load", "drag",
+    "swap", "nest", "raise", "stand", "line",
+})
+#: Words that may stand between a moving verb and its object: "pick up the two red
+#: bowls".
+OBJECT_LEAD = frozenset({"up", "the", "a", "an", "each", "every", "all", "both", "its",
+                         "their", "this", "that", "these", "those", "and", "or"})
+#: Kinds fixed by default that the robot can still carry (not flat markers).
+CARRIED_KINDS = frozenset(k for k, spec in ASSET_KINDS.items()
+                          if not spec.movable and spec.collides)
 #: Most mentions listed (a proposal is a sentence or two, not an inventory).
 MAX_MENTIONS = 8
 #: Most mentions after groups are split by colour (six balls into six zones of
@@ -141,6 +156,8 @@ class Mention:
         color: Its colour, or None when the proposal gives none.
         count: How many (1 unless the proposal says).
         also: Other kinds the proposal's word may mean (:data:`ALSO_KINDS`).
+        moved: The words move an object whose kind is fixed by default ("then put
+            the bowl in the green zone": the bowl is carried, :data:`MOVE_VERBS`).
         listed: The colours listed right after an uncoloured group ("blocks of
             different colors (red, blue, green)"), each with its count where the
             list gives one ("(two red, two blue)"; 0: not given).
@@ -152,14 +169,34 @@ class Mention:
     count: int
     also: tuple[str, ...] = ()
     listed: tuple[tuple[str, int], ...] = ()
+    moved: bool = False
 
     def describe(self) -> str:
-        """``red_blocks: kind block, colour red, count 3``."""
+        """``red_blocks: kind block, colour red, count 3`` (``, moved`` for a bowl or
+        pallet the words move)."""
         parts = [f"kind {self.kind}"]
         if self.color:
             parts.append(f"colour {self.color}")
         parts.append(f"count {self.count}")
+        if self.moved:
+            parts.append("moved (not fixed)")
         return f"{self.name}: {', '.join(parts)}"
+
+    def as_variable(self, initial: dict[str, Any] | None = None) -> dict[str, Any]:
+        """The object as a graph variable's data (size null: the kind's default;
+        ``fixed`` false where the words move a kind that is fixed by default)."""
+        out: dict[str, Any] = {"name": self.name, "description": self.describe(),
+                               "kind": self.kind, "size": None,
+                               "color": self.color or "gray", "count": self.count,
+                               "initial": initial or {"type": "table"}}
+        if self.moved:
+            out["fixed"] = False
+        return out
+
+    @property
+    def movable(self) -> bool:
+        """Whether the robot moves it: its kind moves, or the words move it."""
+        return self.moved or kind_spec(self.kind).movable
 
 
 def _kind_of(word: str) -> tuple[str | None, bool, str]:
@@ -316,7 +353,7 @@ def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Men
     for colour, count in zip(colours, counts, strict=True):
         stem = f"{colour}_{m.kind}"
         out.append(Mention(_plural(stem) if count > 1 else stem, m.kind, colour,
-                           min(count, MAX_COUNT), m.also))
+                           min(count, MAX_COUNT), m.also, moved=m.moved))
     return out
 
 
@@ -348,8 +385,13 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                     own_counts[words[j]] = _count_of(words[j - 1])
                     j -= 1
             j -= 1
+        moved = kind in CARRIED_KINDS and _moved_at(words, j)
         if earlier and (not colors or any(m.color is None and m.count > 1
                                            for m in earlier)):
+            if moved:  # "... then put the bowl in the green zone"
+                for m in earlier:
+                    if not colors or m.color in colors:
+                        found[m.name] = replace(m, moved=True)
             continue  # a reference to an object already named (see above)
         while j >= 0 and words[j] in MODIFIERS:  # "four differently colored blocks"
             j -= 1
@@ -379,11 +421,24 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             stem = f"{color}_{kind}" if color else kind
             name = _plural(stem) if count > 1 else stem
             if stem in found or _plural(stem) in found:
+                again = stem if stem in found else _plural(stem)
+                if moved:
+                    found[again] = replace(found[again], moved=True)
                 continue
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()),
-                                  listed)
+                                  listed, moved)
             if len(found) >= MAX_MENTIONS:
                 return
+
+
+def _moved_at(words: list[str], j: int) -> bool:
+    """Whether a moving verb (:data:`MOVE_VERBS`) governs the object phrase that ends
+    at ``words[j]`` (its colour words already read): "put the ...", "pick up two ..."."""
+    k = j
+    while k >= 0 and j - k < 6 and (words[k] in OBJECT_LEAD or words[k] in MODIFIERS
+                                    or words[k] in COLOR_NAMES or _count_of(words[k])):
+        k -= 1
+    return k >= 0 and words[k] in MOVE_VERBS
 
 
 def _count_of(word: str) -> int:

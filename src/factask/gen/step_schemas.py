@@ -17,7 +17,7 @@ the relation classes), so a schema never drifts from the model it feeds.
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
 from factask.gen.schemas import MAX_FACTORS, MAX_SUBTASKS, MAX_VARIABLES
@@ -172,7 +172,8 @@ def _capable(kind_names: Mapping[str, str], caps: Sequence[str]) -> list[str]:
             if not caps or any(getattr(kind_spec(k), c) for c in caps)]
 
 
-def relation_schema(relation: str, variables: Mapping[str, str] | None = None) -> Schema | None:
+def relation_schema(relation: str, variables: Mapping[str, str] | None = None,
+                    moved: Collection[str] = ()) -> Schema | None:
     """One relation type's goal object.
 
     Args:
@@ -180,6 +181,8 @@ def relation_schema(relation: str, variables: Mapping[str, str] | None = None) -
         variables: Variable name -> kind of the variables the goal may use (None:
             any name). Anchor fields then list only the variables whose kind can
             serve them; ``objects`` only movable ones.
+        moved: Variables of a kind fixed by default that are movable here (a bowl
+            the task carries).
 
     Returns:
         The schema, or None if no variable can fill a required field.
@@ -190,7 +193,7 @@ def relation_schema(relation: str, variables: Mapping[str, str] | None = None) -
     omit = OMITTED_RELATION_FIELDS | OMITTED_PER_RELATION.get(relation, frozenset())
     props: dict[str, Schema] = {}
     movers = None if variables is None else [
-        n for n, k in variables.items() if kind_spec(k).movable]
+        n for n, k in variables.items() if kind_spec(k).movable or n in moved]
     if movers is not None and not movers:
         return None
     ordered = ["type", *[f for f in full["properties"] if f != "type"]]
