@@ -153,3 +153,16 @@ def test_align_along_line_binds_one_guide_as_a_name_and_two_as_a_list() -> None:
     pair = tpl.instantiate(objects=blocks, line=zones).factors[0]
     assert pair.goal.along == ["near_zone", "far_zone"]
     assert set(pair.scope_names) == {"blocks", "near_zone", "far_zone"}
+
+
+@pytest.mark.parametrize("along", [None, "line"])
+def test_a_row_spaced_closer_than_its_objects_are_wide_is_refused_at_once(along) -> None:
+    boxes = StateVariable(name="boxes", kind="container", size=(0.16, 0.16, 0.05), count=3,
+                          fixed=False)
+    line = StateVariable(name="line", kind="line", size=(0.6, 0.01, 0.001))
+    graph = _graph([boxes, line], Row(objects=["boxes"], spacing=0.15, along=along))
+    with pytest.raises(LayoutError, match="neighbours would overlap") as info:
+        reset_layout(graph, np.random.default_rng(0))
+    assert not info.value.retryable  # no search: it can never fit
+    wide = _graph([boxes, line], Row(objects=["boxes"], spacing=0.17, along=along))
+    reset_layout(wide, np.random.default_rng(0))  # as wide as needed: laid out

@@ -137,6 +137,11 @@ class Row(RelationBase):
                                                                           strict=True)]
             return make_plan(slots, [s for _, s, _ in spots], [h[0] for _, _, h in spots],
                              [set(h) for _, _, h in spots], matches)
+        narrowest = min(o.size[0] for o in movers)
+        if n > 1 and spacing + GEOMETRY_EPS < narrowest:  # neighbours would overlap
+            raise Infeasible(f"a row spaced {spacing:.3f} m is narrower than its objects "
+                             f"({narrowest:.3f} m along the row): neighbours would overlap "
+                             "(use a spacing of at least the objects' width)", retry=False)
         guide = self.anchor_names("along")
         if len(guide) == 2:
             return _between(ctx, movers, line, guide, spacing)
