@@ -10,6 +10,10 @@ asks for. It is a hint only: the schema and the verification ladder decide.
 Only the vocabulary is recognised (the colours of :mod:`factask.model.palette`,
 the asset kinds of :mod:`factask.model.kinds` and a few synonyms), so a mention
 is always something the graph model can express.
+
+Why one file (past 500 lines): it is one reader of one word list -- the scan,
+the counts, the colour lists, the matching phrases and the moving verbs each
+look at the words around the same kind word, with the same tables.
 """
 
 from __future__ import annotations
