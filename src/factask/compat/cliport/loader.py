@@ -7,7 +7,9 @@ While a file is loaded, :func:`cliport_aliases` puts a synthetic ``cliport``
 package (``cliport.tasks``, ``cliport.tasks.task``, ``cliport.utils.utils``,
 ``cliport.tasks.primitives``, ``cliport.tasks.grippers``, ``cliport.tasks.cameras``)
 and a ``pybullet`` stand-in into ``sys.modules``, mapping to the modules of
-:mod:`factask.compat.cliport`; afterwards the previous entries are restored.
+:mod:`factask.compat.cliport`, and lends the NumPy 1.x / Python 3.8 names GenSim's
+stack had (:mod:`factask.compat.cliport.legacy`); afterwards the previous entries
+are restored.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from factask.compat.cliport.errors import (
     Unsupported,
     recording_refusals,
 )
+from factask.compat.cliport.legacy import legacy_names
 from factask.compat.cliport.recorder import FAKE_ASSETS_ROOT, RecordingEnv, Session, session_scope
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.task import RAVENS_POS_EPS, RAVENS_ROT_EPS, Task
@@ -106,7 +109,9 @@ def _alias_modules() -> dict[str, types.ModuleType]:
 
 @contextlib.contextmanager
 def cliport_aliases() -> Iterator[None]:
-    """Make ``cliport.*`` and ``pybullet`` importable as factask's stand-ins.
+    """Make ``cliport.*`` and ``pybullet`` importable as factask's stand-ins, and
+    lend the GenSim-era NumPy / ``random`` names task code uses
+    (:func:`~factask.compat.cliport.legacy.legacy_names`).
 
     Whatever those names meant before (a real install, nothing) is restored on
     exit, so the aliases never leak into the rest of the process.
@@ -114,7 +119,8 @@ def cliport_aliases() -> Iterator[None]:
     saved = {name: sys.modules.get(name) for name in ALIAS_NAMES}
     sys.modules.update(_alias_modules())
     try:
-        yield
+        with legacy_names():
+            yield
     finally:
         for name, prev in saved.items():
             if prev is None:
