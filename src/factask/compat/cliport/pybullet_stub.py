@@ -1,6 +1,8 @@
 """Stand-in for ``pybullet`` while a task file is loaded.
 
-Pure pose maths (``getQuaternionFromEuler``, ``multiplyTransforms``, ...) is
+Pure pose maths (``getQuaternionFromEuler``, ``multiplyTransforms``,
+``getQuaternionFromAxisAngle``, ``getAxisAngleFromQuaternion``,
+``getDifferenceQuaternion``, ``getQuaternionSlerp``, ``rotateVector``, ...) is
 computed; calls about recorded objects (``getBasePositionAndOrientation``,
 ``resetBasePositionAndOrientation``, ``changeVisualShape``) read or update the
 recording; bodies built from shapes and the constraints between them
@@ -55,6 +57,49 @@ def multiplyTransforms(pos0: Any, quat0: Any, pos1: Any, quat1: Any
 def invertTransform(pos: Any, quat: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """Inverse of (pos, quat)."""
     return transforms.invert((pos, quat))
+
+
+def _xyzw(rot: Rotation) -> tuple[float, ...]:
+    return tuple(float(c) for c in rot.as_quat())
+
+
+def getQuaternionFromAxisAngle(axis: Any, angle: float) -> tuple[float, ...]:
+    """Quaternion xyzw of a turn by ``angle`` (radians) about ``axis``.
+
+    Raises:
+        ValueError: a zero axis (no direction to turn about).
+    """
+    a = np.asarray(axis, dtype=float).reshape(3)
+    norm = float(np.linalg.norm(a))
+    if norm == 0.0:
+        raise ValueError("getQuaternionFromAxisAngle: the axis is zero")
+    return _xyzw(Rotation.from_rotvec(a / norm * float(angle)))
+
+
+def getAxisAngleFromQuaternion(quat: Any) -> tuple[tuple[float, ...], float]:
+    """(unit axis, angle in [0, pi]) of a quaternion xyzw; axis (1, 0, 0) for no turn."""
+    rotvec = transforms.rotation(quat).as_rotvec()
+    angle = float(np.linalg.norm(rotvec))
+    axis = rotvec / angle if angle > 1e-12 else np.array([1.0, 0.0, 0.0])
+    return tuple(float(c) for c in axis), angle
+
+
+def getDifferenceQuaternion(quat_start: Any, quat_end: Any) -> tuple[float, ...]:
+    """The turn that takes ``quat_start`` to ``quat_end`` (end * start^-1, world frame)."""
+    return _xyzw(transforms.rotation(quat_end) * transforms.rotation(quat_start).inv())
+
+
+def getQuaternionSlerp(quat_start: Any, quat_end: Any, fraction: float) -> tuple[float, ...]:
+    """Spherical interpolation from ``quat_start`` (0) to ``quat_end`` (1)."""
+    start = transforms.rotation(quat_start)
+    delta = (transforms.rotation(quat_end) * start.inv()).as_rotvec()  # the shorter way
+    return _xyzw(Rotation.from_rotvec(delta * float(fraction)) * start)
+
+
+def rotateVector(quat: Any, vector: Any) -> tuple[float, ...]:
+    """``vector`` turned by the quaternion xyzw."""
+    out = transforms.rotation(quat).apply(np.asarray(vector, dtype=float).reshape(3))
+    return tuple(float(c) for c in out)
 
 
 def getBasePositionAndOrientation(obj_id: int, *args: Any, **kwargs: Any
