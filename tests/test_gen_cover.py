@@ -104,7 +104,7 @@ def test_the_answer_that_leaves_a_bowl_out_is_refused() -> None:
     proposal = "put the red block in the red bowl and the blue block in the blue bowl"
     found = mentions(proposal)
     schema = grounded.compact_graph_schema(found, proposal)
-    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found if m.movable]
 
     def answer(*goals: tuple[str, str]) -> dict:
         return {"variables": variables, "factors": [
@@ -129,7 +129,8 @@ def test_the_answer_that_leaves_a_bowl_out_is_refused() -> None:
     for goals in ((("red_block", "red_bowl"), ("blue_block", "blue_bowl")),
                   (("red_block", "blue_bowl"), ("blue_block", "red_bowl"))):
         assert schema_problems(dict(answer(*goals), variables=[
-            {"name": m.name, "initial": {"type": "table"}} for m in mentions(other)]),
+            {"name": m.name, "initial": {"type": "table"}} for m in mentions(other)
+            if m.movable]),
             loose) == []
     # The prompt still shows the plain goal list's outline.
     plain = grounded.compact_graph_schema(found, proposal, cover=False)
@@ -140,7 +141,7 @@ def test_one_group_goal_or_one_goal_per_object() -> None:
     proposal = "stack the blue block and the green block on the red pallet"
     found = mentions(proposal)
     schema = grounded.compact_graph_schema(found, proposal)
-    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found if m.movable]
     group = {"type": "stack", "objects": ["blue_block", "green_block"], "base": "red_pallet",
              "ordered": True}
     each = [{"type": "on", "objects": ["blue_block"], "support": "red_pallet"},
@@ -201,15 +202,19 @@ def test_with_covering_goals_nothing_starts_on_a_fixed_object() -> None:
     proposal = "put the red block in the red bowl and the blue block in the blue bowl"
     found = mentions(proposal)
     schema = grounded.compact_graph_schema(found, proposal)
-    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found if m.movable]
     factors = [{"goal": {"type": "inside", "objects": ["red_block"], "container": "red_bowl"}},
                {"goal": {"type": "inside", "objects": ["blue_block"],
                          "container": "blue_bowl"}}]
     assert schema_problems({"variables": variables, "factors": factors}, schema) == []
     variables[0]["initial"] = {"type": "inside", "container": "blue_bowl"}
     assert schema_problems({"variables": variables, "factors": factors}, schema)
-    variables[0]["initial"] = {"type": "on", "support": "blue_block"}  # stacked at the start
+    variables[0]["initial"] = {"type": "table"}
+    variables[1]["initial"] = {"type": "on", "support": "red_block"}  # stacked at the start
     assert schema_problems({"variables": variables, "factors": factors}, schema) == []
+    # Only on one listed before it: starts can never form a cycle.
+    variables[0]["initial"] = {"type": "on", "support": "blue_block"}
+    assert schema_problems({"variables": variables, "factors": factors}, schema)
 
 
 def test_paired_in_order_reads_x_in_a_and_y_in_b() -> None:
@@ -221,19 +226,25 @@ def test_paired_in_order_reads_x_in_a_and_y_in_b() -> None:
 
 
 def test_objects_pair_by_colour_where_the_words_say_same_colour() -> None:
-    colours = {"red_ball": "red", "blue_ball": "blue", "blue_zone": "blue", "red_zone": "red"}
-    assert cover.paired_by_colour(["red_ball", "blue_ball"], ["blue_zone", "red_zone"],
-                                  colours) == ["red_zone", "blue_zone"]
-    assert cover.paired_by_colour(["red_ball", "blue_ball"], ["blue_zone"], colours) is None
-    assert cover.paired_by_colour(["red_ball", "blue_ball"], ["zone", "red_zone"],
-                                  {**colours, "zone": None}) is None
-    # Crossed colours in the words ("the red ball in the blue zone ...") pair by order.
-    assert cover.pair_fixed(["red_ball", "blue_ball"], ["blue_zone", "red_zone"], colours,
-                            False, [True, False, True, False]) == (["blue_zone", "red_zone"], True)
+    colours = {"red_ball": "red", "blue_ball": "blue", "blue_zone": "blue", "red_zone": "red",
+               "zone": None, "blocks": None}
+    assert cover.colour_pins(["red_ball", "blue_ball"], ["blue_zone", "red_zone"],
+                             colours) == {"blue_zone": "blue_ball", "red_zone": "red_ball"}
+    # Only what the colours say: an uncoloured zone stays free for any object.
+    assert cover.colour_pins(["red_ball", "blue_ball", "blocks"], ["zone", "red_zone"],
+                             colours) == {"red_zone": "red_ball"}
+    assert cover.colour_pins(["red_ball", "red_block"], ["red_zone"],
+                             {**colours, "red_block": "red"}) == {}  # two red objects
+    kinds = {"red_ball": "ball", "blue_ball": "ball", "blocks": "block", "zone": "zone",
+             "red_zone": "zone"}
+    branch = grounded.relation_over("in_zone", kinds)
+    shapes = cover.each_shapes(branch.get("anyOf", [branch]), ["red_ball", "blue_ball", "blocks"],
+                               ["zone", "red_zone"], {}, pins={"red_zone": "red_ball"})
+    assert len(shapes) == 2  # the free zone with either other object
     proposal = "put the blue ball and the red ball in the zones of the matching colour"
     found = mentions(proposal)
     schema = grounded.compact_graph_schema(found, proposal)
-    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found if m.movable]
     right = [{"goal": {"type": "in_zone", "objects": [b], "zone": z}}
              for b, z in (("blue_ball", "blue_zone"), ("red_ball", "red_zone"))]
     crossed = [{"goal": {"type": "in_zone", "objects": [b], "zone": z}}

@@ -176,7 +176,8 @@ def group_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Seque
 
 
 def each_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Sequence[str],
-                counts: dict[str, int], paired: bool = False) -> list[Schema]:
+                counts: dict[str, int], paired: bool = False,
+                pins: dict[str, str] | None = None) -> list[Schema]:
     """One goal per movable object, in the proposal's order, that uses it: moves it
     (anchored on any other named object, or on none), or -- where no fixed object
     is pinned to the goal -- moves another movable object onto it ("the red block
@@ -184,13 +185,16 @@ def each_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Sequen
     goal of its own, that goal moving the goal's object: each way of choosing
     which, up to :data:`MAX_PATTERNS`; with ``paired`` (the words name each
     fixed object right after its own movable one: "X in A and Y in B") only the
-    i-th fixed object with the i-th movable one."""
+    i-th fixed object with the i-th movable one; with ``pins`` (fixed -> movable,
+    :func:`colour_pins`) each pinned fixed object only with its movable one."""
     if len(movers) < 2 or len(fixed) > len(movers):
         return []
-    patterns = [tuple(range(len(fixed)))] if paired and len(fixed) == len(movers) else \
-        list(permutations(range(len(movers)), len(fixed)))
-    if len(patterns) > MAX_PATTERNS:
-        return []
+    if paired and len(fixed) == len(movers):
+        patterns = [tuple(range(len(fixed)))]
+    else:
+        patterns = _patterns(movers, fixed, pins or {})
+        if patterns is None:
+            return []
     out: list[Schema] = []
     cache: dict[tuple[int, str | None], Schema | None] = {}
     for pattern in patterns:
@@ -211,6 +215,23 @@ def each_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Sequen
     return out
 
 
+def _patterns(movers: Sequence[str], fixed: Sequence[str],
+              pins: dict[str, str]) -> list[tuple[int, ...]] | None:
+    """Every way to give each fixed object its own movable one (pattern[j]: the
+    index of the movable object anchored on ``fixed[j]``), pinned ones kept; None
+    when there are none or more than :data:`MAX_PATTERNS`."""
+    at = {j: movers.index(pins[f]) for j, f in enumerate(fixed) if pins.get(f) in movers}
+    free_fixed = [j for j in range(len(fixed)) if j not in at]
+    free_movers = [i for i in range(len(movers)) if i not in at.values()]
+    out: list[tuple[int, ...]] = []
+    for chosen in permutations(free_movers, len(free_fixed)):
+        pattern = dict(at) | dict(zip(free_fixed, chosen, strict=True))
+        out.append(tuple(pattern[j] for j in range(len(fixed))))
+        if len(out) > MAX_PATTERNS:
+            return None
+    return out or None
+
+
 def per_anchor_shapes(branches: Sequence[Schema], movers: Sequence[str],
                       fixed: Sequence[str], counts: dict[str, int]) -> list[Schema]:
     """With one movable object and more fixed ones: one goal per fixed object,
@@ -225,7 +246,8 @@ def per_anchor_shapes(branches: Sequence[Schema], movers: Sequence[str],
 
 def covering_factors(branches: Sequence[Schema], movers: Sequence[str],
                      fixed: Sequence[str], counts: dict[str, int],
-                     paired: bool = False) -> Schema | None:
+                     paired: bool = False,
+                     pins: dict[str, str] | None = None) -> Schema | None:
     """The ``factors`` schema whose every answer uses every named object.
 
     Args:
@@ -234,13 +256,14 @@ def covering_factors(branches: Sequence[Schema], movers: Sequence[str],
         fixed: The named objects that stay put (zones, bowls, pallets, ...).
         counts: Name -> count.
         paired: Whether the proposal pairs them in its order (see :func:`each_shapes`).
+        pins: Fixed object -> the movable one it must anchor (:func:`colour_pins`).
 
     Returns:
         An ``anyOf`` of tuples of ``{"goal": ...}`` (group, each, per anchor),
         or None when no shape can use every named object.
     """
     shapes = [*group_shapes(branches, movers, fixed, counts),
-              *each_shapes(branches, movers, fixed, counts, paired),
+              *each_shapes(branches, movers, fixed, counts, paired, pins),
               *per_anchor_shapes(branches, movers, fixed, counts)]
     if not shapes:
         return None
@@ -300,36 +323,27 @@ def paired_in_order(movable: Sequence[bool]) -> bool:
         all(m == (i % 2 == 0) for i, m in enumerate(movable))
 
 
-def paired_by_colour(movers: Sequence[str], fixed: Sequence[str],
-                     colours: dict[str, str | None]) -> list[str] | None:
-    """The fixed objects reordered so that the i-th is the i-th movable object's
-    colour ("each ball in the zone of its colour"), or None when the colours do
-    not pair them one to one (then the words' pairing, if any, decides).
+def colour_pins(movers: Sequence[str], fixed: Sequence[str],
+                colours: dict[str, str | None]) -> dict[str, str]:
+    """Fixed object -> the movable object of its colour, for each fixed object whose
+    colour exactly one movable object and no other fixed object has ("each ball in
+    the zone of its colour"); the others stay free.
 
     Args:
-        movers: The movable named objects, in the proposal's order.
+        movers: The movable named objects.
         fixed: The fixed named objects.
         colours: Name -> colour (None: uncoloured).
     """
-    if len(movers) < 2 or len(fixed) != len(movers):
-        return None
-    by_colour = {colours.get(f): f for f in fixed}
-    if None in by_colour or len(by_colour) != len(fixed):
-        return None
-    out = [by_colour.get(colours.get(m)) for m in movers]
-    return [f for f in out if f is not None] if None not in out else None
+    def by(names: Sequence[str]) -> dict[str, list[str]]:
+        out: dict[str, list[str]] = {}
+        for n in names:
+            if colours.get(n):
+                out.setdefault(str(colours[n]), []).append(n)
+        return out
 
-
-def pair_fixed(movers: Sequence[str], fixed: Sequence[str], colours: dict[str, str | None],
-               by_colour: bool, movable_in_order: Sequence[bool]) -> tuple[list[str], bool]:
-    """The fixed objects in the order that pairs them with the movable ones, and
-    whether they pair: by colour where the words pair by colour and the colours
-    allow (:func:`paired_by_colour`), else as the words alternate
-    (:func:`paired_in_order`), else unpaired in their own order."""
-    matched = paired_by_colour(movers, fixed, colours) if by_colour else None
-    if matched is not None:
-        return matched, True
-    return list(fixed), paired_in_order(movable_in_order)
+    movers_of, fixed_of = by(movers), by(fixed)
+    return {fs[0]: movers_of[c][0] for c, fs in fixed_of.items()
+            if len(fs) == 1 and len(movers_of.get(c, [])) == 1}
 
 
 def used_names(goal: dict[str, Any], names: Iterable[str]) -> set[str]:
@@ -339,7 +353,18 @@ def used_names(goal: dict[str, Any], names: Iterable[str]) -> set[str]:
             if isinstance(n, str) and n in known}
 
 
-__all__ = ["GROUP_RELATIONS", "MAX_PATTERNS", "covering_factors", "each_shapes",
-           "group_shapes", "must_use", "names_of", "nullable", "pair_fixed", "paired_by_colour",
-           "paired_in_order",
-           "per_anchor_shapes", "pin", "used_names"]
+__all__ = [
+    "GROUP_RELATIONS",
+    "MAX_PATTERNS",
+    "colour_pins",
+    "covering_factors",
+    "each_shapes",
+    "group_shapes",
+    "must_use",
+    "names_of",
+    "nullable",
+    "paired_in_order",
+    "per_anchor_shapes",
+    "pin",
+    "used_names",
+]

@@ -37,7 +37,13 @@ from pydantic import ValidationError
 
 from factask.gen import step_schemas as ss
 from factask.gen.capacity import prune
-from factask.gen.cover import GROUP_RELATIONS, covering_factors, names_of, pair_fixed
+from factask.gen.cover import (
+    GROUP_RELATIONS,
+    colour_pins,
+    covering_factors,
+    names_of,
+    paired_in_order,
+)
 from factask.gen.examples import library_task_examples, render_examples
 from factask.gen.mentions import Mention, colour_matched
 from factask.model.errors import FactaskError, InvalidValueError
@@ -114,6 +120,11 @@ def _extra_variable(kinds: dict[str, str]) -> Schema:
 def movable(found: Sequence[Mention]) -> list[Mention]:
     """The named objects the robot can move (by kind, or as the words say)."""
     return [m for m in found if m.movable]
+
+
+def movers_of(found: Sequence[Mention]) -> set[str]:
+    """The names of :func:`movable`."""
+    return {m.name for m in movable(found)}
 
 
 def _moved(found: Sequence[Mention]) -> frozenset[str]:
@@ -401,7 +412,9 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
 
     Returns:
         ``{"variables": [{name, initial}, ...], "factors": [{goal}, ...]}``
-        with the variables a tuple of the named objects.
+        with the variables a tuple of the named movable objects (a fixed one
+        starts on the table: nothing to write), each starting on the table or on
+        or in a fixed object or a movable one listed before it.
     """
     kinds = {m.name: m.kind for m in found}
     counts = {m.name: m.count for m in found}
@@ -413,12 +426,14 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     factors: Schema | None = None
     if cover:
         movers = [m.name for m in movable(found)]
-        fixed, paired = pair_fixed(movers, [m.name for m in found if m.name not in movers],
-                                   {m.name: m.color for m in found}, colour_matched(proposal),
-                                   [m.name in movers for m in found])
+        fixed = [m.name for m in found if m.name not in movers]
+        # "each ball in the zone of its colour": the colours pin which goes where.
+        pins = colour_pins(movers, fixed, {m.name: m.color for m in found}) \
+            if colour_matched(proposal) else {}
+        paired = not pins and paired_in_order([m.name in movers for m in found])
         for allowed in (goal, _goal(kinds, None, counts, moved)):
             branches = allowed.get("anyOf", [allowed]) if allowed else []
-            factors = covering_factors(branches, movers, fixed, counts, paired)
+            factors = covering_factors(branches, movers, fixed, counts, paired, pins)
             factors = factors and prune(factors, found)  # shapes whose layouts fit
             if factors is not None:
                 break
@@ -430,10 +445,15 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
         # Every fixed named object is some goal's anchor: an object starting on or in
         # one would start where a goal may put it (a goal met at the start).
         starts = {m.name: m.kind for m in found if m.movable}
-    items = [ss.obj({"name": {"const": m.name},
-                     "initial": _placement(m.name, starts, moved) if m.name in starts
-                     else _placement(m.name, kinds, moved)})
-             for m in found]
+    # Only the movable objects' starts are decisions (a fixed one is on the table),
+    # each on or in a fixed object or one listed before it: no cycle of starts.
+    items, before = [], {n: k for n, k in starts.items() if n not in movers_of(found)}
+    for m in found:
+        if m.movable:
+            items.append(ss.obj({"name": {"const": m.name},
+                                 "initial": _placement(m.name, {**before, m.name: m.kind},
+                                                       moved)}))
+            before[m.name] = m.kind
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},
