@@ -25,6 +25,7 @@ from factask.gen.steps import Abort, Evaluation, PromptBuilder, StepRunner
 from factask.model.errors import GraphValidationError, Problem
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
+from factask.model.names import unique_name
 from factask.model.variables import StateVariable
 
 
@@ -166,14 +167,7 @@ def distinct_names(names: Sequence[str], taken: Iterable[str] = ()) -> list[str]
         The names, the first of each kept as it is.
     """
     used = set(taken)
-    out = []
-    for n in names:
-        new, k = n, 2
-        while new in used:
-            new, k = f"{n}_{k}", k + 1
-        used.add(new)
-        out.append(new)
-    return out
+    return [unique_name(n, used) for n in names]
 
 
 def without_repeats(variables: Sequence[StateVariable],

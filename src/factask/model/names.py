@@ -40,6 +40,27 @@ def instance_names(variable: str, count: int) -> list[str]:
     return [f"{variable}{INSTANCE_SEPARATOR}{i}" for i in range(count)]
 
 
+def unique_name(name: str, taken: set[str], max_length: int = 64) -> str:
+    """``name``, or the first of ``name_2``, ``name_3``, ... not in ``taken`` (cut to
+    ``max_length`` before the suffix); the result is added to ``taken``.
+
+    Args:
+        name: The wanted name.
+        taken: Names in use; updated.
+        max_length: Longest name allowed.
+
+    Returns:
+        A name not in ``taken`` before the call.
+    """
+    out, k = name, 2
+    while out in taken:
+        suffix = f"_{k}"
+        out = f"{name[:max_length - len(suffix)].rstrip('_')}{suffix}"
+        k += 1
+    taken.add(out)
+    return out
+
+
 def slugify(text: str, separator: str, max_length: int, fallback: str,
             max_words: int | None = None, letter_first: bool = True) -> str:
     """An identifier from free text: its lower-case words of letters and digits joined

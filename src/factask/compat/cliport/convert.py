@@ -59,7 +59,7 @@ from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
 from factask.model.kinds import WALL_THICKNESS, kind_spec
 from factask.model.limits import MAX_OBJECTS
-from factask.model.names import slugify
+from factask.model.names import slugify, unique_name
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
@@ -98,16 +98,6 @@ def kebab(class_name: str) -> str:
     words = re.sub(r"(?<=[a-z0-9])(?=[A-Z])|(?<=[A-Z])(?=[A-Z][a-z])", "-", class_name)
     name = re.sub(r"[^a-z0-9-]+", "-", words.lower()).strip("-")
     return name or "cliport-task"
-
-
-def _unique(name: str, taken: set[str]) -> str:
-    out, k = name, 2
-    while out in taken:
-        suffix = f"_{k}"
-        out = f"{name[:MAX_NAME - len(suffix)].rstrip('_')}{suffix}"
-        k += 1
-    taken.add(out)
-    return out
 
 
 
@@ -276,7 +266,7 @@ def _zone_variable(goal: RecordedGoal, objects: list[RecordedObject], names: dic
             _check_region_size(near, (sx, sy), names, warn)
             return names[near.obj_id]
     taken = set(names.values()) | {v.name for v in extra}
-    name = _unique(f"zone_goal_{goal.index}", taken)
+    name = unique_name(f"zone_goal_{goal.index}", taken, MAX_NAME)
     x = float(np.clip(zpos[0], *WORKSPACE_X))
     y = float(np.clip(zpos[1], *WORKSPACE_Y))
     extra.append(StateVariable(
@@ -470,7 +460,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     factors: list[SubtaskFactor] = []
     milestones = _moved_again([g for g, _ in drafts])
     for (g, rel), w in zip(drafts, weights, strict=True):
-        name = _unique(slugify(g.language, "_", MAX_NAME, "goal"), taken)
+        name = unique_name(slugify(g.language, "_", MAX_NAME, "goal"), taken, MAX_NAME)
         factors.append(SubtaskFactor(name=name, description=g.language, goal=rel,
                                      weight=w / total, milestone=g.index in milestones,
                                      after=[factors[-1].name] if factors else []))

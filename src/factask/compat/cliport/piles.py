@@ -33,7 +33,7 @@ from factask.compat.cliport import primitives
 from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.grippers import Spatula
 from factask.compat.cliport.recorder import RecordedObject
-from factask.model.names import instance_names
+from factask.model.names import instance_names, unique_name
 from factask.model.variables import AtFixedPose, OnTable, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.sim.pile import pile_half_extent
@@ -112,11 +112,7 @@ def find_piles(task: Any, goals: list[RecordedGoal], names: dict[int, str]) -> l
         for o in g.objs:  # one pile per colour, in the order the colours first appear
             by_color.setdefault(o.color, []).append(o)
         for color, blocks in by_color.items():
-            k, name = 0, f"pile_{color}"
-            while name in taken:
-                k += 1
-                name = f"pile_{color}_{k}"
-            taken.add(name)
+            name = unique_name(f"pile_{color}", taken)
             for o, inst in zip(blocks, instance_names(name, len(blocks)), strict=True):
                 names[o.obj_id] = inst
             out.append(Pile(name, g.index, blocks))

@@ -31,7 +31,7 @@ from factask.compat.cliport.bodies import LINK_JOINTS, MULTIBODY
 from factask.compat.cliport.errors import Unsupported
 from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject, Session
-from factask.model.names import instance_names
+from factask.model.names import instance_names, unique_name
 from factask.model.variables import AtFixedPose, OnTable, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.relations import RopeAlong, TargetPose
@@ -168,11 +168,7 @@ def find_ropes(session: Session, names: dict[int, str], warn: Any) -> list[Rope]
             raise Unsupported(f"the linked bodies {chain[0]}..{chain[-1]} differ in size; "
                               "factask's rope has like segments")
         color = Counter(b.color for b in beads).most_common(1)[0][0]
-        k, name = 0, f"rope_{color}"
-        while name in taken:
-            k += 1
-            name = f"rope_{color}_{k}"
-        taken.add(name)
+        name = unique_name(f"rope_{color}", taken)
         for oid, inst in zip(chain, instance_names(name, len(chain)), strict=True):
             names[oid] = inst
         xy = np.mean([b.pos[:2] for b in beads], axis=0)
