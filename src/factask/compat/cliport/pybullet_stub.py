@@ -23,7 +23,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from factask.compat.cliport import bodies, transforms
-from factask.compat.cliport.errors import Unsupported
+from factask.compat.cliport.errors import PoseError, Unsupported
 from factask.compat.cliport.recorder import active_session, color_name
 
 # Constants task code passes around (values as in PyBullet).
@@ -67,12 +67,12 @@ def getQuaternionFromAxisAngle(axis: Any, angle: float) -> tuple[float, ...]:
     """Quaternion xyzw of a turn by ``angle`` (radians) about ``axis``.
 
     Raises:
-        ValueError: a zero axis (no direction to turn about).
+        PoseError: a zero axis (no direction to turn about; a ValueError).
     """
     a = np.asarray(axis, dtype=float).reshape(3)
     norm = float(np.linalg.norm(a))
     if norm == 0.0:
-        raise ValueError("getQuaternionFromAxisAngle: the axis is zero")
+        raise PoseError("getQuaternionFromAxisAngle: the axis is zero")
     return _xyzw(Rotation.from_rotvec(a / norm * float(angle)))
 
 
