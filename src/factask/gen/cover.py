@@ -19,7 +19,8 @@ it anchors on, so that every shape uses every named object:
   over the ways to give each fixed object a goal of its own (at most
   :data:`MAX_PATTERNS`; the other goals anchor on any other named object, or on
   none) -- only the proposal's own pairing where its words alternate "X in A
-  and Y in B" (:func:`paired_in_order`);
+  and Y in B" (:func:`paired_in_order`), and a fixed object pinned to the
+  movable one of its colour where the words pair by colour (:func:`colour_pins`);
 * **per anchor**: with one movable object and more fixed objects than that, one
   goal per fixed object, each moving the movable one.
 
