@@ -132,3 +132,23 @@ def test_a_circle_offers_only_the_radii_that_fit_the_workspace() -> None:
         radius = circle["properties"]["radius"]
         offered = [v for o in radius.get("anyOf", [radius]) for v in o.get("enum", [])]
         assert offered and max(offered) < 0.25  # 0.527 m across at 0.2 m: wider than 0.50 m
+
+
+def test_a_search_budget_can_count_cpu_time_so_a_busy_machine_does_not_spend_it() -> None:
+    import time
+
+    import pytest
+
+    from factask.scene.collision import Deadline, LayoutError
+
+    now = [0.0]
+    deadline = Deadline.after(0.25, clock=lambda: now[0])
+    deadline.check("a row")  # nothing spent yet
+    now[0] = 0.3
+    assert deadline.passed
+    with pytest.raises(LayoutError, match=r"0\.25 s budget"):
+        deadline.check("a row")
+    cpu = Deadline.after(0.25, clock=time.thread_time)
+    time.sleep(0.3)  # waiting (a preempted search) spends no CPU time
+    assert not cpu.passed
+    assert Deadline.after(0.0).clock is time.monotonic  # wall time by default
