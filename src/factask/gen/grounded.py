@@ -122,11 +122,6 @@ def movable(found: Sequence[Mention]) -> list[Mention]:
     return [m for m in found if m.movable]
 
 
-def movers_of(found: Sequence[Mention]) -> set[str]:
-    """The names of :func:`movable`."""
-    return {m.name for m in movable(found)}
-
-
 def _moved(found: Sequence[Mention]) -> frozenset[str]:
     """The named objects of a kind fixed by default that the words move."""
     return frozenset(m.name for m in found if m.moved)
@@ -447,7 +442,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
         starts = {m.name: m.kind for m in found if m.movable}
     # Only the movable objects' starts are decisions (a fixed one is on the table),
     # each on or in a fixed object or one listed before it: no cycle of starts.
-    items, before = [], {n: k for n, k in starts.items() if n not in movers_of(found)}
+    items, before = [], {m.name: m.kind for m in found if not m.movable and m.name in starts}
     for m in found:
         if m.movable:
             items.append(ss.obj({"name": {"const": m.name},

@@ -19,7 +19,7 @@ look at the words around the same kind word, with the same tables.
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -269,8 +269,8 @@ def mentions(proposal: str) -> list[Mention]:
 def colour_matched(text: str) -> bool:
     """Whether ``text`` pairs objects by colour: "the bowl of the same colour",
     "zones correspondingly colored", "colour-coordinated", "sort by colour"."""
-    words = _WORD.findall(text.lower().replace("-", " ").replace("_", " "))
-    return any(_matching_at(words, k) for k in range(len(words)))
+    return _matched_kinds(_WORD.findall(text.lower().replace("-", " ").replace("_", " "))) \
+        is not None
 
 
 def _matching_at(words: list[str], k: int) -> bool:
@@ -320,8 +320,7 @@ def _split_by_colour(found: list[Mention], matched: set[str]) -> list[Mention]:
     names = {m.name for m in found}
     for idx, m in enumerate(found):
         parts = _colour_parts(m, palette, matched)
-        fresh = [p for p in parts if p.name not in names and _plural(p.name) not in names
-                 and p.name.removesuffix("s") not in names]
+        fresh = [p for p in parts if not _named(f"{p.color}_{p.kind}", names)]
         rest = len(found) - idx - 1
         if not parts or len(fresh) != len(parts) or \
                 len(out) + len(parts) + rest > MAX_SPLIT_MENTIONS:
@@ -424,7 +423,7 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             count = min(count, MAX_COUNT)
             stem = f"{color}_{kind}" if color else kind
             name = _plural(stem) if count > 1 else stem
-            if stem in found or _plural(stem) in found:
+            if _named(stem, found):
                 again = stem if stem in found else _plural(stem)
                 if moved:
                     found[again] = replace(found[again], moved=True)
@@ -433,6 +432,11 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                                   listed, moved)
             if len(found) >= MAX_MENTIONS:
                 return
+
+
+def _named(stem: str, names: Collection[str]) -> bool:
+    """Whether an object of this stem (``red_block``) is named already, one or many."""
+    return stem in names or _plural(stem) in names
 
 
 def _moved_at(words: list[str], j: int) -> bool:

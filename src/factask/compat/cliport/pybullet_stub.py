@@ -33,9 +33,13 @@ JOINT_PLANAR, JOINT_FIXED, JOINT_POINT2POINT, JOINT_GEAR = 3, 4, 5, 6
 DIRECT, GUI = 2, 1
 
 
+def _xyzw(rot: Rotation) -> tuple[float, ...]:
+    return tuple(float(c) for c in rot.as_quat())
+
+
 def getQuaternionFromEuler(euler: Any) -> tuple[float, ...]:
     """Quaternion xyzw of roll, pitch, yaw (PyBullet: fixed axes x, y, z)."""
-    return tuple(float(c) for c in Rotation.from_euler("xyz", list(euler)).as_quat())
+    return _xyzw(Rotation.from_euler("xyz", list(euler)))
 
 
 def getEulerFromQuaternion(quat: Any) -> tuple[float, ...]:
@@ -57,10 +61,6 @@ def multiplyTransforms(pos0: Any, quat0: Any, pos1: Any, quat1: Any
 def invertTransform(pos: Any, quat: Any) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """Inverse of (pos, quat)."""
     return transforms.invert((pos, quat))
-
-
-def _xyzw(rot: Rotation) -> tuple[float, ...]:
-    return tuple(float(c) for c in rot.as_quat())
 
 
 def getQuaternionFromAxisAngle(axis: Any, angle: float) -> tuple[float, ...]:
