@@ -19,7 +19,10 @@ os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # offline: bundle
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 from factask.gen import APPROACHES, Generator, LLMClient, LLMConfig, LoopbackServer, Verifier
+from factask.gen.cover import colour_pins
 from factask.gen.demo import DEMO_PROPOSAL, demo_responder
+from factask.gen.grounded import movable
+from factask.gen.mentions import mentions
 
 # %% [markdown]
 # ## The scripted server
@@ -71,6 +74,26 @@ out.mkdir(parents=True, exist_ok=True)
 (out / "06_results.json").write_text(
     json.dumps([r.to_dict() for r in results.values()], indent=2))
 print("wrote", out / "06_generated.json")
+
+# %% [markdown]
+# ## What a proposal's words fix before the model writes a token
+#
+# For the packaged local model the steps are grounded in the objects the proposal
+# names (`factask.gen.mentions`): a matching-colour phrase gives one object per
+# colour, a moving verb before a bowl makes it carried, and the one-shot grammar
+# pins each fixed object to the movable one of its colour (docs/generation.md,
+# "Grounded answers for the local model").
+
+# %%
+for proposal in ("sort the red and blue blocks into the bowls of the same colour",
+                 "drop the pink ball into the yellow bowl, then put the bowl in the green zone"):
+    found = mentions(proposal)
+    print(proposal)
+    for m in found:
+        print("   ", m.describe())
+    movers = [m.name for m in movable(found)]
+    fixed = [m.name for m in found if m.name not in movers]
+    print("    pinned:", colour_pins(movers, fixed, {m.name: m.color for m in found}))
 
 # %%
 server.stop()
