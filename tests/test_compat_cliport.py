@@ -5,7 +5,9 @@ from __future__ import annotations
 import json
 import math
 import shutil
+import signal
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +25,7 @@ from factask.compat.cliport import (
 )
 from factask.compat.cliport import utils as cutils
 from factask.compat.cliport.batch import run_batch, run_one
+from factask.compat.cliport.errors import TaskTimeout
 from factask.compat.cliport.loader import ALIAS_NAMES
 from factask.compat.cliport.urdf_map import URDF_TABLE, asset_key, resolve_asset
 from factask.model import AtFixedPose, AtPose, InZone, OnTable, StartOn, parse_graph
@@ -773,3 +776,16 @@ def test_pybullet_physics_tuning_is_accepted_with_a_warning_naming_it():
     assert session.warnings == [
         "p.changeDynamics(...) ignored: factask gives each kind its own mass and friction",
         "p.setGravity(...) ignored: factask's world has standard gravity"]
+
+
+@pytest.mark.parametrize("name", ["hangs.py", "rejection_loop.py"])
+def test_a_task_that_never_returns_is_stopped_with_a_typed_error(name):
+    # in-process (import-cliport, factask run): no child process bounds it; the
+    # file's own code is stopped at the limit, naming its line, even when a bare
+    # `except:` in the loop swallows the first stop
+    started = time.monotonic()
+    with pytest.raises(TaskTimeout, match=r"ran past the 1 s limit .* stopped at .*" + name):
+        import_cliport(BAD / name, time_limit=1)
+    assert time.monotonic() - started < 10
+    assert signal.getsignal(signal.SIGALRM) is signal.SIG_DFL  # the alarm is put back
+    assert import_cliport(TASKS / "place_red_in_green.py", time_limit=1).graph.factors
