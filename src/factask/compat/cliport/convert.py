@@ -34,6 +34,7 @@ import numpy as np
 
 from factask.compat.cliport.errors import CliportImportError, NoGoals, Unsupported
 from factask.compat.cliport.goals import (
+    TARGET_DECIMALS,
     RecordedGoal,
     half_xy,
     read_goals,
@@ -48,6 +49,7 @@ from factask.compat.cliport.ropes import find_ropes, rope_goal
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.sharing import separate_targets, share_targets, zone_parts
 from factask.compat.cliport.starts import (
+    inside_footprint,
     on_table_as_given,
     placement,
     scatter_added_at_targets,
@@ -64,7 +66,7 @@ from factask.model.names import slugify, unique_name
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
 from factask.model.variables import AtFixedPose, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.relations import AtPose, InZone, PileInZone
+from factask.relations import AtPose, InZone, PileInZone, TargetPose
 
 #: Weights are rescaled silently when they sum to 1 within this; beyond it, with a warning.
 WEIGHT_WARN_TOLERANCE = 1e-3
@@ -178,6 +180,37 @@ def _check_region_size(region: RecordedObject, size: tuple[float, float],
              "zone_size); factask's zone is drawn and checked at the checked size")
     region.checked_size = wanted
     region.size = (wanted[0], wanted[1], region.size[2])
+
+
+def _in_fixture_frame(poses: list[TargetPose], objects: list[RecordedObject],
+                      names: dict[int, str], moved: set[int]
+                      ) -> tuple[list[TargetPose], str | None]:
+    """A pose goal whose every target lies in one fixture ("insert the block into the
+    fixture"): its targets in that fixture's frame, and the fixture's name.
+
+    The goal is then relative to the fixture, as the author meant, so the fixture's
+    hollow is shaped for what goes into it (a block: square; was an ell, which a
+    block cannot enter: it came to rest tilted on the hollow's edge). Targets in no
+    fixture, or in several, stay in world coordinates.
+    """
+    fixtures = [o for o in objects if o.kind == "fixture" and o.obj_id not in moved]
+    hosts = {next((f.obj_id for f in fixtures
+                   if inside_footprint(np.array([p.x, p.y]), f)), None) for p in poses}
+    if len(hosts) != 1 or None in hosts:
+        return poses, None
+    host = next(f for f in fixtures if f.obj_id in hosts)
+    yaw = yaw_of_xyzw(host.quat)
+    c, s = math.cos(yaw), math.sin(yaw)
+    out = []
+    for p in poses:
+        dx, dy = p.x - float(host.pos[0]), p.y - float(host.pos[1])
+        out.append(TargetPose(x=round(c * dx + s * dy, TARGET_DECIMALS),
+                              y=round(-s * dx + c * dy, TARGET_DECIMALS),
+                              z=None if p.z is None else round(p.z - float(host.pos[2]),
+                                                               TARGET_DECIMALS),
+                              yaw_deg=round((p.yaw_deg - math.degrees(yaw) + 180.0) % 360.0
+                                            - 180.0, TARGET_DECIMALS)))
+    return out, names[host.obj_id]
 
 
 def _moved_again(goals: list[RecordedGoal]) -> set[int]:
@@ -300,8 +333,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             poses = [target_pose(p, q, tallest, rest.get((g.index, j)),
                                  f"goal {g.index} target {j}", warn)
                      for j, (p, q) in enumerate(g.targets)]
-            rel = AtPose(objects=objs, poses=poses,
-                              matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
+            poses, frame = _in_fixture_frame(poses, objects, names, goal_objects)
+            rel = AtPose(objects=objs, poses=poses, frame=frame,
+                         matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
         elif g.index in piles:  # small blocks swept with a spatula: a pile per colour
             zone = _zone_variable(g, objects, names, extra, warn)
             taken.add(zone)

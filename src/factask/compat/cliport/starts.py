@@ -150,7 +150,8 @@ def scatter_added_at_targets(goals: list[Any], names: dict[int, str], warn: Any)
              "instead")
 
 
-def _inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
+def inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
+    """Whether point ``xy`` lies within ``o``'s footprint as the author turned it."""
     yaw = yaw_of_xyzw(o.quat)
     d = xy - o.pos[:2]
     c, s = math.cos(-yaw), math.sin(-yaw)
@@ -171,7 +172,7 @@ def _hosts(o: RecordedObject, others: list[RecordedObject]
     bottom = float(o.pos[2]) - o.size[2] / 2
     # Any other object may hold it, whatever the order the task added them in (a
     # stack added top first); only a lower one can be its support, so no cycles.
-    holders = [c for c in others if _in_workspace(c) and _inside_footprint(o.pos[:2], c)]
+    holders = [c for c in others if _in_workspace(c) and inside_footprint(o.pos[:2], c)]
     # A receptacle smaller than ``o`` all round holds nothing of it: ``o`` is under
     # it (a pallet with a bowl put on its centre), not in it.
     receptacles = [c for c in holders if kind_spec(c.kind).receptacle
