@@ -24,7 +24,14 @@ For each robot ("floating" mocap cup, "arm" suction arm) on one library task:
 - **wall s per pick-and-place** (median over the episode's actions) and the
   simulated seconds it stood for (real-time factor = simulated / wall);
 - **reset**: median wall time of ``env.reset(seed=k)`` (layout sampling, relation
-  solving and the settling physics, until the objects rest).
+  solving and the settling physics, until the objects rest);
+- **replay cpu**: CPU time per step of the same run replayed with nothing around
+  the physics (:func:`physics_floor.replay_time`: from the run's start state, each
+  ``mj_step`` call with the inputs it had -- controls, mocap poses, the suction
+  weld -- restored by one ``mj_setState``); **seq** = replay / bare: what the steps
+  cost in sequence over the bare step from a restored state (caches, the inputs'
+  writes), **around** = env / replay: what ``env.step`` adds around those steps
+  (cpu ratio = seq x around).
 
 Wall times depend on the machine and its load; nothing here asserts a time.
 """
@@ -67,6 +74,8 @@ class EnvTiming:
     cpu_ratio: float
     inner_step_us: float
     physics_share: float
+    replay_cpu_us: float
+    replay_drift: float
     pick_place_s: float
     pick_place_sim_s: float
     actions: int
@@ -121,9 +130,16 @@ def bench_task(task: str, robot: str, max_actions: int, resets: int,
         with physics_floor.record() as rec:
             for action in actions:
                 env.step(action)
+        # ... and once recording each mj_step call's inputs: the same steps replayed
+        # with nothing around them (physics_floor.replay_time).
+        env.reset(seed=0)
+        with physics_floor.record_inputs(env.model, env.data) as inputs:
+            for action in actions:
+                env.step(action)
         walls = [math.inf] * len(actions)
         cpus = [math.inf] * len(actions)
         bare_w = bare_c = None
+        replay_cpu, drift = math.inf, 0.0
         for _ in range(repeats):
             env.reset(seed=0)
             for i, action in enumerate(actions):
@@ -136,6 +152,8 @@ def bench_task(task: str, robot: str, max_actions: int, resets: int,
             w, c = physics_floor.bare_step_times(rec, repeats=2)
             bare_w = w if bare_w is None else np.minimum(bare_w, w)
             bare_c = c if bare_c is None else np.minimum(bare_c, c)
+            replay, drift = physics_floor.replay_time(inputs)
+            replay_cpu = min(replay_cpu, replay.cpu)
         sims = [h.sim_steps * env.model.opt.timestep for h in env.history]
         cost = physics_floor.StepCost(float(bare_w.mean()), float(bare_c.mean()))
         steps = rec.steps
@@ -147,6 +165,7 @@ def bench_task(task: str, robot: str, max_actions: int, resets: int,
             env_cpu_us=env_cpu_us, bare_cpu_us=cost.cpu * 1e6,
             cpu_ratio=env_cpu_us / (cost.cpu * 1e6),
             inner_step_us=1e6 / bare, physics_share=cost.cpu * 1e6 / env_cpu_us,
+            replay_cpu_us=replay_cpu * 1e6, replay_drift=drift,
             pick_place_s=statistics.median(walls) if walls else float("nan"),
             pick_place_sim_s=statistics.median(sims) if sims else float("nan"),
             actions=len(walls), reset_s=statistics.median(reset_times),
@@ -166,13 +185,18 @@ def run(quick: bool = False, task: str = DEFAULT_TASK,
           "actions; medians over the actions)")
     print(f"{'robot':9s} {'settled us':>10s} {'bare us':>8s} {'env us':>7s} {'ratio':>6s} "
           f"{'bare cpu':>8s} {'env cpu':>7s} {'cpu ratio':>9s} {'wall s/p&p':>10s} "
-          f"{'sim s/p&p':>9s} {'x realtime':>10s} {'actions':>7s} {'reset s':>8s}")
+          f"{'sim s/p&p':>9s} {'x realtime':>10s} {'actions':>7s} {'reset s':>8s} "
+          f"{'replay cpu':>10s} {'seq':>5s} {'around':>6s}")
     for t in out:
         print(f"{t.robot:9s} {t.inner_step_us:10.1f} {t.bare_step_us:8.1f} "
               f"{t.env_step_us:7.1f} {t.ratio:6.2f} {t.bare_cpu_us:8.1f} {t.env_cpu_us:7.1f} "
               f"{t.cpu_ratio:9.2f} {t.pick_place_s:10.3f} "
               f"{t.pick_place_sim_s:9.2f} {t.realtime_factor:10.1f} {t.actions:7d} "
-              f"{t.reset_s:8.3f}")
+              f"{t.reset_s:8.3f} {t.replay_cpu_us:10.1f} "
+              f"{t.replay_cpu_us / t.bare_cpu_us:5.2f} {t.env_cpu_us / t.replay_cpu_us:6.2f}")
+        if t.replay_drift > 1e-3:
+            print(f"  ({t.robot}: the replay ended {t.replay_drift * 1000:.1f} mm/mrad from the "
+                  "run: an input it does not restore)")
     by_robot = {t.robot: t for t in out}
     if {"floating", "arm"} <= set(by_robot):
         f, a = by_robot["floating"], by_robot["arm"]

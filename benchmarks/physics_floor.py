@@ -172,3 +172,102 @@ def bare_step_cost(rec: Recording, repeats: int = 3) -> StepCost:
         return StepCost(math.nan, math.nan)
     walls, cpus = bare_step_times(rec, repeats)
     return StepCost(float(walls.mean()), float(cpus.mean()))
+
+
+#: The inputs a caller sets between steps (controls, mocap poses, equality switches,
+#: applied forces): what a replay restores before each recorded ``mj_step`` call.
+INPUTS = mujoco.mjtState.mjSTATE_USER
+
+
+@dataclass
+class InputLog:
+    """A run as the physics saw it: its start and, per ``mj_step`` call, the inputs
+    set before it and the step count (see :func:`record_inputs`)."""
+
+    model: Any = None
+    start: tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, Any]] | None = None
+    #: (steps, inputs, (eq_obj2id, eq_data) when the suction weld changed, else None).
+    calls: list[tuple[int, np.ndarray, tuple[np.ndarray, np.ndarray] | None]] = field(
+        default_factory=list)
+    end_qpos: np.ndarray | None = None
+
+    @property
+    def steps(self) -> int:
+        """Physics steps of the run."""
+        return sum(n for n, _, _ in self.calls)
+
+
+@contextmanager
+def record_inputs(model: mujoco.MjModel, data: mujoco.MjData) -> Iterator[InputLog]:
+    """Record what the physics of a run needs to be replayed without the code around
+    it: the state at the start, and before each ``mujoco.mj_step`` call its inputs
+    (:data:`INPUTS`) and the suction weld when it changed (it lives in the model).
+
+    Args:
+        model: The run's model.
+        data: Its data, in the state the run starts from.
+
+    Yields:
+        The log, filled while the block runs (``end_qpos`` when it ends).
+    """
+    state = np.empty(mujoco.mj_stateSize(model, STATE))
+    mujoco.mj_getState(model, data, state, STATE)
+    log = InputLog(model, (state, model.eq_obj2id.copy(), model.eq_data.copy(),
+                           get_sleep(data)))
+    size = mujoco.mj_stateSize(model, INPUTS)
+    last = [model.eq_obj2id.copy(), model.eq_data.copy()]
+    original = mujoco.mj_step
+
+    def logging(m: mujoco.MjModel, d: mujoco.MjData, nstep: int = 1) -> None:
+        inputs = np.empty(size)
+        mujoco.mj_getState(m, d, inputs, INPUTS)
+        weld = None
+        if not (np.array_equal(m.eq_obj2id, last[0]) and np.array_equal(m.eq_data, last[1])):
+            last[:] = m.eq_obj2id.copy(), m.eq_data.copy()
+            weld = (last[0], last[1])
+        log.calls.append((nstep, inputs, weld))
+        original(m, d, nstep)
+
+    mujoco.mj_step = logging
+    try:
+        yield log
+    finally:
+        mujoco.mj_step = original
+        log.end_qpos = data.qpos.copy()
+
+
+def replay_time(log: InputLog) -> tuple[StepCost, float]:
+    """Time a replay of a recorded run: from its start, each ``mj_step`` call with its
+    inputs restored (one ``mj_setState``) and nothing else -- the run's steps in
+    sequence, as the physics does them, without the planning, checks and bookkeeping
+    around them.
+
+    Args:
+        log: A run recorded by :func:`record_inputs`.
+
+    Returns:
+        (seconds per step, wall and CPU; the largest difference in m or rad of any
+        ``qpos`` from the run's own end: how faithful the replay was).
+    """
+    m = log.model
+    assert log.start is not None and log.end_qpos is not None
+    state, obj2id, eq_data, sleep = log.start
+    keep = m.eq_obj2id.copy(), m.eq_data.copy()
+    d = mujoco.MjData(m)
+    step, set_state = mujoco.mj_step, mujoco.mj_setState
+    try:
+        set_state(m, d, state, STATE)
+        set_sleep(d, sleep)
+        m.eq_obj2id[:], m.eq_data[:] = obj2id, eq_data
+        w0, c0 = time.perf_counter(), time.thread_time()
+        for n, inputs, weld in log.calls:
+            if weld is not None:
+                m.eq_obj2id[:], m.eq_data[:] = weld
+            set_state(m, d, inputs, INPUTS)
+            step(m, d, n)
+        c1, w1 = time.thread_time(), time.perf_counter()
+    finally:
+        m.eq_obj2id[:], m.eq_data[:] = keep
+    steps = max(log.steps, 1)
+    drift = float(np.abs(d.qpos - log.end_qpos).max())
+    return StepCost((w1 - w0) / steps, (c1 - c0) / steps), drift

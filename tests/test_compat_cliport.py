@@ -5,7 +5,9 @@ from __future__ import annotations
 import json
 import math
 import shutil
+import signal
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +25,7 @@ from factask.compat.cliport import (
 )
 from factask.compat.cliport import utils as cutils
 from factask.compat.cliport.batch import run_batch, run_one
+from factask.compat.cliport.errors import TaskTimeout
 from factask.compat.cliport.loader import ALIAS_NAMES
 from factask.compat.cliport.urdf_map import URDF_TABLE, asset_key, resolve_asset
 from factask.model import AtFixedPose, AtPose, InZone, OnTable, StartOn, parse_graph
@@ -201,7 +204,12 @@ def test_ell_into_fixture():
     fixture = g.variable("fixture_brown_0")
     assert fixture.is_fixed and isinstance(fixture.initial, AtFixedPose)
     assert (fixture.initial.x, fixture.initial.y) == pytest.approx((0.55, -0.25))
-    assert g.factors[0].goal.poses[0].yaw_deg == pytest.approx(45.0)
+    assert fixture.initial.yaw_deg == pytest.approx(45.0)
+    # the target is the fixture's own pose: given in its frame (the goal is relative
+    # to the fixture, whose hollow is shaped for the ell)
+    goal = g.factors[0].goal
+    assert goal.frame == "fixture_brown_0"
+    assert (goal.poses[0].x, goal.poses[0].y, goal.poses[0].yaw_deg) == pytest.approx((0, 0, 0))
 
 
 def test_rotations_false_and_language_list():
@@ -773,3 +781,48 @@ def test_pybullet_physics_tuning_is_accepted_with_a_warning_naming_it():
     assert session.warnings == [
         "p.changeDynamics(...) ignored: factask gives each kind its own mass and friction",
         "p.setGravity(...) ignored: factask's world has standard gravity"]
+
+
+@pytest.mark.parametrize("name", ["hangs.py", "rejection_loop.py"])
+def test_a_task_that_never_returns_is_stopped_with_a_typed_error(name):
+    # in-process (import-cliport, factask run): no child process bounds it; the
+    # file's own code is stopped at the limit, naming its line, even when a bare
+    # `except:` in the loop swallows the first stop
+    started = time.monotonic()
+    with pytest.raises(TaskTimeout, match=r"ran past the 1 s limit .* stopped at .*" + name):
+        import_cliport(BAD / name, time_limit=1)
+    assert time.monotonic() - started < 10
+    assert signal.getsignal(signal.SIGALRM) is signal.SIG_DFL  # the alarm is put back
+    assert import_cliport(TASKS / "place_red_in_green.py", time_limit=1).graph.factors
+
+
+_NAN_TASK = """
+import numpy as np
+from cliport.tasks.task import Task
+
+
+class NanPoses(Task):
+    def reset(self, env):
+        super().reset(env)
+        n = {n}
+        start = {start}
+        blocks = [env.add_object("block/block.urdf", start) for _ in range(n)]
+        spacing = np.float32(0.0) / np.float32(n - 1)  # 0/0 for one block
+        targs = [((0.5, -0.2 + i * spacing, 0.02), (0, 0, 0, 1)) for i in range(n)]
+        self.add_goal(objs=blocks, matches=np.ones((n, n)), targ_poses=targs, replace=False,
+                      rotations=True, metric="pose", params=None, step_max_reward=1)
+"""
+
+
+@pytest.mark.parametrize(("start", "message"), [
+    ("self.get_random_pose(env, 0.04)", r"goal 0: bad target pose .*position \(0\.5, nan"),
+    ("((0.4, np.nan, 0.02), (0, 0, 0, 1))", r"env\.add_object\('block/block\.urdf'\): bad pose"
+                                            r".*not finite"),
+])
+def test_a_nan_pose_is_refused_naming_the_pose(tmp_path, start, message):
+    # was: a NaN target failed graph validation as 'y: Input should be a finite
+    # number' (no goal, no object), and a NaN start was taken as a random start
+    path = tmp_path / "nan_poses.py"
+    path.write_text(_NAN_TASK.format(n=1, start=start))
+    with np.errstate(invalid="ignore"), pytest.raises(CliportImportError, match=message):
+        import_cliport(path)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_gen_cover import proposals, sample
@@ -152,3 +154,84 @@ def test_a_search_budget_can_count_cpu_time_so_a_busy_machine_does_not_spend_it(
     time.sleep(0.3)  # waiting (a preempted search) spends no CPU time
     assert not cpu.passed
     assert Deadline.after(0.0).clock is time.monotonic  # wall time by default
+
+
+def shapes_of(schema: dict) -> list[list[list[dict]]]:
+    """The factors' shapes: per shape, per goal position, its goal variants."""
+    factors = schema["properties"]["factors"]
+    out = []
+    for shape in factors.get("anyOf", [factors]):
+        if "prefixItems" in shape:
+            out.append([goals_of(item) for item in shape["prefixItems"]])
+    return out
+
+
+def names(variant: dict) -> set[str]:
+    """The names a goal variant's anchor fields allow."""
+    from factask.gen.cover import names_of
+    from factask.relations import RELATION_TYPES
+    props = variant["properties"]
+    return {n for f in RELATION_TYPES[props["type"]["const"]].anchor_fields if f in props
+            for n in names_of(props[f])}
+
+
+def test_goals_that_fit_alone_but_not_on_one_anchor_are_not_offered_together() -> None:
+    proposal = ("align the red cylinder, the blue cylinder and the green cylinder "
+                "with the fixture")
+    found = mentions(proposal)
+    assert [m.name for m in found][-1] == "fixture"
+    alone = [{"type": "aligned", "objects": [c], "reference": "fixture", "mode": "center"}
+             for c in ("red_cylinder", "blue_cylinder")]
+    assert all(capacity.layout_problem(g, found) is None for g in alone)
+    assert capacity.goals_problem(alone, found) is not None  # one fixture, two cylinders
+    shapes = shapes_of(grounded.compact_graph_schema(found, proposal))
+    assert shapes
+    for shape in shapes:  # one goal per cylinder: only one of them may use the fixture
+        assert sum(any("fixture" in names(v) for v in goals) for goals in shape) <= 1
+
+
+def test_an_anchor_that_holds_every_goal_stays_shared() -> None:
+    proposal = "put the red block in the zone and the blue block in the zone"
+    found = mentions(proposal)
+    both = [{"type": "in_zone", "objects": [b], "zone": "zone"}
+            for b in ("red_block", "blue_block")]
+    assert capacity.goals_problem(both, found) is None
+    each = [s for s in shapes_of(grounded.compact_graph_schema(found, proposal))
+            if len(s) == 2]
+    assert each and any(all(any("zone" in names(v) for v in goals) for goals in s)
+                        for s in each)
+
+
+def test_two_goals_pinned_to_an_anchor_that_cannot_hold_both_drop_their_shape() -> None:
+    found = [Mention("red_ell", "ell", "red", 1), Mention("blue_ell", "ell", "blue", 1),
+             Mention("fixture", "fixture", None, 1)]
+    item = {"type": "object", "required": ["goal"], "properties": {"goal": {
+        "type": "object", "properties": {
+            "type": {"const": "aligned"},
+            "objects": {"type": "array", "prefixItems": [{"const": "red_ell"}],
+                        "items": False, "minItems": 1, "maxItems": 1},
+            "reference": {"const": "fixture"}, "mode": {"const": "center"}}}}}
+    other = json.loads(json.dumps(item).replace("red_ell", "blue_ell"))
+    assert capacity.share_anchors([item, other], found) is None
+    assert capacity.share_anchors([item], found) == [item]
+
+
+@settings(max_examples=30, deadline=None)
+@given(proposals, st.data())
+def test_goals_an_answer_puts_on_one_fixed_anchor_fit_together(proposal, data) -> None:
+    found = mentions(proposal)
+    if not grounded.applies(found):
+        return
+    schema = grounded.compact_graph_schema(found, proposal)
+    factors = schema["properties"]["factors"]
+    if "items" in factors and factors["items"] is not False:
+        return  # the plain list: objects not pinned (checked at runtime)
+    answer = sample(schema, data)
+    goals = [f["goal"] for f in answer["factors"]]
+    fixed = {m.name for m in found if not m.movable}
+    for anchor in fixed:
+        on = [g for g in goals if anchor in {v for k, v in g.items()
+                                             if k not in ("type", "objects")}]
+        if len(on) > 1:
+            problem = capacity.goals_problem(on, found)
+            assert problem is None or "budget" in problem, (proposal, on, problem)

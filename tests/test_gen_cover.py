@@ -251,3 +251,69 @@ def test_objects_pair_by_colour_where_the_words_say_same_colour() -> None:
                for b, z in (("blue_ball", "red_zone"), ("red_ball", "blue_zone"))]
     assert schema_problems({"variables": variables, "factors": right}, schema) == []
     assert schema_problems({"variables": variables, "factors": crossed}, schema)
+
+
+def test_a_named_arrangement_of_every_object_offers_only_the_group() -> None:
+    proposal = "build a tower of a blue, a red and a green block"
+    found = mentions(proposal)
+    assert [m.name for m in found] == ["blue_block", "red_block", "green_block"]
+    assert grounded.group_named(proposal, found)
+    factors = grounded.compact_graph_schema(found, proposal)["properties"]["factors"]
+    shapes = factors.get("anyOf", [factors])
+    assert shapes and all(len(s["prefixItems"]) == 1 for s in shapes)
+    variables = [{"name": m.name, "initial": {"type": "table"}} for m in found]
+    schema = grounded.compact_graph_schema(found, proposal)
+    tower = {"type": "stack", "objects": ["blue_block", "red_block", "green_block"],
+             "base": None, "ordered": True}
+    assert schema_problems({"variables": variables, "factors": [{"goal": tower}]},
+                           schema) == []
+    each = [{"type": "stack", "objects": ["green_block"], "base": b, "ordered": True}
+            for b in ("blue_block", "red_block", "blue_block")]
+    assert schema_problems({"variables": variables,
+                            "factors": [{"goal": g} for g in each]}, schema)
+
+
+@pytest.mark.parametrize("proposal", [
+    "stack the blue block on the red block, then put the green ball in the bowl",
+    "stack the blue block and the green block on the red pallet",  # a verb: may be two goals
+    "put the red block in the zone",  # one movable object: no arrangement
+])
+def test_an_arrangement_that_leaves_an_object_out_keeps_every_shape(proposal) -> None:
+    assert not grounded.group_named(proposal, mentions(proposal))
+
+
+def test_a_named_arrangement_that_cannot_cover_falls_back_to_every_shape() -> None:
+    # four lines of four colours: "line" names the markers, and no one row uses them all
+    proposal = "put the red block on the red line and the blue block on the blue line"
+    found = mentions(proposal)
+    assert grounded.group_named(proposal, found)
+    factors = grounded.compact_graph_schema(found, proposal)["properties"]["factors"]
+    shapes = factors.get("anyOf", [factors])
+    assert any(len(s.get("prefixItems", [])) == 2 for s in shapes)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.sampled_from(sorted(COLOR_NAMES)), min_size=2, max_size=4, unique=True),
+       st.sampled_from(["block", "ball", "cylinder"]),
+       st.sampled_from(["tower", "pyramid", "row", "line", "circle"]))
+def test_an_arrangement_named_over_any_objects_is_one_goal_over_them(colours, kind,
+                                                                     word) -> None:
+    listed = ", ".join(f"a {c}" for c in colours[:-1]) + f" and a {colours[-1]} {kind}"
+    proposal = f"make a {word} of {listed}"
+    found = mentions(proposal)
+    if not grounded.applies(found) or not grounded.group_named(proposal, found):
+        return
+    factors = grounded.compact_graph_schema(found, proposal)["properties"]["factors"]
+    shapes = factors.get("anyOf", [factors])
+    movers = {m.name for m in found if m.movable}
+    for shape in shapes:
+        if "prefixItems" not in shape or len(shape["prefixItems"]) != 1:
+            continue
+        goal = shape["prefixItems"][0]["properties"]["goal"]
+        for variant in goal.get("anyOf", [goal]):
+            props = variant["properties"]
+            moved = {o["const"] for o in props["objects"]["prefixItems"]}
+            anchors = {props[f]["const"] for f in props if f not in ("objects", "type")
+                       and isinstance(props[f].get("const"), str)}
+            assert movers <= moved | anchors, (proposal, variant)
+    assert all(len(s.get("prefixItems", [])) == 1 for s in shapes), proposal

@@ -17,8 +17,26 @@ length becomes an ``enum`` of the :data:`LENGTHS` that fit). A shape of goals
 with a goal left with no variant is dropped; a schema pruned to nothing is kept
 as it was (the ladder reports it).
 
-Only a goal alone is checked: two goals sharing an anchor, or a goal met at the
-start, are still the runtime level's to find.
+Goals that may share an anchor are then checked together, by the same code
+(:func:`share_anchors`, per tuple of goals: :func:`goals_problem` lays them out
+as one graph): for each named object that two or more goals of a shape may
+anchor on, every way they can all anchor on it is laid out -- three cylinders
+aligned with one fixture, a stack on the fixture another goal fills, blocks
+put on the block other goals use. Where one way cannot be laid out, or the ways
+are more than :data:`JOINT_COMBOS`, or the shape's :data:`JOINT_BUDGET_S` of
+CPU time is spent, the anchor is left to one goal (the one pinned to it, else
+the object's own goal, else the first), unless that would leave another goal
+with no variant; two goals pinned to an anchor that cannot hold both drop their
+shape. A grammar cannot say "at most two of these goals use the bowl", so an
+anchor is shared by all that may name it or by one: a shareable pair within an
+unshareable trio is not offered.
+
+Still the runtime level's: a goal met at the start, an anchor left shared
+because narrowing it would empty a goal, a search that ran out of time (counted
+as fitting, alone or together), goals that interact without sharing an anchor
+(an object moved onto another that a later goal moves away; a row beside a
+zone), and the plain goal list sent where no shape covers the named objects
+(its ``objects`` are not pinned, so nothing here applies).
 """
 
 from __future__ import annotations
@@ -26,14 +44,19 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from functools import lru_cache
+from itertools import product
+from math import prod
 from typing import Any
 
 import numpy as np
 from pydantic import ValidationError
 
+from factask.gen.cover import names_of, nullable
 from factask.gen.mentions import Mention
 from factask.model.errors import FactaskError
+from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph
+from factask.model.order import in_listed_order
 from factask.relations import RELATION_TYPES
 from factask.scene.collision import Deadline, LayoutError
 from factask.sim.sampling import sample_layout
@@ -50,6 +73,12 @@ TRIES = 2
 #: fitting). CPU, not wall time: on a busy machine a wall budget ran out before
 #: the search did, so whether a goal was offered depended on the load.
 BUDGET_S = 0.25
+#: Most ways (combinations of the goals' variants) that the goals which may share an
+#: anchor are laid out together; beyond, the anchor is left to one goal unchecked.
+JOINT_COMBOS = 16
+#: CPU seconds (this thread's) all the joint checks of one :func:`prune` may take;
+#: an anchor not shown shareable by then is left to one goal.
+JOINT_BUDGET_S = 3.0
 
 
 def _value(field: Schema) -> tuple[bool, Any]:
@@ -109,7 +138,21 @@ def layout_problem(goal: dict[str, Any], found: Sequence[Mention]) -> str | None
         not a valid goal (the syntax level's to report) or when the search ran out
         of time (not proof that it cannot).
     """
-    return _problem(_key(goal), tuple(found))
+    return _problem((_key(goal),), tuple(found))
+
+
+def goals_problem(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> str | None:
+    """Why ``goals`` together (one graph, done in the listed order) cannot be laid
+    out at reset: as :func:`layout_problem`, for goals that share an anchor.
+
+    Args:
+        goals: Goals (JSON) over the names of ``found``.
+        found: The proposal's mentions.
+
+    Returns:
+        The solver's reason, or None (fits, not a valid graph, or out of time).
+    """
+    return _problem(tuple(_key(g) for g in goals), tuple(found))
 
 
 def _key(goal: dict[str, Any]) -> tuple[tuple[str, Any], ...]:
@@ -117,15 +160,20 @@ def _key(goal: dict[str, Any]) -> tuple[tuple[str, Any], ...]:
 
 
 @lru_cache(maxsize=4096)
-def _problem(key: tuple[tuple[str, Any], ...], found: tuple[Mention, ...]) -> str | None:
-    goal = {k: list(v) if isinstance(v, tuple) else v for k, v in key}
-    used = {n for v in goal.values() for n in (v if isinstance(v, list) else [v])
-            if isinstance(n, str)}
+def _problem(keys: tuple[tuple[tuple[str, Any], ...], ...],
+             found: tuple[Mention, ...]) -> str | None:
+    goals = [{k: list(v) if isinstance(v, tuple) else v for k, v in key} for key in keys]
+    used = {n for goal in goals for v in goal.values()
+            for n in (v if isinstance(v, list) else [v]) if isinstance(n, str)}
     variables = [m.as_variable() for m in found if m.name in used]
     try:
+        factors = in_listed_order([SubtaskFactor.model_validate(
+            {"name": f"goal_{i}", "description": "goal", "goal": goal, "weight": 1.0})
+            for i, goal in enumerate(goals)])
         graph = TaskGraph.model_validate({
-            "name": "capacity", "description": "one goal alone", "variables": variables,
-            "factors": [{"name": "goal", "description": "goal", "goal": goal, "weight": 1.0}]})
+            "name": "capacity", "description": "goals sharing an anchor",
+            "variables": variables,
+            "factors": [f.model_dump(mode="json", exclude_none=True) for f in factors]})
     except (ValidationError, FactaskError, ValueError):
         return None
     rng = np.random.default_rng(0)
@@ -204,27 +252,197 @@ def fit_variant(branch: Schema, found: Sequence[Mention]) -> Schema | None:
 
 def prune(schema: Schema, found: Sequence[Mention]) -> Schema | None:
     """``schema`` (a goal, a goal list, an ``anyOf`` of shapes) with every pinned goal
-    variant narrowed by :func:`fit_variant`: variants that cannot be laid out
-    dropped, a tuple or object left with a part that cannot be, dropped (None:
-    nothing is left)."""
+    variant narrowed by :func:`fit_variant` and every tuple of goals by
+    :func:`share_anchors`: variants that cannot be laid out dropped, an anchor
+    that goals cannot share left to one of them, a tuple or object left with a
+    part that cannot be, dropped (None: nothing is left).
+
+    Args:
+        schema: The schema (JSON Schema as a dict).
+        found: The proposal's mentions.
+
+    Returns:
+        The narrowed schema, or None when nothing is left.
+    """
+    return _prune(schema, found, Deadline.after(JOINT_BUDGET_S, clock=time.thread_time))
+
+
+def _prune(schema: Schema, found: Sequence[Mention], budget: Deadline) -> Schema | None:
     props = schema.get("properties")
     if isinstance(props, dict) and isinstance(props.get("type"), dict) \
             and props["type"].get("const") in RELATION_TYPES:
         return fit_variant(schema, found)
     if "anyOf" in schema:
-        kept = [p for o in schema["anyOf"] if (p := prune(o, found)) is not None]
+        kept = [p for o in schema["anyOf"] if (p := _prune(o, found, budget)) is not None]
         if not kept:
             return None
         return kept[0] if len(kept) == 1 else {**schema, "anyOf": kept}
     if isinstance(schema.get("prefixItems"), list):
-        items = [prune(i, found) for i in schema["prefixItems"]]
+        items = [_prune(i, found, budget) for i in schema["prefixItems"]]
         if any(i is None for i in items):
             return None
-        return {**schema, "prefixItems": items}
+        shared = share_anchors([i for i in items if i is not None], found, budget)
+        return None if shared is None else {**schema, "prefixItems": shared}
     if isinstance(schema.get("items"), dict):
-        item = prune(schema["items"], found)
+        item = _prune(schema["items"], found, budget)
         return None if item is None else {**schema, "items": item}
     if isinstance(props, dict) and "goal" in props:
-        goal = prune(props["goal"], found)
+        goal = _prune(props["goal"], found, budget)
         return None if goal is None else {**schema, "properties": {**props, "goal": goal}}
     return schema
+
+
+def _variants(item: Schema) -> list[Schema] | None:
+    """A tuple item's (``{"goal": ...}``) goal variants, each a relation with its
+    ``objects`` pinned; None when it is not such an item."""
+    goal = item.get("properties", {}).get("goal") if isinstance(item, dict) else None
+    if not isinstance(goal, dict):
+        return None
+    variants = goal.get("anyOf", [goal])
+    for v in variants:
+        props = v.get("properties", {})
+        if props.get("type", {}).get("const") not in RELATION_TYPES \
+                or _pinned_objects(props.get("objects", {})) is None:
+            return None
+    return variants
+
+
+def _anchor_fields(variant: Schema) -> list[str]:
+    props = variant["properties"]
+    return [f for f in RELATION_TYPES[props["type"]["const"]].anchor_fields if f in props]
+
+
+def _on(variant: Schema, anchor: str) -> list[dict[str, Any]]:
+    """The goals (JSON) of ``variant`` that name ``anchor`` in an anchor field: one
+    per such field, the other fields at their pinned (or first, or null) values."""
+    props = variant["properties"]
+    base: dict[str, Any] = {"objects": _pinned_objects(props["objects"])}
+    for field, schema in props.items():
+        if field != "objects":
+            known, value = _value(schema)
+            if not known:
+                return []
+            base[field] = value
+    out = []
+    for field in _anchor_fields(variant):
+        if anchor in names_of(props[field]):
+            out.append({**base, **{f: None for f in _anchor_fields(variant)
+                                   if base.get(f) == anchor}, field: anchor})
+    return out
+
+
+def _pinned_on(variant: Schema, anchor: str) -> bool:
+    """Whether ``variant`` names ``anchor`` whatever the model writes (a const field)."""
+    return any(variant["properties"][f].get("const") == anchor for f in _anchor_fields(variant))
+
+
+def _uses(variant: Schema, anchor: str) -> bool:
+    """Whether ``variant`` moves ``anchor`` or names it as a constant anchor."""
+    return anchor in (_pinned_objects(variant["properties"]["objects"]) or []) \
+        or _pinned_on(variant, anchor)
+
+
+def _off(variant: Schema, anchor: str) -> Schema | None:
+    """``variant`` with ``anchor`` left out of its anchor fields (None: a field is
+    left with nothing)."""
+    props = dict(variant["properties"])
+    for field in _anchor_fields(variant):
+        if anchor not in names_of(props[field]):
+            continue
+        names = [n for n in names_of(props[field]) if n != anchor]
+        options: list[Schema] = [{"type": "string", "enum": names}] if names else []
+        if nullable(props[field]):
+            options.append({"type": "null"})
+        if not options:
+            return None
+        props[field] = options[0] if len(options) == 1 else {"anyOf": options}
+    return {**variant, "properties": props}
+
+
+def _shareable(goals: dict[int, list[Schema]], sharers: Sequence[int], anchor: str,
+               found: Sequence[Mention], budget: Deadline) -> bool | None:
+    """Whether every way the ``sharers`` positions can name ``anchor`` together lays
+    out: True, False (one way cannot), None (not shown: the ways are more than
+    :data:`JOINT_COMBOS`, or the budget is spent)."""
+    ways: list[list[dict[str, Any]]] = []
+    for i in sharers:
+        mine: list[dict[str, Any]] = []
+        for variant in goals[i]:
+            mine.extend(g for g in _on(variant, anchor) if g not in mine)
+        if not mine:
+            return None
+        ways.append(mine)
+    if prod(len(w) for w in ways) > JOINT_COMBOS:
+        return None
+    for combo in product(*ways):
+        if budget.passed:
+            return None
+        if goals_problem(combo, found) is not None:
+            return False
+    return True
+
+
+def share_anchors(items: Sequence[Schema], found: Sequence[Mention],
+                  budget: Deadline | None = None) -> list[Schema] | None:
+    """A tuple of goals (``{"goal": ...}`` items) with each anchor that its goals
+    cannot share left to one of them.
+
+    For each named object that two or more goals may anchor on, every way they can
+    all anchor on it is laid out together (:func:`goals_problem`: the runtime's own
+    ``sample_layout`` and ``solve_targets``). Where one cannot -- or the ways are
+    more than :data:`JOINT_COMBOS`, or the ``budget`` is spent (no proof that they
+    fit) -- the anchor is one goal's: the goal pinned to it ("the red ell in the
+    red fixture"), else the goal of that object itself (every variant moves it
+    or puts another object on it), else the first that owns no anchor yet, else
+    the first; the others lose it (a variant with it as a constant is dropped).
+    Where that would leave a goal with no variant (it can only name this
+    anchor), the shape is dropped if that goal and the one pinned to the anchor
+    cannot be laid out together, else the anchor is left as it was (the
+    runtime level's to find).
+
+    Args:
+        items: The tuple's items (after :func:`fit_variant`).
+        found: The proposal's mentions.
+        budget: CPU time for the joint checks (default :data:`JOINT_BUDGET_S`).
+
+    Returns:
+        The items (unchanged where no anchor is shared, or items that are not
+        pinned goals), or None: two goals pinned to an anchor that cannot hold
+        both, or a goal that can only name the anchor another is pinned to and
+        cannot share it.
+    """
+    budget = budget or Deadline.after(JOINT_BUDGET_S, clock=time.thread_time)
+    goals = {i: vs for i, item in enumerate(items) if (vs := _variants(item)) is not None}
+    if len(goals) < 2:
+        return list(items)
+    changed: set[int] = set()
+    owned: set[int] = set()
+    for anchor in (m.name for m in found):
+        sharers = [i for i, vs in goals.items() if any(_on(v, anchor) for v in vs)]
+        if len(sharers) < 2 or _shareable(goals, sharers, anchor, found, budget):
+            continue
+        owners = [i for i in sharers if all(_pinned_on(v, anchor) for v in goals[i])]
+        if len(owners) > 1 and _shareable(goals, owners, anchor, found, budget) is False:
+            return None
+        if not owners:
+            own = [i for i in sharers if all(_uses(v, anchor) for v in goals[i])]
+            idle = [i for i in sharers if i not in owned]
+            owners = (own or idle or sharers)[:1]
+        narrowed = {i: [w for v in goals[i] if (w := _off(v, anchor)) is not None]
+                    for i in sharers if i not in owners}
+        forced = [i for i, kept in narrowed.items() if not kept]  # only ``anchor`` left
+        if forced:
+            pinned = [i for i in owners if all(_pinned_on(v, anchor) for v in goals[i])]
+            if pinned and _shareable(goals, pinned + forced, anchor, found, budget) is False:
+                return None  # every answer of this shape puts them on it together
+            continue  # not shown: left to the runtime level
+        owned.update(owners)
+        goals.update(narrowed)
+        changed.update(narrowed)
+    out = list(items)
+    for i in changed:
+        vs = goals[i]
+        props = out[i]["properties"]
+        out[i] = {**out[i], "properties": {**props,
+                                           "goal": vs[0] if len(vs) == 1 else {"anyOf": vs}}}
+    return out

@@ -248,7 +248,8 @@ def per_anchor_shapes(branches: Sequence[Schema], movers: Sequence[str],
 def covering_factors(branches: Sequence[Schema], movers: Sequence[str],
                      fixed: Sequence[str], counts: dict[str, int],
                      paired: bool = False,
-                     pins: dict[str, str] | None = None) -> Schema | None:
+                     pins: dict[str, str] | None = None,
+                     group_only: bool = False) -> Schema | None:
     """The ``factors`` schema whose every answer uses every named object.
 
     Args:
@@ -258,14 +259,18 @@ def covering_factors(branches: Sequence[Schema], movers: Sequence[str],
         counts: Name -> count.
         paired: Whether the proposal pairs them in its order (see :func:`each_shapes`).
         pins: Fixed object -> the movable one it must anchor (:func:`colour_pins`).
+        group_only: Only the group shapes (the words name one arrangement of
+            every movable object: :func:`grounded.group_named`); None when there
+            are none.
 
     Returns:
         An ``anyOf`` of tuples of ``{"goal": ...}`` (group, each, per anchor),
         or None when no shape can use every named object.
     """
-    shapes = [*group_shapes(branches, movers, fixed, counts),
-              *each_shapes(branches, movers, fixed, counts, paired, pins),
-              *per_anchor_shapes(branches, movers, fixed, counts)]
+    shapes = group_shapes(branches, movers, fixed, counts)
+    if not group_only:
+        shapes += [*each_shapes(branches, movers, fixed, counts, paired, pins),
+                   *per_anchor_shapes(branches, movers, fixed, counts)]
     if not shapes:
         return None
     return shapes[0] if len(shapes) == 1 else {"anyOf": shapes}

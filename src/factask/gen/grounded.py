@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Collection, Sequence
+from itertools import product
 from typing import Any
 
 from pydantic import ValidationError
@@ -45,7 +46,7 @@ from factask.gen.cover import (
     paired_in_order,
 )
 from factask.gen.examples import library_task_examples, render_examples
-from factask.gen.mentions import Mention, colour_matched
+from factask.gen.mentions import Mention, colour_matched, mentions
 from factask.model.errors import FactaskError, InvalidValueError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import TaskGraph
@@ -310,6 +311,38 @@ def named_relations(proposal: str) -> set[str]:
     return {r for r, ws in RELATION_WORDS.items() if words & ws}
 
 
+#: Nouns naming one arrangement of several objects ("a tower of ...", "in a row"),
+#: among the :data:`RELATION_WORDS` of the group relations (not the verb "stack":
+#: "stack the blue block on the red one" may be two goals).
+GROUP_WORDS = frozenset(["tower", "pyramid", "column", "row", "line", "circle", "ring"])
+#: Where a proposal's words pass from one part of the task to the next.
+_PARTS = re.compile(r"[.;!?]|,?\s+(?:then|and then|after that|afterwards|next)\s+")
+
+
+def group_named(proposal: str, found: Sequence[Mention]) -> bool:
+    """Whether one part of the proposal (a sentence; "..., then ...") names a group
+    arrangement (:data:`GROUP_WORDS`: a tower, a pyramid, a row, a line, a circle)
+    and every movable named object: "build a tower of a blue, a red and a green
+    block" is one stack of the three, not a goal per block.
+
+    Args:
+        proposal: The proposal.
+        found: Its mentions (:func:`factask.gen.mentions.mentions`).
+
+    Returns:
+        True when such a part exists (the caller offers only the group shapes).
+    """
+    movers = {m.name for m in movable(found)}
+    if len(movers) < 2:
+        return False
+    for part in _PARTS.split(proposal.lower()):
+        words = {w[:-1] if len(w) > 3 and w.endswith("s") else w
+                 for w in re.findall(r"[a-z]+", part)}
+        if words & GROUP_WORDS and movers <= {m.name for m in mentions(part)}:
+            return True
+    return False
+
+
 def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
           counts: dict[str, int] | None = None, moved: Collection[str] = ()) -> Schema | None:
     """The goal's schema over ``kinds``: the ``wanted`` relations that fit, else every
@@ -426,9 +459,14 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
         pins = colour_pins(movers, fixed, {m.name: m.color for m in found}) \
             if colour_matched(proposal) else {}
         paired = not pins and paired_in_order([m.name in movers for m in found])
-        for allowed in (goal, _goal(kinds, None, counts, moved)):
+        # "a tower of a blue, a red and a green block": only the one arrangement,
+        # where one can use every object and be laid out.
+        grouped = [True, False] if group_named(proposal, found) else [False]
+        for allowed, group_only in product((goal, _goal(kinds, None, counts, moved)),
+                                           grouped):
             branches = allowed.get("anyOf", [allowed]) if allowed else []
-            factors = covering_factors(branches, movers, fixed, counts, paired, pins)
+            factors = covering_factors(branches, movers, fixed, counts, paired, pins,
+                                       group_only)
             factors = factors and prune(factors, found)  # shapes whose layouts fit
             if factors is not None:
                 break
@@ -535,8 +573,8 @@ def plan_bound(variables: Sequence[StateVariable]) -> int:
     return max(1, min(n, ss.STEP_MAX_SUBTASKS))
 
 
-__all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "GROUP_RELATIONS", "MAX_EXTRA",
+__all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "GROUP_RELATIONS", "GROUP_WORDS", "MAX_EXTRA",
            "OBJECT_KINDS", "RELATION_WORDS", "applies", "compact_example", "compact_examples",
            "compact_graph_schema", "expand_graph", "factor_names", "goal_answer", "goal_problems",
-           "graph_schema", "grounded_variables", "mention_variable", "movable",
+           "graph_schema", "grounded_variables", "group_named", "mention_variable", "movable",
            "named_relations", "plan_bound", "relation_over", "variables_answer"]

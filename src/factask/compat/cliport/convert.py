@@ -34,6 +34,7 @@ import numpy as np
 
 from factask.compat.cliport.errors import CliportImportError, NoGoals, Unsupported
 from factask.compat.cliport.goals import (
+    TARGET_DECIMALS,
     RecordedGoal,
     half_xy,
     read_goals,
@@ -48,12 +49,14 @@ from factask.compat.cliport.ropes import find_ropes, rope_goal
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.sharing import separate_targets, share_targets, zone_parts
 from factask.compat.cliport.starts import (
-    fits_inside,
+    inside_footprint,
+    on_table_as_given,
+    placement,
     scatter_added_at_targets,
     separate_starts,
+    settle,
 )
-from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
-from factask.geometry import Pose, tilt_deg
+from factask.compat.cliport.transforms import yaw_of_xyzw
 from factask.model.errors import GraphValidationError
 from factask.model.factors import SubtaskFactor
 from factask.model.graph import Limits, TaskGraph
@@ -61,24 +64,12 @@ from factask.model.kinds import WALL_THICKNESS, kind_spec
 from factask.model.limits import MAX_OBJECTS
 from factask.model.names import slugify, unique_name
 from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
-from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn, StateVariable
+from factask.model.variables import AtFixedPose, StateVariable
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.relations import AtPose, InZone, PileInZone
-from factask.scene.collision import centre_in_workspace
+from factask.relations import AtPose, InZone, PileInZone, TargetPose
 
-#: An object whose bottom is this far above the table starts on something.
-START_ABOVE_TABLE = 0.01
-#: Slack when deciding that a support's top is under an object's bottom, metres.
-SUPPORT_SLACK = 0.02
-#: An object too wide for a receptacle whose bottom is at most this far (m) below the
-#: receptacle's top rests on its rim.
-RIM_SLACK = 0.005
-#: An object whose bottom is this far (m) below the table top has sunk into it.
-SINK_EPS = 0.001
 #: Weights are rescaled silently when they sum to 1 within this; beyond it, with a warning.
 WEIGHT_WARN_TOLERANCE = 1e-3
-#: Objects tilted more than this (degrees) at the start lose their tilt (with a warning).
-TILT_WARN_DEG = 5.0
 #: Receptacles with walls that the author's placements must clear.
 WALLED_KINDS = ("container",)
 #: Room left between a placement and a wall, metres.
@@ -110,122 +101,6 @@ def object_names(objects: list[RecordedObject]) -> dict[int, str]:
         names[o.obj_id] = f"{base}_{counts.get(base, 0)}"
         counts[base] = counts.get(base, 0) + 1
     return names
-
-
-def _inside_footprint(xy: np.ndarray, o: RecordedObject) -> bool:
-    yaw = yaw_of_xyzw(o.quat)
-    d = xy - o.pos[:2]
-    c, s = math.cos(-yaw), math.sin(-yaw)
-    local = np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])
-    return bool(abs(local[0]) <= o.size[0] / 2 and abs(local[1]) <= o.size[1] / 2)
-
-
-def _in_workspace(o: RecordedObject) -> bool:
-    """The object's centre is inside the workspace (tasks park objects far away, e.g.
-    palletizing's boxes waiting to be spawned at y - 10)."""
-    return centre_in_workspace(Pose(np.asarray(o.pos, dtype=float), xyzw_to_wxyz(o.quat)))
-
-
-def _hosts(o: RecordedObject, others: list[RecordedObject]
-           ) -> tuple[list[RecordedObject], list[RecordedObject], list[RecordedObject]]:
-    """The receptacles ``o`` starts in, the supports it starts on, and the
-    receptacles on whose rim it rests (too wide to go in: stacked containers)."""
-    bottom = float(o.pos[2]) - o.size[2] / 2
-    # Any other object may hold it, whatever the order the task added them in (a
-    # stack added top first); only a lower one can be its support, so no cycles.
-    holders = [c for c in others if _in_workspace(c) and _inside_footprint(o.pos[:2], c)]
-    receptacles = [c for c in holders if kind_spec(c.kind).receptacle
-                   and c.pos[2] - c.size[2] / 2 <= bottom + SUPPORT_SLACK]
-    rims = [c for c in receptacles if not fits_inside(o, c)
-            and bottom >= c.pos[2] + c.size[2] / 2 - RIM_SLACK]
-    receptacles = [c for c in receptacles if c not in rims]
-    # A centre inside a support's footprint cannot rest on the table: it is on it.
-    supports = [c for c in holders if kind_spec(c.kind).support
-                and c.pos[2] + c.size[2] / 2 <= bottom + SUPPORT_SLACK]
-    return receptacles, supports, rims
-
-
-def _on_table_as_given(o: RecordedObject, others: list[RecordedObject],
-                       moved: set[int]) -> bool:
-    """Whether factask starts ``o`` on the table at the author's pose (``AtFixedPose``)."""
-    if o.random_start and o.obj_id in moved and o.category != "fixed":
-        return False
-    return _in_workspace(o) and not any(_hosts(o, others))
-
-
-def _settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int],
-            warn: Any) -> None:
-    """Put objects that start in the air on nothing, sunk into the table, or tilted,
-    where factask starts them (on the table, upright, same x, y and yaw), before
-    anything reads their poses: targets resting in or on them follow them (a 6-DoF
-    fixture down, a pallet placed with a smaller size than factask's up).
-    """
-    for k, o in enumerate(objects):
-        if (o.random_start and o.obj_id in moved and o.category != "fixed") or (
-                not _in_workspace(o)):
-            continue  # factask samples its start anyway
-        if any(_hosts(o, objects[:k] + objects[k + 1:])):
-            continue  # in or on a host (or on a rim: a random start, see _placement)
-        name = names[o.obj_id]
-        bottom = float(o.pos[2]) - o.size[2] / 2
-        if bottom < -SINK_EPS:
-            # Sunk into the table: factask's asset is taller than the size the author
-            # placed it with (a 2 cm pallet hint for a 3.75 cm pallet). The author put
-            # it on the table, so does factask; targets on it follow it up.
-            # The author's asset rested on the table with its centre at z: its top
-            # was at 2 z, and targets above that are on it.
-            o.placed_top = 2 * float(o.pos[2])
-            o.pos = np.array([o.pos[0], o.pos[1], o.size[2] / 2], dtype=float)
-        if bottom > START_ABOVE_TABLE:
-            warn(f"{name} starts {bottom:.3f} m above the table on nothing; it starts on "
-                 "the table instead (targets in or on it follow it down)")
-            o.pos = np.array([o.pos[0], o.pos[1], o.size[2] / 2], dtype=float)
-        if tilt_deg(xyzw_to_wxyz(o.quat)) > TILT_WARN_DEG:
-            warn(f"{name} starts tilted; only its yaw is kept")
-            yaw = yaw_of_xyzw(o.quat)
-            o.quat = np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])
-
-
-def _placement(o: RecordedObject, others: list[RecordedObject], names: dict[int, str],
-               moved: set[int], warn: Any) -> Any:
-    name = names[o.obj_id]
-    if o.random_start and o.obj_id in moved and o.category != "fixed":
-        # The task asked for "a random free spot" (get_random_pose): so does factask,
-        # each episode, clear of everything (objects added later included).
-        return OnTable()
-    x, y = float(o.pos[0]), float(o.pos[1])
-    if not _in_workspace(o):
-        warn(f"{name} starts outside the workspace at ({x:.3f}, {y:.3f}); it starts at a "
-             "random free spot instead")
-        return OnTable()
-    receptacles, below, rims = _hosts(o, others)
-    if rims and not receptacles and not below:
-        warn(f"{name} starts on the rim of {names[rims[-1].obj_id]!r}, too wide to go in "
-             "(stacked receptacles); factask cannot rest it on a rim: it starts at a "
-             "random free spot instead")
-        return OnTable()
-    if receptacles:
-        host = receptacles[-1]
-        return StartInside(container=names[host.obj_id], **_given_place(o, host))
-    if below:
-        support = max(below, key=lambda c: c.pos[2] + c.size[2] / 2)
-        return StartOn(support=names[support.obj_id], **_given_place(o, support))
-    return AtFixedPose(x=x, y=y, yaw_deg=math.degrees(yaw_of_xyzw(o.quat)))
-
-
-
-def _given_place(o: RecordedObject, host: RecordedObject) -> dict[str, Any]:
-    """Where the task's author put ``o`` on ``host``: offset and yaw in the host's
-    frame (a fact, like every pose the code gives), unless it asked for a random
-    spot."""
-    if o.random_start:
-        return {}
-    host_yaw = yaw_of_xyzw(host.quat)
-    dx, dy = float(o.pos[0] - host.pos[0]), float(o.pos[1] - host.pos[1])
-    c, s = math.cos(host_yaw), math.sin(host_yaw)
-    yaw = math.degrees(yaw_of_xyzw(o.quat) - host_yaw)
-    return {"offset": (round(c * dx + s * dy, 6), round(-s * dx + c * dy, 6)),
-            "yaw_deg": round((yaw + 180.0) % 360.0 - 180.0, 6)}
 
 
 def _make_room(host: RecordedObject, goal: RecordedGoal, poses: list[Any],
@@ -305,6 +180,37 @@ def _check_region_size(region: RecordedObject, size: tuple[float, float],
              "zone_size); factask's zone is drawn and checked at the checked size")
     region.checked_size = wanted
     region.size = (wanted[0], wanted[1], region.size[2])
+
+
+def _in_fixture_frame(poses: list[TargetPose], objects: list[RecordedObject],
+                      names: dict[int, str], moved: set[int]
+                      ) -> tuple[list[TargetPose], str | None]:
+    """A pose goal whose every target lies in one fixture ("insert the block into the
+    fixture"): its targets in that fixture's frame, and the fixture's name.
+
+    The goal is then relative to the fixture, as the author meant, so the fixture's
+    hollow is shaped for what goes into it (a block: square; was an ell, which a
+    block cannot enter: it came to rest tilted on the hollow's edge). Targets in no
+    fixture, or in several, stay in world coordinates.
+    """
+    fixtures = [o for o in objects if o.kind == "fixture" and o.obj_id not in moved]
+    hosts = {next((f.obj_id for f in fixtures
+                   if inside_footprint(np.array([p.x, p.y]), f)), None) for p in poses}
+    if len(hosts) != 1 or None in hosts:
+        return poses, None
+    host = next(f for f in fixtures if f.obj_id in hosts)
+    yaw = yaw_of_xyzw(host.quat)
+    c, s = math.cos(yaw), math.sin(yaw)
+    out = []
+    for p in poses:
+        dx, dy = p.x - float(host.pos[0]), p.y - float(host.pos[1])
+        out.append(TargetPose(x=round(c * dx + s * dy, TARGET_DECIMALS),
+                              y=round(-s * dx + c * dy, TARGET_DECIMALS),
+                              z=None if p.z is None else round(p.z - float(host.pos[2]),
+                                                               TARGET_DECIMALS),
+                              yaw_deg=round((p.yaw_deg - math.degrees(yaw) + 180.0) % 360.0
+                                            - 180.0, TARGET_DECIMALS)))
+    return out, names[host.obj_id]
 
 
 def _moved_again(goals: list[RecordedGoal]) -> set[int]:
@@ -398,9 +304,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
              f"to {shift * 1000:.1f} mm; its position tolerance tightened by as much, to "
              f"{(pos_eps - shift) * 1000:.1f} mm (the check stays within the author's)")
     goal_objects = {o.obj_id for g in goals for o in g.objs}
-    _settle(objects, names, goal_objects, warn)
+    settle(objects, names, goal_objects, warn)
     given = [o for k, o in enumerate(objects) if o.obj_id not in in_piles
-             and _on_table_as_given(o, objects[:k] + objects[k + 1:], goal_objects)]
+             and on_table_as_given(o, objects[:k] + objects[k + 1:], goal_objects)]
     separate_starts(given, {o.obj_id for o in given if o.obj_id in goal_objects or (
         o.category != "fixed" and kind_spec(o.kind).movable)}, names, warn)
     rest = resting_heights([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],
@@ -427,8 +333,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             poses = [target_pose(p, q, tallest, rest.get((g.index, j)),
                                  f"goal {g.index} target {j}", warn)
                      for j, (p, q) in enumerate(g.targets)]
-            rel = AtPose(objects=objs, poses=poses,
-                              matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
+            poses, frame = _in_fixture_frame(poses, objects, names, goal_objects)
+            rel = AtPose(objects=objs, poses=poses, frame=frame,
+                         matches=g.matches.tolist(), check_yaw=g.rotations, **extra_kw)
         elif g.index in piles:  # small blocks swept with a spatula: a pile per colour
             zone = _zone_variable(g, objects, names, extra, warn)
             taken.add(zone)
@@ -488,7 +395,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         variables.append(StateVariable(
             name=name, description=f"{o.urdf} (CLIPort object {o.obj_id})", kind=o.kind,
             size=o.size, color=o.color, fixed=fixed, symmetry_deg=sym_deg,
-            initial=_placement(o, objects[:k] + objects[k + 1:], names, moved, warn)))
+            initial=placement(o, objects[:k] + objects[k + 1:], names, moved, warn)))
     variables.extend(pile_variables(found, warn))
     variables.extend(r.variable() for r in ropes)
     variables.extend(extra)

@@ -45,6 +45,13 @@ class UnsupportedAttribute(Unsupported, AttributeError):
     without it; the refusal is still remembered (a warning if the task goes on)."""
 
 
+class TaskTimeout(CliportImportError):
+    """The task file's own code (its module or ``reset``) ran past the import's time
+    limit: a loop that never ends (a rejection loop whose test never passes, a
+    ``while True`` waiting for something the recording env never does). The message
+    names the line it was stopped at."""
+
+
 class NoGoals(CliportImportError):
     """``reset`` ran but queued no goal (``add_goal`` never called). ``derived``:
     the class of the file that derives from the one imported, where there is

@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import contextlib
 import random
+import signal
 import sys
+import threading
 import traceback
 import types
 import uuid
@@ -34,6 +36,7 @@ from factask.compat.cliport.errors import (
     CliportImportError,
     NoGoals,
     PoseError,
+    TaskTimeout,
     Unsupported,
     recording_refusals,
 )
@@ -50,6 +53,51 @@ ALIAS_NAMES = (
     "cliport.tasks.grippers", "cliport.tasks.cameras", "cliport.utils", "cliport.utils.utils",
     "pybullet",
 )
+
+
+#: Seconds a task file's own code (its module and ``reset``) may run in one import
+#: before it is stopped with :class:`TaskTimeout`. Resets take milliseconds; a file
+#: that runs this long is in a loop that never ends.
+TIME_LIMIT_S = 60.0
+
+#: Seconds between further stops when the task's code swallows the first one (a
+#: bare ``except:`` around its loop).
+_REFIRE_S = 0.5
+
+
+class _OutOfTime(BaseException):
+    """Raised into the task's code when its time is up; a ``BaseException`` so the
+    task's own ``except Exception`` does not swallow it."""
+
+
+@contextlib.contextmanager
+def _time_limit(seconds: float | None) -> Iterator[None]:
+    """Stop the block with :class:`_OutOfTime` after ``seconds`` of wall clock.
+
+    Uses ``SIGALRM``, so only where that exists, in the main thread, and when no
+    other alarm is set (a test runner's own timeout keeps its alarm); elsewhere the
+    block runs unlimited (the batch command's child process has its own limit).
+    """
+    usable = (seconds is not None and seconds > 0 and hasattr(signal, "setitimer")
+              and threading.current_thread() is threading.main_thread())
+    if usable and (signal.getitimer(signal.ITIMER_REAL)[0] > 0
+                   or signal.getsignal(signal.SIGALRM) not in (signal.SIG_DFL, signal.SIG_IGN,
+                                                               None)):
+        usable = False
+    if not usable:
+        yield
+        return
+
+    def fire(signum: int, frame: Any) -> None:
+        raise _OutOfTime()
+
+    previous = signal.signal(signal.SIGALRM, fire)
+    signal.setitimer(signal.ITIMER_REAL, float(seconds), _REFIRE_S)  # type: ignore[arg-type]
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
 
 
 @dataclass
@@ -258,8 +306,8 @@ def load_task_class(path: str | Path, class_name: str | None = None) -> type:
 
 
 def import_cliport(path: str | Path, class_name: str | None = None,
-                   seed: int = 0, on_loaded: Callable[[type], None] | None = None
-                   ) -> ImportResult:
+                   seed: int = 0, on_loaded: Callable[[type], None] | None = None,
+                   time_limit: float | None = TIME_LIMIT_S) -> ImportResult:
     """Load a task file, run ``reset`` against a recording env, and build its graph.
 
     Args:
@@ -269,6 +317,8 @@ def import_cliport(path: str | Path, class_name: str | None = None,
             ``get_random_pose``).
         on_loaded: Called with the Task class once the file has run and the class
             is picked, before ``reset`` (the batch worker reports that stage).
+        time_limit: Seconds the file's own code (module and ``reset``) may run
+            (main thread only, see :func:`_time_limit`); None: unlimited.
 
     Returns:
         The validated graph, the warnings and the Ravens goal queue.
@@ -277,17 +327,19 @@ def import_cliport(path: str | Path, class_name: str | None = None,
         CliportImportError: any failure, with a message naming the file and line.
         Unsupported: the task uses something factask does not model (a subclass
             of CliportImportError).
+        TaskTimeout: the file's code ran past ``time_limit`` (a subclass of
+            CliportImportError).
     """
     p = Path(path)
     try:
-        return _import_once(p, class_name, seed, on_loaded)
+        return _import_once(p, class_name, seed, on_loaded, time_limit)
     except NoGoals as exc:
         if class_name is not None or exc.derived is None:
             raise
         # the class picked by default only sets the scene up; the one line of
         # classes the file derives from it (``Extra(Base)``, whose ``reset`` calls
         # ``super().reset(env)`` and queues the goals) ends in the task
-        result = _import_once(p, exc.derived, seed, on_loaded)
+        result = _import_once(p, exc.derived, seed, on_loaded, time_limit)
         result.warnings.insert(0, f"the file's default class queues no goals ({exc}); "
                                   f"imported {exc.derived}, the class derived from it")
         return result
@@ -305,32 +357,45 @@ def _most_derived(module: types.ModuleType, cls: type) -> str | None:
     return None
 
 
+def _run_reset(cls: type, session: Session, p: Path, refused: list[str]) -> Any:
+    """Instantiate the task class and run its ``reset`` against a recording env;
+    the task's own failures become :class:`CliportImportError` naming its line."""
+    try:
+        instance = cls()
+        instance.set_assets_root(FAKE_ASSETS_ROOT)
+        instance.reset(RecordingEnv(session, instance))
+    except Unsupported:
+        raise
+    except SystemExit as exc:
+        raise CliportImportError(f"{p}: {cls.__name__}.reset called "
+                                 f"sys.exit({exc.code!r})") from None
+    except Exception as exc:
+        if refused:  # the task caught factask's refusal and failed later
+            raise Unsupported(f"{p}: {cls.__name__}.reset failed after factask "
+                              f"refused {refused[0]} (the task caught that and "
+                              f"went on): {type(exc).__name__}: {exc}") from exc
+        raise _user_error(f"{cls.__name__}.reset failed", exc, p) from exc
+    return instance
+
+
 def _import_once(p: Path, class_name: str | None, seed: int,
-                 on_loaded: Callable[[type], None] | None) -> ImportResult:
+                 on_loaded: Callable[[type], None] | None,
+                 time_limit: float | None = TIME_LIMIT_S) -> ImportResult:
     session = Session(seed=seed, rng=np.random.default_rng(seed))
+    stage = f"loading {p.name}"
     try:
         with cliport_aliases(), _seeded(seed), session_scope(session):
-            module = _exec_file(p)
-            cls = _pick_class(module, p, class_name)
-            if on_loaded is not None:
-                on_loaded(cls)
-            with recording_refusals() as refused:
-                try:
-                    instance = cls()
-                    instance.set_assets_root(FAKE_ASSETS_ROOT)
-                    env = RecordingEnv(session, instance)
-                    instance.reset(env)
-                except Unsupported:
-                    raise
-                except SystemExit as exc:
-                    raise CliportImportError(f"{p}: {cls.__name__}.reset called "
-                                             f"sys.exit({exc.code!r})") from None
-                except Exception as exc:
-                    if refused:  # the task caught factask's refusal and failed later
-                        raise Unsupported(f"{p}: {cls.__name__}.reset failed after factask "
-                                          f"refused {refused[0]} (the task caught that and "
-                                          f"went on): {type(exc).__name__}: {exc}") from exc
-                    raise _user_error(f"{cls.__name__}.reset failed", exc, p) from exc
+            try:
+                with _time_limit(time_limit), recording_refusals() as refused:
+                    module = _exec_file(p)
+                    cls = _pick_class(module, p, class_name)
+                    if on_loaded is not None:
+                        on_loaded(cls)
+                    stage = f"{cls.__name__}.reset"
+                    instance = _run_reset(cls, session, p, refused)
+            except _OutOfTime as exc:
+                raise TaskTimeout(f"{stage} ran past the {time_limit:g} s limit (a loop "
+                                  f"that never ends?); stopped at {_where(exc, p)}") from None
             for message in dict.fromkeys(refused):
                 session.warn(f"the task caught factask's refusal and went on without it: "
                              f"{message}")

@@ -49,13 +49,20 @@ def split_pose(pose: Any) -> tuple[np.ndarray, np.ndarray]:
         PoseError: the value is neither form.
     """
     if len(pose) == 3 and not hasattr(pose[0], "__len__"):
-        return np.asarray(pose, dtype=float).reshape(3), np.array(IDENTITY_XYZW)
+        return _finite(np.asarray(pose, dtype=float).reshape(3)), np.array(IDENTITY_XYZW)
     if len(pose) != 2:
         raise PoseError(f"expected a pose (position, quaternion), got {pose!r}")
     pos = np.asarray(pose[0], dtype=float).reshape(-1)
     if pos.shape != (3,):
         raise PoseError(f"expected a 3-D position, got {pose[0]!r}")
-    return pos, as_quat_xyzw(pose[1])
+    return _finite(pos), as_quat_xyzw(pose[1])
+
+
+def _finite(pos: np.ndarray) -> np.ndarray:
+    """``pos`` if every coordinate is a finite number (a 0/0 spacing gives NaN)."""
+    if not np.all(np.isfinite(pos)):
+        raise PoseError(f"position {tuple(float(v) for v in pos)} is not finite")
+    return pos
 
 
 def rotation(quat_xyzw: Any) -> Rotation:
