@@ -53,12 +53,46 @@ def test_ball_released_on_block_comes_to_rest_on_it(speed: float) -> None:
     assert np.linalg.norm(data.qvel[v:v + 3]) < 1e-3
 
 
-def test_only_spheres_get_rolling_friction() -> None:
-    """Balls have condim 6 and the rolling coefficient; a block keeps condim 4 (its
-    flat faces need none, and rolling constraints cost solver time)."""
+def _log_on_table() -> object:
+    log = ft.StateVariable(name="log", kind="log", color="green", size=(0.12, 0.04, 0.04))
+    zone = ft.StateVariable(name="zone", kind="zone", color="blue")
+    graph = ft.TaskGraph(
+        name="log-in-zone", description="put the log in the zone", variables=[log, zone],
+        factors=[ft.SubtaskFactor(name="in_zone", description="the log in the zone",
+                                  goal=ft.InZone(objects=["log"], zone="zone"))])
+    return compile_graph(graph, robot=None)
+
+
+def test_only_round_rollers_get_rolling_friction() -> None:
+    """Balls and lying cylinders (logs) have condim 6 and the rolling coefficient; a
+    block keeps condim 4 (its flat faces need none, and rolling constraints cost
+    solver time)."""
     _, scene = _ball_on_block()
     ball_geom = scene.objects["ball"].geom_ids[0]
     block_geom = scene.objects["block"].geom_ids[0]
     assert scene.model.geom_condim[ball_geom] == ROLLING_CONDIM
     np.testing.assert_allclose(scene.model.geom_friction[ball_geom], BALL_FRICTION)
     assert scene.model.geom_condim[block_geom] == 4
+    logs = _log_on_table()
+    assert logs.model.geom_condim[logs.objects["log"].geom_ids[0]] == ROLLING_CONDIM
+
+
+@pytest.mark.parametrize("speed", [0.005, 0.02])
+def test_log_rolling_across_comes_to_rest(speed: float) -> None:
+    """A log let go rolling across its axis at ``speed`` (m/s) stops within 5 mm,
+    still lying on its side."""
+    scene = _log_on_table()
+    model, data = scene.model, mujoco.MjData(scene.model)
+    log = scene.objects["log"]
+    q, v = log.qpos_adr, log.qvel_adr
+    radius = 0.02
+    data.qpos[q:q + 7] = [0.5, 0.0, radius, 1, 0, 0, 0]
+    # Its axis lies along x: rolling without slipping along +y spins it about -x.
+    data.qvel[v:v + 6] = [0, speed, 0, -speed / radius, 0, 0]
+    for _ in range(int(3.0 / model.opt.timestep)):
+        mujoco.mj_step(model, data)
+    pos = data.xpos[log.body_id]
+    assert abs(pos[1]) < 0.005
+    assert abs(pos[0] - 0.5) < 0.005
+    assert pos[2] == pytest.approx(radius, abs=0.002)
+    assert np.linalg.norm(data.qvel[v:v + 3]) < 1e-3

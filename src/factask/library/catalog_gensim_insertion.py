@@ -25,6 +25,8 @@ from factask.library.conventions import (
     ELL,
     ELL_FIXTURE,
     FOUR,
+    LOG,
+    LOG_FIXTURE,
     NEAR,
     THREE,
     TUBE,
@@ -298,3 +300,15 @@ def multi_level_insertion_and_zone_matching() -> TaskGraph:
                     "Put the ells of each colour into the zone of that colour in three levels: "
                     "the large one first, the medium one on it, the small one on top.",
                     fragments)
+
+
+@register("rotate-and-insert-cylinder", family="insertion")
+def rotate_and_insert_cylinder() -> TaskGraph:
+    # The cylinder lies on its side (a log) from the start: a top-down suction cup
+    # cannot tip an upright one over; "rotate it horizontally" is the turn about the
+    # vertical that lines it up with the fixture's slot (both start at random yaws).
+    return assemble("rotate-and-insert-cylinder",
+                    "Pick up the red cylinder lying on the table, turn it to line up with "
+                    "the slot of the green fixture and insert it there.",
+                    use("insert_into_fixture", objects=var("red_cylinder", "log", "red", LOG),
+                        fixture=var("green_fixture", "fixture", "green", LOG_FIXTURE)))

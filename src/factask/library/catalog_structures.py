@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from factask.library.builders import assemble, register, use, var
+from factask.library.conventions import LOG
 from factask.model import StateVariable, TaskGraph
 
 BLOCK = (0.04, 0.04, 0.04)
@@ -25,6 +26,20 @@ def build_bridge() -> TaskGraph:
         "put a blue block on the middle of the deck.",
         use("bridge", pillars=pillars, deck=deck),
         use("place_on_top", objects=top, support=deck),
+    )
+
+
+@register("cylinder-balancing-on-blocks")
+def cylinder_balancing_on_blocks() -> TaskGraph:
+    pillars = var("red_blocks", "block", "red", BLOCK, count=2,
+                  description="two red blocks: the bridge's pillars")
+    deck = var("green_cylinder", "log", "green", LOG,
+               description="the green cylinder, lying on its side across the blocks")
+    return assemble(
+        "cylinder-balancing-on-blocks",
+        "Build a bridge: stand the two red blocks parallel with a gap between them, then "
+        "balance the green cylinder horizontally across them.",
+        use("bridge", pillars=pillars, deck=deck),
     )
 
 

@@ -13,6 +13,9 @@ BLOCK = (0.04, 0.04, 0.04)
 BALL = (0.04, 0.04, 0.04)
 #: An upright cylinder: 4 cm across, 6 cm high.
 CYLINDER = (0.04, 0.04, 0.06)
+#: A cylinder lying on its side (a ``log``): 14 cm long, 4 cm across -- long enough
+#: to span a bridge's two 4 cm pillars 8 cm apart (templates.BRIDGE_PILLAR_SPACING).
+LOG = (0.14, 0.04, 0.04)
 BOWL = (0.12, 0.12, 0.05)
 #: GenSim's "cylinder with an opening on top" that things are inserted into: an open
 #: tube, which is what a ``bowl`` is (straight round walls on a floor) when it is
@@ -27,6 +30,9 @@ ELL = (0.08, 0.08, 0.04)
 ELL_FIXTURE = (0.12, 0.12, 0.04)
 #: A fixture whose square hollow takes one 4 cm block (or a 4 cm cylinder).
 BLOCK_FIXTURE = (0.08, 0.08, 0.04)
+#: A fixture whose hollow takes a LOG lying in it (2 cm of wall and clearance around
+#: it, as ELL_FIXTURE), its walls as high as the log is thick.
+LOG_FIXTURE = (LOG[0] + 0.04, LOG[1] + 0.04, LOG[2])
 
 THREE = ("red", "blue", "green")
 FOUR = ("red", "blue", "green", "yellow")

@@ -35,7 +35,7 @@ from factask.model import (
 # Kinds a suction gripper can pick and that stay where they are put; a free bowl or
 # container is taken by its rim (factask.sim.pick_points).
 MOVABLE_RECEPTACLES = ["bowl", "container"]
-PICKABLE = ["block", "box", "cylinder", "ball", "ell", *MOVABLE_RECEPTACLES]
+PICKABLE = ["block", "box", "cylinder", "ball", "log", "ell", *MOVABLE_RECEPTACLES]
 # Kinds that can carry something on their flat top (columns, layers, decks).
 STACKABLE = ["block", "box", "cylinder"]
 # Kinds usable as the footprint of an ``in_zone`` goal.
@@ -137,8 +137,8 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         description="Build a bridge: two {pillars} apart, the {deck} resting across both.",
         slots=[_slot("pillars", "one variable with two instances: the bridge's pillars",
                      STACKABLE, movable=True),
-               _slot("deck", "the bar laid across the pillars (>= 12 cm long)",
-                     ["box", "block"], movable=True)],
+               _slot("deck", "the bar or log laid across the pillars (>= 12 cm long)",
+                     ["box", "block", "log"], movable=True)],
         factors=[
             SubtaskFactor(
                 name="pillars",
@@ -180,7 +180,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="insert_into_fixture",
         description="Insert the {objects} into the {fixture}, matching its position and yaw.",
-        slots=[_objects("the piece to insert", ["ell", "block", "box", "cylinder"]),
+        slots=[_objects("the piece to insert", ["ell", "block", "box", "cylinder", "log"]),
                _slot("fixture", "the fixture whose hollow matches the piece", ["fixture"])],
         factors=[SubtaskFactor(
             name="insert",

@@ -3,7 +3,8 @@
 Size convention (one for every kind): ``size = (sx, sy, sz)`` are the **full
 extents in metres of the object's axis-aligned bounding box in its own frame**
 (x, y horizontal, z up, object resting upright). A cylinder of diameter 4 cm and
-height 6 cm is ``(0.04, 0.04, 0.06)``; a ball of diameter 4 cm is
+height 6 cm is ``(0.04, 0.04, 0.06)``; the same cylinder lying on its side (a
+``log``, its axis along x) is ``(0.06, 0.04, 0.04)``; a ball of diameter 4 cm is
 ``(0.04, 0.04, 0.04)``; a bowl is ``(outer diameter, outer diameter, height)``;
 a flat marker such as a zone is ``(length, width, thickness)``. An object's
 position is the centre of that box. No kind uses radii or half extents in a graph.
@@ -26,6 +27,7 @@ AssetKind = Literal[
     "box",
     "cylinder",
     "ball",
+    "log",
     "bowl",
     "container",
     "zone",
@@ -83,6 +85,9 @@ _SPECS = [
              (0.04, 0.04, 0.06), movable=True, round=True, support=True),
     KindSpec("ball", "solid sphere; size = (diameter, diameter, diameter)",
              (0.04, 0.04, 0.04), movable=True, round=True),
+    KindSpec("log", "solid cylinder lying on its side, its axis along x (it can roll "
+             "across it); size = (length, diameter, diameter)",
+             (0.12, 0.04, 0.04), movable=True),
     KindSpec("bowl", "open round bowl; size = (outer diameter, outer diameter, height)",
              (0.12, 0.12, 0.05), movable=False, round=True, receptacle=True, region=True),
     KindSpec("container", "open-top box with thin walls; size = outer extents",
@@ -143,13 +148,16 @@ def yaw_symmetry_deg(kind: str, size: tuple[float, float, float]) -> float:
     """Smallest yaw rotation (degrees) that maps the object's footprint onto itself.
 
     Returns 0 for round objects (any yaw is equivalent: yaw is never checked),
-    90 for square footprints, 180 for rectangles and 360 for asymmetric shapes.
+    90 for square footprints, 180 for rectangles and logs (whose axis lies in the
+    plane) and 360 for asymmetric shapes.
     """
     spec = kind_spec(kind)
     if spec.round:
         return 0.0
     if spec.asymmetric:
         return 360.0
+    if kind == "log":  # its axis has a direction in the plane, even when as long as thick
+        return 180.0
     if math.isclose(size[0], size[1], rel_tol=1e-6, abs_tol=1e-9):
         return 90.0
     return 180.0
@@ -161,7 +169,7 @@ def default_mass(kind: str, size: tuple[float, float, float]) -> float:
     volume = size[0] * size[1] * size[2]
     if spec.round and kind == "ball":
         volume *= math.pi / 6.0
-    elif spec.round:
+    elif spec.round or kind == "log":  # a disk's area: across z upright, across x lying
         volume *= math.pi / 4.0
     return max(0.01, spec.density * volume)
 
@@ -179,6 +187,9 @@ def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str
     """
     x, y, z = size
     spec = kind_spec(kind)
+    if kind == "log" and not math.isclose(y, z, rel_tol=ROUND_RTOL):
+        return (f"a log's size y and z are both its diameter, got {tuple(size)}",
+                "give (length, d, d)")
     if kind == "ball":
         if not (math.isclose(x, y, rel_tol=ROUND_RTOL) and math.isclose(x, z, rel_tol=ROUND_RTOL)):
             return (f"a ball's size must be its diameter three times, got {tuple(size)}",

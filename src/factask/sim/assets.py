@@ -125,7 +125,7 @@ def build_object(parent: Any, name: str, kind: str, size: tuple[float, float, fl
         if g.quat is not None:
             geom["quat"] = list(g.quat)
         geom["dclass"] = OBJECT_CLASS if plan.collides else VISUAL_CLASS
-        if plan.collides and g.type == "sphere":
+        if plan.collides and g.rolls:
             geom["condim"] = ROLLING_CONDIM
             geom["friction"] = list(BALL_FRICTION)
         if g.mass is not None:

@@ -221,7 +221,7 @@ def add_object(spec: mujoco.MjSpec, plan: ObjectPlan,
                              pos=g.pos, rgba=g.rgba, group=g.group)
         if g.quat is not None:
             geom.quat = g.quat
-        if plan.collides and g.type == "sphere":
+        if plan.collides and g.rolls:
             geom.condim = ROLLING_CONDIM
             geom.friction = list(BALL_FRICTION)
         if g.mass is not None:

@@ -130,6 +130,8 @@ class Part:
             (radius, half height); sphere (radius,).
         pos: Centre in the body frame (m).
         yaw: Rotation about the body z axis (radians).
+        axis: The body axis a cylinder's own axis lies along: "z" upright, "x" lying
+            on its side (turned about y, then by ``yaw`` about z).
     """
 
     name: str
@@ -137,15 +139,38 @@ class Part:
     size: tuple[float, ...]
     pos: tuple[float, float, float]
     yaw: float = 0.0
+    axis: Literal["z", "x"] = "z"
+
+    @property
+    def lying(self) -> bool:
+        """A cylinder lying on its side (its axis horizontal)."""
+        return self.type == "cylinder" and self.axis == "x"
+
+    @property
+    def rolls(self) -> bool:
+        """Can roll on a flat surface (a sphere, a lying cylinder): its contacts get
+        rolling friction (ROLLING_CONDIM, BALL_FRICTION)."""
+        return self.type == "sphere" or self.lying
+
+    @property
+    def quat(self) -> tuple[float, ...] | None:
+        """Orientation (w, x, y, z) in the body frame, None for the identity."""
+        if self.lying:  # the cylinder's z axis turned onto x (about y), then the yaw
+            c, s = math.cos(self.yaw / 2), math.sin(self.yaw / 2)
+            h = math.sqrt(0.5)
+            return (c * h, -s * h, c * h, s * h)
+        return tuple(quat_from_yaw(self.yaw)) if self.yaw else None
 
     @property
     def half_extents(self) -> np.ndarray:
         """Half extents of the part's axis-aligned box in the body frame."""
         if self.type == "sphere":
             return np.full(3, self.size[0])
-        if self.type == "cylinder":
+        if self.type == "cylinder" and not self.lying:
             return np.array([self.size[0], self.size[0], self.size[1]])
-        hx, hy, hz = self.size
+        # A box, or a lying cylinder's box: (half length, radius, radius) turned by yaw.
+        hx, hy, hz = ((self.size[1], self.size[0], self.size[0]) if self.lying
+                      else self.size)
         c, s = abs(math.cos(self.yaw)), abs(math.sin(self.yaw))
         return np.array([c * hx + s * hy, s * hx + c * hy, hz])
 
@@ -154,7 +179,7 @@ class Part:
         """Volume (m^3), used to share an object's mass between its parts."""
         if self.type == "sphere":
             return 4.0 / 3.0 * math.pi * self.size[0] ** 3
-        if self.type == "cylinder":
+        if self.type == "cylinder":  # upright or lying: the same volume
             return math.pi * self.size[0] ** 2 * 2 * self.size[1]
         return 8.0 * self.size[0] * self.size[1] * self.size[2]
 
@@ -345,6 +370,8 @@ def kind_parts(
         return [Part("body", "cylinder", (x, z), (0.0, 0.0, 0.0))]
     if kind == "ball":
         return [Part("body", "sphere", (x,), (0.0, 0.0, 0.0))]
+    if kind == "log":  # a cylinder on its side, its axis along x: (radius, half length)
+        return [Part("body", "cylinder", (z, x), (0.0, 0.0, 0.0), axis="x")]
     if kind == "bowl":
         return _bowl_parts(size)
     if kind == "container":
@@ -387,18 +414,18 @@ def fmt(values: object) -> tuple[float, ...]:
 
 
 _Shape = tuple[str, PartType, tuple[float, ...], tuple[float, ...], tuple[float, ...] | None,
-               float]
+               float, bool]
 
 
 @functools.lru_cache(maxsize=4096)
 def _shapes(kind: str, size: tuple[float, ...], hollow: HollowShape) -> tuple[_Shape, ...]:
-    """(part name, type, size, pos, quat or None, share of the volume) of each part,
-    rounded; cached, since scenes repeat the same kinds and sizes."""
+    """(part name, type, size, pos, quat or None, share of the volume, rolls) of each
+    part, rounded; cached, since scenes repeat the same kinds and sizes."""
     parts = kind_parts(kind, size, hollow=hollow)  # type: ignore[arg-type]
     volume = sum(p.volume for p in parts)
     return tuple(
-        (p.name, p.type, fmt(p.size), fmt(p.pos), fmt(quat_from_yaw(p.yaw)) if p.yaw else None,
-         p.volume / volume)
+        (p.name, p.type, fmt(p.size), fmt(p.pos), None if p.quat is None else fmt(p.quat),
+         p.volume / volume, p.rolls)
         for p in parts
     )
 
@@ -416,6 +443,7 @@ class GeomPlan:
         rgba: Colour.
         group: Geom group.
         mass: Mass (kg) of a free body's geom, None on mocap bodies.
+        rolls: A sphere or lying cylinder: its contacts get rolling friction.
     """
 
     name: str
@@ -426,6 +454,7 @@ class GeomPlan:
     rgba: tuple[float, ...]
     group: int
     mass: float | None
+    rolls: bool = False
 
 
 @dataclass(frozen=True)
@@ -507,7 +536,7 @@ def plan_object(
 def _body_plan(name: str, kind: str, size: Any, color: str, mass: float | None,
                fixed: bool | None, hollow: HollowShape, visual_only: bool, alpha: float,
                group: int | None) -> tuple[bool, bool, tuple[tuple[Any, ...], ...]]:
-    """(mocap, collides, geoms as (part, type, size, pos, quat, rgba, group, mass)) of
+    """(mocap, collides, geoms as (part, type, size, pos, quat, rgba, group, mass, rolls)) of
     an object: everything of its plan but the names and the pose. Scenes repeat the
     same objects (a row of blocks), so the checked result is cached; a failure is
     never cached and names ``name``."""
@@ -554,8 +583,8 @@ def _body_plan_cached(kind: str, size: tuple[float, ...], color: str, mass: floa
     geoms = tuple(
         # Share the object's mass by volume so its centre of mass is right.
         (part, gtype, gsize, gpos, gquat, color_rgba, group,
-         None if mocap else round(total_mass * share, 12))
-        for part, gtype, gsize, gpos, gquat, share in shapes
+         None if mocap else round(total_mass * share, 12), rolls)
+        for part, gtype, gsize, gpos, gquat, share, rolls in shapes
     )
     return mocap, collides, geoms
 

@@ -43,6 +43,7 @@ from factask.compat.cliport.goals import (
     zone_poses,
 )
 from factask.compat.cliport.grippers import Spatula
+from factask.compat.cliport.lying import lay_down_cylinders
 from factask.compat.cliport.piles import RAVENS_PILE_FRACTION, find_piles, pile_variables
 from factask.compat.cliport.recorder import RecordedObject, Session
 from factask.compat.cliport.ropes import find_ropes, rope_goal
@@ -245,10 +246,11 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     objects = list(session.objects.values())
     if not objects:
         raise CliportImportError("reset added no objects (env.add_object was never called)")
-    names = object_names(objects)
     goals = read_goals(task, session)
     if not goals:
         raise NoGoals("reset added no goals (add_goal was never called)")
+    logs = lay_down_cylinders(objects, goals, warn)  # before names: they name the kind
+    names = object_names(objects)
     scatter_added_at_targets(goals, names, warn)
     found = find_piles(task, goals, names)
     in_piles = {o.obj_id for p in found for o in p.blocks}
@@ -278,7 +280,8 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     symmetry: dict[int, float] = {}
     for g in goals:
         for o, sym in zip(g.objs, g.symmetries, strict=True):
-            symmetry[o.obj_id] = sym
+            if o.obj_id not in logs:  # an upright cylinder's symmetry, about its axis
+                symmetry[o.obj_id] = sym
 
     # Factors.
     tol = None
