@@ -235,3 +235,81 @@ def test_goals_an_answer_puts_on_one_fixed_anchor_fit_together(proposal, data) -
         if len(on) > 1:
             problem = capacity.goals_problem(on, found)
             assert problem is None or "budget" in problem, (proposal, on, problem)
+
+
+def _goal_item(mover: str, anchors: list[str]) -> dict:
+    return {"type": "object", "required": ["goal"], "properties": {"goal": {
+        "type": "object", "properties": {
+            "type": {"const": "on"},
+            "objects": {"type": "array", "prefixItems": [{"const": mover}],
+                        "items": False, "minItems": 1, "maxItems": 1},
+            "support": {"type": "string", "enum": anchors}}}}}
+
+
+def test_goals_that_could_anchor_on_each_other_build_only_on_earlier_objects() -> None:
+    # The blue box on the green one, the green box on the blue one: "factor order has
+    # a cycle" (the graph invalid). In the order green, blue, red, a goal builds on
+    # another goal's object only when that object comes before its own.
+    blue = _goal_item("blue_box", ["green_box", "pallet"])
+    green = _goal_item("green_box", ["blue_box", "pallet"])
+    red = _goal_item("red_box", ["blue_box", "green_box", "pallet"])
+    order = ["pallet", "green_box", "blue_box", "red_box"]
+    first, second, third = capacity.acyclic_anchors([blue, green, red], order)
+    assert names(goals_of(first)[0]) == {"green_box", "pallet"}
+    assert names(goals_of(second)[0]) == {"pallet"}
+    assert third == red  # both boxes come before it
+    # A goal left with nothing but a later object: no answer of the shape is a task.
+    only = _goal_item("green_box", ["blue_box"])
+    assert capacity.acyclic_anchors([blue, only], order) is None
+    # An anchor no other goal moves is never restricted.
+    assert capacity.acyclic_anchors([only], order) == [only]
+
+
+@settings(max_examples=30, deadline=None)
+@given(proposals, st.data())
+def test_an_answer_never_anchors_its_goals_in_a_circle(proposal, data) -> None:
+    import networkx as nx
+
+    found = mentions(proposal)
+    if not grounded.applies(found):
+        return
+    schema = grounded.compact_graph_schema(found, proposal)
+    factors = schema["properties"]["factors"]
+    if "items" in factors and factors["items"] is not False:
+        return  # the plain list: objects not pinned (checked at runtime)
+    goals = [f["goal"] for f in sample(schema, data)["factors"]]
+    order = nx.DiGraph()
+    for i, g in enumerate(goals):
+        named = {v for k, v in g.items() if k not in ("type", "objects") and isinstance(v, str)}
+        order.add_edges_from((i, k) for k, h in enumerate(goals)
+                             if k != i and named & set(h["objects"]))
+    assert nx.is_directed_acyclic_graph(order), (proposal, goals)
+
+
+def test_the_words_bases_come_first() -> None:
+    from factask.gen.bases import base_order
+
+    def order(proposal: str) -> list[str]:
+        return base_order(mentions(proposal), proposal)
+
+    assert order("put the red block on the blue block and the blue block on the green "
+                 "block") == ["green_block", "blue_block", "red_block"]
+    assert order("stack a red, a blue and a green block") == [
+        "red_block", "blue_block", "green_block"]
+    assert order("place the blue box on top of the green box, then put the green box into "
+                 "the brown container") == ["brown_container", "green_box", "blue_box"]
+    # Placings in a circle say nothing: the order of mention.
+    assert order("put the red block on the blue block and the blue block on the red "
+                 "block") == ["red_block", "blue_block"]
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.lists(st.sampled_from(
+    ["red", "blue", "block", "box", "on", "into", "the", "top", "of", "bowl", "zone", "and",
+     "put", "green", "blocks", "x", ",", "onto", "three"]), max_size=24))
+def test_base_order_names_every_mention_once(words: list[str]) -> None:
+    from factask.gen.bases import base_order
+
+    proposal = " ".join(words)
+    found = mentions(proposal)
+    assert sorted(base_order(found, proposal)) == sorted(m.name for m in found)

@@ -31,8 +31,14 @@ shape. A grammar cannot say "at most two of these goals use the bowl", so an
 anchor is shared by all that may name it or by one: a shareable pair within an
 unshareable trio is not offered.
 
-Still the runtime level's: a goal met at the start, an anchor left shared
-because narrowing it would empty a goal, a search that ran out of time (counted
+Goals that could anchor on one another in a circle (the blue box on the green
+one and the green box on the blue one: "factor order has a cycle") build only on
+objects that come earlier in the words' order (:func:`acyclic_anchors`,
+:func:`factask.gen.bases.base_order`).
+
+Still the runtime level's: a goal met at the start, goals that must share an
+anchor when that was not shown either way (more ways than :data:`JOINT_COMBOS`
+all fitting, or the budget spent), a search that ran out of time (counted
 as fitting, alone or together), goals that interact without sharing an anchor
 (an object moved onto another that a later goal moves away; a row beside a
 zone), and the plain goal list sent where no shape covers the named objects
@@ -44,7 +50,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from functools import lru_cache
-from itertools import product
+from itertools import islice, product
 from math import prod
 from typing import Any
 
@@ -74,7 +80,8 @@ TRIES = 2
 #: the search did, so whether a goal was offered depended on the load.
 BUDGET_S = 0.25
 #: Most ways (combinations of the goals' variants) that the goals which may share an
-#: anchor are laid out together; beyond, the anchor is left to one goal unchecked.
+#: anchor are laid out together; beyond, only the first are tried (one that does
+#: not fit still shows they cannot share it) and the anchor is left to one goal.
 JOINT_COMBOS = 16
 #: CPU seconds (this thread's) all the joint checks of one :func:`prune` may take;
 #: an anchor not shown shareable by then is left to one goal.
@@ -250,7 +257,8 @@ def fit_variant(branch: Schema, found: Sequence[Mention]) -> Schema | None:
     return {**branch, "properties": new}
 
 
-def prune(schema: Schema, found: Sequence[Mention]) -> Schema | None:
+def prune(schema: Schema, found: Sequence[Mention],
+          order: Sequence[str] | None = None) -> Schema | None:
     """``schema`` (a goal, a goal list, an ``anyOf`` of shapes) with every pinned goal
     variant narrowed by :func:`fit_variant` and every tuple of goals by
     :func:`share_anchors`: variants that cannot be laid out dropped, an anchor
@@ -260,34 +268,39 @@ def prune(schema: Schema, found: Sequence[Mention]) -> Schema | None:
     Args:
         schema: The schema (JSON Schema as a dict).
         found: The proposal's mentions.
+        order: The order in which goals may build on objects other goals move
+            (:func:`acyclic_anchors`; default: the order of mention).
 
     Returns:
         The narrowed schema, or None when nothing is left.
     """
-    return _prune(schema, found, Deadline.after(JOINT_BUDGET_S, clock=time.thread_time))
+    return _prune(schema, found, Deadline.after(JOINT_BUDGET_S, clock=time.thread_time), order)
 
 
-def _prune(schema: Schema, found: Sequence[Mention], budget: Deadline) -> Schema | None:
+def _prune(schema: Schema, found: Sequence[Mention], budget: Deadline,
+           order: Sequence[str] | None = None) -> Schema | None:
     props = schema.get("properties")
     if isinstance(props, dict) and isinstance(props.get("type"), dict) \
             and props["type"].get("const") in RELATION_TYPES:
         return fit_variant(schema, found)
     if "anyOf" in schema:
-        kept = [p for o in schema["anyOf"] if (p := _prune(o, found, budget)) is not None]
+        kept = [p for o in schema["anyOf"] if (p := _prune(o, found, budget, order)) is not None]
         if not kept:
             return None
         return kept[0] if len(kept) == 1 else {**schema, "anyOf": kept}
     if isinstance(schema.get("prefixItems"), list):
-        items = [_prune(i, found, budget) for i in schema["prefixItems"]]
+        items = [_prune(i, found, budget, order) for i in schema["prefixItems"]]
         if any(i is None for i in items):
             return None
-        shared = share_anchors([i for i in items if i is not None], found, budget)
+        ordered = acyclic_anchors([i for i in items if i is not None],
+                                  order if order is not None else [m.name for m in found])
+        shared = None if ordered is None else share_anchors(ordered, found, budget)
         return None if shared is None else {**schema, "prefixItems": shared}
     if isinstance(schema.get("items"), dict):
-        item = _prune(schema["items"], found, budget)
+        item = _prune(schema["items"], found, budget, order)
         return None if item is None else {**schema, "items": item}
     if isinstance(props, dict) and "goal" in props:
-        goal = _prune(props["goal"], found, budget)
+        goal = _prune(props["goal"], found, budget, order)
         return None if goal is None else {**schema, "properties": {**props, "goal": goal}}
     return schema
 
@@ -372,14 +385,15 @@ def _shareable(goals: dict[int, list[Schema]], sharers: Sequence[int], anchor: s
         if not mine:
             return None
         ways.append(mine)
-    if prod(len(w) for w in ways) > JOINT_COMBOS:
-        return None
-    for combo in product(*ways):
+    # Beyond JOINT_COMBOS ways only the first are tried: one that cannot be laid out
+    # still proves the anchor unshareable; all that can prove nothing.
+    complete = prod(len(w) for w in ways) <= JOINT_COMBOS
+    for combo in islice(product(*ways), JOINT_COMBOS):
         if budget.passed:
             return None
         if goals_problem(combo, found) is not None:
             return False
-    return True
+    return True if complete else None
 
 
 def share_anchors(items: Sequence[Schema], found: Sequence[Mention],
@@ -395,10 +409,9 @@ def share_anchors(items: Sequence[Schema], found: Sequence[Mention],
     red fixture"), else the goal of that object itself (every variant moves it
     or puts another object on it), else the first that owns no anchor yet, else
     the first; the others lose it (a variant with it as a constant is dropped).
-    Where that would leave a goal with no variant (it can only name this
-    anchor), the shape is dropped if that goal and the one pinned to the anchor
-    cannot be laid out together, else the anchor is left as it was (the
-    runtime level's to find).
+    Where that would leave goals with no variant (they can only name this
+    anchor), those goals (and any pinned to it) keep the anchor and the others
+    lose it; the shape is dropped if they cannot be laid out on it together.
 
     Args:
         items: The tuple's items (after :func:`fit_variant`).
@@ -407,9 +420,8 @@ def share_anchors(items: Sequence[Schema], found: Sequence[Mention],
 
     Returns:
         The items (unchanged where no anchor is shared, or items that are not
-        pinned goals), or None: two goals pinned to an anchor that cannot hold
-        both, or a goal that can only name the anchor another is pinned to and
-        cannot share it.
+        pinned goals), or None: goals that must all name one anchor (pinned to
+        it, or left nothing else) and cannot share it.
     """
     budget = budget or Deadline.after(JOINT_BUDGET_S, clock=time.thread_time)
     goals = {i: vs for i, item in enumerate(items) if (vs := _variants(item)) is not None}
@@ -432,17 +444,75 @@ def share_anchors(items: Sequence[Schema], found: Sequence[Mention],
                     for i in sharers if i not in owners}
         forced = [i for i, kept in narrowed.items() if not kept]  # only ``anchor`` left
         if forced:
+            # Goals that can only name the anchor keep it (with any pinned to it); the
+            # others lose it. Every answer of the shape puts those on it together.
             pinned = [i for i in owners if all(_pinned_on(v, anchor) for v in goals[i])]
-            if pinned and _shareable(goals, pinned + forced, anchor, found, budget) is False:
-                return None  # every answer of this shape puts them on it together
-            continue  # not shown: left to the runtime level
+            keep = sorted({*pinned, *forced})
+            if len(keep) > 1 and _shareable(goals, keep, anchor, found, budget) is False:
+                return None
+            owners = keep
+            narrowed = {i: kept for i, kept in narrowed.items() if i not in keep}
         owned.update(owners)
         goals.update(narrowed)
         changed.update(narrowed)
     out = list(items)
     for i in changed:
-        vs = goals[i]
-        props = out[i]["properties"]
-        out[i] = {**out[i], "properties": {**props,
-                                           "goal": vs[0] if len(vs) == 1 else {"anyOf": vs}}}
+        out[i] = _with_variants(out[i], goals[i])
+    return out
+
+
+def _with_variants(item: Schema, variants: list[Schema]) -> Schema:
+    """A tuple item (``{"goal": ...}``) with its goal narrowed to ``variants``."""
+    props = item["properties"]
+    goal = variants[0] if len(variants) == 1 else {"anyOf": variants}
+    return {**item, "properties": {**props, "goal": goal}}
+
+
+def acyclic_anchors(items: Sequence[Schema], order: Sequence[str]) -> list[Schema] | None:
+    """A tuple of goals whose answers cannot anchor in a circle.
+
+    A goal may anchor on an object that another goal of the tuple may move only
+    when that object comes before every object the goal moves in ``order``
+    (:func:`factask.gen.bases.base_order`: the words' bases first). Then each goal
+    anchors only on goals whose objects come earlier, and no answer can put the
+    blue box on the green one in one goal and the green box on the blue one in
+    another ("factor order has a cycle": the graph is not a task). Anchors no
+    other goal moves (a zone, a fixed bowl, a block only stood on) are not
+    restricted.
+
+    Args:
+        items: The tuple's items (goal items with pinned objects; others pass).
+        order: Names in the order objects may carry one another (a name not in it
+            comes after every one that is).
+
+    Returns:
+        The items, narrowed where needed; None when a goal is left with no variant
+        (every answer of this shape would anchor in a circle, or against the
+        words' order).
+    """
+    goals = {i: vs for i, item in enumerate(items) if (vs := _variants(item)) is not None}
+    movers = {i: {n for v in vs for n in _pinned_objects(v["properties"]["objects"]) or []}
+              for i, vs in goals.items()}
+    rank = {name: k for k, name in enumerate(order)}
+
+    def place(name: str) -> int:
+        return rank.get(name, len(rank))
+
+    out = list(items)
+    for i, variants in goals.items():
+        others = {n for k, ns in movers.items() if k != i for n in ns}
+        kept = []
+        for v in variants:
+            own = min((place(n) for n in _pinned_objects(v["properties"]["objects"]) or []),
+                      default=len(rank))
+            named = {n for f in _anchor_fields(v) for n in names_of(v["properties"][f])}
+            for name in sorted(named & others):
+                if v is not None and place(name) >= own:
+                    v = _off(v, name)
+            if v is not None:
+                kept.append(v)
+        if not kept:
+            return None
+        if kept != variants:
+            out[i] = _with_variants(out[i], kept)
     return out

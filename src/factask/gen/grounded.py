@@ -37,6 +37,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from factask.gen import step_schemas as ss
+from factask.gen.bases import base_order
 from factask.gen.capacity import prune
 from factask.gen.cover import (
     GROUP_RELATIONS,
@@ -452,6 +453,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
         raise InvalidValueError("no goal relation fits the named objects alone "
                                 "(check applies() first)")
     factors: Schema | None = None
+    order = base_order(found, proposal)  # goals build on earlier objects only: no cycle
     if cover:
         movers = [m.name for m in movable(found)]
         fixed = [m.name for m in found if m.name not in movers]
@@ -467,7 +469,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
             branches = allowed.get("anyOf", [allowed]) if allowed else []
             factors = covering_factors(branches, movers, fixed, counts, paired, pins,
                                        group_only)
-            factors = factors and prune(factors, found)  # shapes whose layouts fit
+            factors = factors and prune(factors, found, order)  # shapes whose layouts fit
             if factors is not None:
                 break
     starts = kinds
@@ -490,7 +492,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},
-        "factors": prune(factors, found) or factors,  # goals whose layout fits only
+        "factors": prune(factors, found, order) or factors,  # goals whose layout fits only
     })
 
 

@@ -203,7 +203,7 @@ class Mention:
         return self.moved or kind_spec(self.kind).movable
 
 
-def _kind_of(word: str) -> tuple[str | None, bool, str]:
+def kind_of(word: str) -> tuple[str | None, bool, str]:
     """(kind, plural, singular word) of a word, or (None, False, word)."""
     if word in KIND_WORDS:
         return KIND_WORDS[word], False, word
@@ -255,11 +255,11 @@ def mentions(proposal: str) -> list[Mention]:
     else:
         desc, name = text, ""
     found: dict[str, Mention] = {}
-    words = _words(desc)
+    words = words_of(desc)
     _scan(words, found)
     if name:
-        said = {_kind_of(w)[2] for w in _WORD.findall(desc.replace("-", " "))}
-        _scan([w for w in _words(name) if _kind_of(w)[2] not in said], found)
+        said = {kind_of(w)[2] for w in _WORD.findall(desc.replace("-", " "))}
+        _scan([w for w in words_of(name) if kind_of(w)[2] not in said], found)
     matched = _matched_kinds(words)
     if matched is not None or colour_matched(name):
         return _split_by_colour(list(found.values()), matched or set())
@@ -294,7 +294,7 @@ def _matched_kinds(words: list[str]) -> set[str] | None:
             continue
         out = out if out is not None else set()
         for j in [*range(k - 1, max(k - 1 - MATCH_REACH, -1), -1), k + 1, k + 2]:
-            if 0 <= j < len(words) and (kind := _kind_of(words[j])[0]) is not None:
+            if 0 <= j < len(words) and (kind := kind_of(words[j])[0]) is not None:
                 out.add(kind)
                 break
     return out
@@ -360,7 +360,7 @@ def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Men
     return out
 
 
-def _words(text: str) -> list[str]:
+def words_of(text: str) -> list[str]:
     """The words of ``text``, with :data:`PHRASES` read as their kind words."""
     text = text.replace("_", " ").replace("-", " ")
     for pattern, kind_word in PHRASES:
@@ -373,7 +373,7 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
     for i, word in enumerate(words):
         if len(found) >= MAX_MENTIONS:
             return
-        kind, plural, singular = _kind_of(word)
+        kind, plural, singular = kind_of(word)
         if kind is None:
             continue
         earlier = [m for m in found.values() if m.kind == kind]
@@ -458,7 +458,7 @@ def _is_adjunct(word: str) -> bool:
     """Whether ``word`` may be a noun used as an adjective before a kind word: not a
     function word, count, colour or kind word itself."""
     return (word not in FUNCTION_WORDS and not _count_of(word) and word not in COLOR_NAMES
-            and _kind_of(word)[0] is None and word.isalpha())
+            and kind_of(word)[0] is None and word.isalpha())
 
 
 def _listed_colours(words: list[str], start: int) -> tuple[tuple[str, int], ...]:
@@ -484,7 +484,7 @@ def _listed_colours(words: list[str], start: int) -> tuple[tuple[str, int], ...]
         elif not (words[k] in ("and", "or") and listed):
             break
         k += 1
-    if len(listed) < 2 or (k < len(words) and _kind_of(words[k])[0] is not None):
+    if len(listed) < 2 or (k < len(words) and kind_of(words[k])[0] is not None):
         return ()
     if len({c for c, _ in listed}) < len(listed):
         return ()
