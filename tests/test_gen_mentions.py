@@ -242,6 +242,15 @@ def test_each_colour_may_have_its_own_count_and_an_adjective_may_say_the_kind() 
         == ["cylinder", "ball"]
 
 
+def test_a_cylinder_the_words_lay_on_its_side_is_a_log() -> None:
+    assert _names("balance a green cylinder horizontally on top of the red blocks") == [
+        ("green_log", "log", "green", 1), ("red_blocks", "block", "red", 2)]
+    assert _names("put the horizontal cylinder in the zone")[0][:2] == ("log", "log")
+    assert _names("the two red cylinders lying on their side")[0] == (
+        "red_logs", "log", "red", 2)
+    assert _names("put the red cylinder in the bowl")[0][1] == "cylinder"
+
+
 @given(st.lists(st.sampled_from([*COLOR_NAMES[:6], "and", "four", "two", "blocks", "bowls",
                                  "zones", "of", "the", "same", "colour", "matching",
                                  "(", ")", ","]), max_size=40).map(" ".join))

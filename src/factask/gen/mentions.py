@@ -69,6 +69,11 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
                 r"(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"), ""),
     (re.compile(r"\b(?:l|ell)\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|"
                 r"bar))?(s?)\b"), r"ell\1"),
+    # A cylinder on its side is a log: "a horizontal cylinder", "the cylinder lying on
+    # its side", "balance the cylinder horizontally on the blocks".
+    (re.compile(r"\b(?:horizontal|lying|fallen)\s+cylinder(s?)\b"), r"log\1"),
+    (re.compile(r"\bcylinder(s?)\s+(?:(?:lying|laid|placed|put)\s+)?(?:on\s+(?:its|their)\s+"
+                r"sides?|horizontally|(?:lying|laid)\s+(?:down|flat))\b"), r"log\1"),
     # "cylindrical blocks", "spherical objects": the adjective says the kind.
     (re.compile(r"\bcylindrical\s+(?:block|object|piece|item|shape)(s?)\b"), r"cylinder\1"),
     (re.compile(r"\bspherical\s+(?:block|object|piece|item|shape)(s?)\b"), r"ball\1"),
