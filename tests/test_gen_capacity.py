@@ -216,18 +216,27 @@ def test_two_goals_pinned_to_an_anchor_that_cannot_hold_both_drop_their_shape() 
     assert capacity.share_anchors([item], found) == [item]
 
 
-@settings(max_examples=30, deadline=None)
-@given(proposals, st.data())
-def test_goals_an_answer_puts_on_one_fixed_anchor_fit_together(proposal, data) -> None:
+def _sampled_goals(proposal: str, data: st.DataObject) -> tuple[list, list[dict]] | None:
+    """(mentions, the goals of one answer the proposal's grounded schema allows), or
+    None where grounding does not apply or only the plain list is offered (its
+    objects are not pinned: checked at runtime)."""
     found = mentions(proposal)
     if not grounded.applies(found):
-        return
+        return None
     schema = grounded.compact_graph_schema(found, proposal)
     factors = schema["properties"]["factors"]
     if "items" in factors and factors["items"] is not False:
-        return  # the plain list: objects not pinned (checked at runtime)
-    answer = sample(schema, data)
-    goals = [f["goal"] for f in answer["factors"]]
+        return None
+    return found, [f["goal"] for f in sample(schema, data)["factors"]]
+
+
+@settings(max_examples=30, deadline=None)
+@given(proposals, st.data())
+def test_goals_an_answer_puts_on_one_fixed_anchor_fit_together(proposal, data) -> None:
+    sampled = _sampled_goals(proposal, data)
+    if sampled is None:
+        return
+    found, goals = sampled
     fixed = {m.name for m in found if not m.movable}
     for anchor in fixed:
         on = [g for g in goals if anchor in {v for k, v in g.items()
@@ -270,14 +279,10 @@ def test_goals_that_could_anchor_on_each_other_build_only_on_earlier_objects() -
 def test_an_answer_never_anchors_its_goals_in_a_circle(proposal, data) -> None:
     import networkx as nx
 
-    found = mentions(proposal)
-    if not grounded.applies(found):
+    sampled = _sampled_goals(proposal, data)
+    if sampled is None:
         return
-    schema = grounded.compact_graph_schema(found, proposal)
-    factors = schema["properties"]["factors"]
-    if "items" in factors and factors["items"] is not False:
-        return  # the plain list: objects not pinned (checked at runtime)
-    goals = [f["goal"] for f in sample(schema, data)["factors"]]
+    _, goals = sampled
     order = nx.DiGraph()
     for i, g in enumerate(goals):
         named = {v for k, v in g.items() if k not in ("type", "objects") and isinstance(v, str)}
