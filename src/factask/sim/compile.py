@@ -165,9 +165,32 @@ def _check_args(graph: TaskGraph, robot: str | None, timestep: float,
                            "use 0.002")
 
 
+def _fixtures_under_targets(graph: TaskGraph, goal: Any) -> set[str]:
+    """The fixtures (at given poses) inside whose footprint a world-frame ``at_pose``
+    goal puts a target: "each block into the fixture of its colour" as one goal with
+    targets at the fixtures' poses names them without an anchor field."""
+    if getattr(goal, "type", None) != "at_pose" or goal.frame is not None:
+        return set()
+    out = set()
+    for v in graph.variables:
+        start = v.initial
+        if v.kind != "fixture" or getattr(start, "type", None) != "pose":
+            continue
+        c, s = math.cos(math.radians(start.yaw_deg)), math.sin(math.radians(start.yaw_deg))
+        hx, hy = v.extents[0] / 2, v.extents[1] / 2
+        for pose in goal.poses:
+            dx, dy = pose.x - start.x, pose.y - start.y
+            if abs(c * dx + s * dy) <= hx and abs(-s * dx + c * dy) <= hy:
+                out.add(v.name)
+    return out
+
+
 def fixture_hollows(graph: TaskGraph) -> dict[str, HollowShape]:
     """Hollow shape of each fixture variable: "ell" if any factor puts an ell into
-    it (or aligns one with it) or nothing names it, else "square".
+    it (or aligns one with it) or nothing names it, else "square". A factor puts
+    something into a fixture when it names it as an anchor, or when it is an
+    ``at_pose`` goal in world coordinates with a target inside the footprint of a
+    fixture at a given pose.
 
     Args:
         graph: The task graph.
@@ -178,7 +201,7 @@ def fixture_hollows(graph: TaskGraph) -> dict[str, HollowShape]:
     kinds = {v.name: v.kind for v in graph.variables}
     out: dict[str, HollowShape] = {}
     for f in graph.factors:
-        for anchor in f.anchors():
+        for anchor in [*f.anchors(), *sorted(_fixtures_under_targets(graph, f.goal))]:
             if kinds.get(anchor) != "fixture":
                 continue
             has_ell = any(kinds.get(o) == "ell" for o in f.goal.objects)
