@@ -24,6 +24,7 @@ from scipy.spatial.transform import Rotation
 
 from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject
+from factask.compat.cliport.transforms import yaw_of_xyzw
 
 #: A cylinder whose axis is within this many degrees of horizontal is lying.
 LYING_TOLERANCE_DEG = 20.0
@@ -49,8 +50,9 @@ def log_quat(quat_xyzw: np.ndarray) -> np.ndarray:
 
 
 def _yaw_quat(quat_xyzw: np.ndarray) -> np.ndarray:
-    """Only the turn about z of an upright orientation."""
-    yaw = float(Rotation.from_quat(np.asarray(quat_xyzw, dtype=float)).as_euler("xyz")[2])
+    """Only the turn about z of an upright orientation (as every start and target
+    keeps it: :func:`~factask.compat.cliport.transforms.yaw_of_xyzw`)."""
+    yaw = yaw_of_xyzw(quat_xyzw)
     return np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])
 
 
