@@ -246,6 +246,8 @@ def test_a_cylinder_the_words_lay_on_its_side_is_a_log() -> None:
     assert _names("balance a green cylinder horizontally on top of the red blocks") == [
         ("green_log", "log", "green", 1), ("red_blocks", "block", "red", 2)]
     assert _names("put the horizontal cylinder in the zone")[0][:2] == ("log", "log")
+    assert _names("put the horizontal green cylinder in the blue zone")[0] == (
+        "green_log", "log", "green", 1)
     assert _names("the two red cylinders lying on their side")[0] == (
         "red_logs", "log", "red", 2)
     assert _names("put the red cylinder in the bowl")[0][1] == "cylinder"

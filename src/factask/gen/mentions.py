@@ -71,7 +71,8 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
                 r"bar))?(s?)\b"), r"ell\1"),
     # A cylinder on its side is a log: "a horizontal cylinder", "the cylinder lying on
     # its side", "balance the cylinder horizontally on the blocks".
-    (re.compile(r"\b(?:horizontal|lying|fallen)\s+cylinder(s?)\b"), r"log\1"),
+    (re.compile(rf"\b(?:horizontal|lying|fallen)\s+((?:{'|'.join(COLOR_NAMES)})\s+)?"
+                r"cylinder(s?)\b"), r"\1log\2"),
     (re.compile(r"\bcylinder(s?)\s+(?:(?:lying|laid|placed|put)\s+)?(?:on\s+(?:its|their)\s+"
                 r"sides?|horizontally|(?:lying|laid)\s+(?:down|flat))\b"), r"log\1"),
     # "cylindrical blocks", "spherical objects": the adjective says the kind.
