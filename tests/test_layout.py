@@ -26,6 +26,7 @@ from factask.scene.objects import (
     rest_surface_z,
     scene_objects,
     top_z,
+    yaw_rotation_2d,
 )
 from factask.sim.reset import reset_layout
 from factask.sim.sampling import sample_layout
@@ -126,6 +127,13 @@ def overlap_problems(objs: dict[str, SceneObject], poses: dict[str, Pose],
             gap = float(np.linalg.norm(pa.pos[:2] - pb.pos[:2]))
             if oa.is_round and ob.is_round and gap >= oa.half_xy.max() + ob.half_xy.max():
                 continue  # disks apart although their bounding boxes touch
+            if oa.is_round != ob.is_round:  # a disk apart from a box its square touches
+                (disk, dp), (box, bp) = ((oa, pa), (ob, pb)) if oa.is_round else (
+                    (ob, pb), (oa, pa))
+                local = yaw_rotation_2d(bp.yaw).T @ (dp.pos[:2] - bp.pos[:2])
+                nearest = np.clip(local, -box.half_xy, box.half_xy)
+                if float(np.linalg.norm(local - nearest)) >= disk.half_xy.max():
+                    continue
             za = (pa.pos[2] - oa.half[2], pa.pos[2] + oa.half[2])
             zb = (pb.pos[2] - ob.half[2], pb.pos[2] + ob.half[2])
             if min(za[1], zb[1]) - max(za[0], zb[0]) <= 1e-6:

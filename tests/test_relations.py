@@ -150,3 +150,25 @@ def test_a_first_goal_its_objects_meet_by_their_start_is_refused_before_any_rese
     assert (err.value.problems[0].node, err.value.problems[0].field) == ("f", "goal")
     parse_graph(graph(None, [])).ensure_valid()  # starts on the table
     parse_graph(graph(initial, ["first"])).ensure_valid()  # moved away first, then back
+
+
+def test_a_deck_on_two_pillars_nothing_arranged_is_refused_at_reset() -> None:
+    """A bar ``on`` a two-block support rests on both blocks; blocks that start
+    apart (no goal puts them side by side) hold nothing between them: refused at
+    reset, naming the fix, instead of a target the oracle cannot reach."""
+    from factask.scene.collision import LayoutError
+
+    variables = [{"name": "pillars", "kind": "block", "count": 2},
+                 {"name": "deck", "kind": "log", "size": [0.14, 0.04, 0.04]}]
+    deck_on = {"name": "deck_on", "description": "the log across the blocks",
+               "goal": {"type": "on", "objects": ["deck"], "support": "pillars"}}
+    alone = TaskGraph.model_validate({"name": "t", "description": "d", "variables": variables,
+                                      "factors": [deck_on]})
+    with pytest.raises(LayoutError, match="cannot rest on every instance of 'pillars'"):
+        reset_layout(alone, np.random.default_rng(0))
+    row = {"name": "pillars_row", "description": "the blocks in a row",
+           "goal": {"type": "row", "objects": ["pillars"], "spacing": 0.08}}
+    bridge = TaskGraph.model_validate({"name": "t", "description": "d", "variables": variables,
+                                       "factors": [row, deck_on]})
+    _, solved = reset_layout(bridge, np.random.default_rng(0))
+    assert solved["deck_on"].support_group == ["pillars__0", "pillars__1"]

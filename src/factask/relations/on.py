@@ -7,17 +7,20 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
+from factask.geometry import Pose
 from factask.model.names import Name
 from factask.relations.base import RelationBase
 from factask.relations.packing import pack_plan
-from factask.relations.solving import Plan, SolveContext, SolvedFactor, make_plan
+from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import MAX_TILT_DEG, CheckScene, Verdict, upright_tilt_deg
 from factask.scene.collision import CLEARANCE
 from factask.scene.objects import (
     GEOMETRY_EPS,
     SceneObject,
     bottom_z,
+    footprint_corners,
     group_area,
+    obb_overlaps,
     placement_area,
     rest_surface_z,
     resting_pose,
@@ -70,6 +73,15 @@ class On(RelationBase):
         normal = yaw_rotation_2d(area.yaw) @ np.array([0.0, 1.0])
         slots = [resting_pose(o, *(area.center + (k - (n - 1) / 2) * width * normal), surface,
                               area.yaw) for k, o in enumerate(movers)]
+        # Each object rests on every instance of the support (a deck on both pillars):
+        # instances standing apart -- nothing has arranged them -- hold nothing between.
+        tops = np.array([footprint_corners(h, p) for h, p in zip(hobjs, hposes, strict=True)])
+        for o, slot in zip(movers, slots, strict=True):
+            if not obb_overlaps(footprint_corners(o, slot), tops).all():
+                raise Infeasible(
+                    f"{o.name} cannot rest on every instance of {self.support!r}: they stand "
+                    f"{_spread(hposes):.2f} m apart and it is {2 * float(o.half_xy.max()):.2f} m "
+                    "long (a goal must first put them side by side, e.g. a row)", retry=False)
         return make_plan(slots, [surface] * n, [hosts[0]] * n, [set(hosts)] * n, ones,
                          support_group=hosts)
 
@@ -101,3 +113,9 @@ class On(RelationBase):
             else:
                 placed[name] = None
         return Verdict(placed, problems)
+
+
+def _spread(poses: list[Pose]) -> float:
+    """The largest distance between two of ``poses``' centres (m)."""
+    xy = np.array([p.pos[:2] for p in poses])
+    return float(np.linalg.norm(xy[:, None, :] - xy[None, :, :], axis=-1).max())
