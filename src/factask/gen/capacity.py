@@ -48,7 +48,7 @@ zone), and the plain goal list sent where no shape covers the named objects
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from functools import lru_cache
 from itertools import islice, product
 from math import prod
@@ -57,7 +57,7 @@ from typing import Any
 import numpy as np
 from pydantic import ValidationError
 
-from factask.gen.cover import names_of, nullable
+from factask.gen.cover import names_of, without_names
 from factask.gen.mentions import Mention
 from factask.model.errors import FactaskError
 from factask.model.factors import SubtaskFactor
@@ -355,20 +355,17 @@ def _uses(variant: Schema, anchor: str) -> bool:
         or _pinned_on(variant, anchor)
 
 
-def _off(variant: Schema, anchor: str) -> Schema | None:
-    """``variant`` with ``anchor`` left out of its anchor fields (None: a field is
-    left with nothing)."""
+def _off(variant: Schema, banned: Collection[str]) -> Schema | None:
+    """``variant`` with the ``banned`` names left out of its anchor fields (None: a
+    field is left with nothing)."""
     props = dict(variant["properties"])
     for field in _anchor_fields(variant):
-        if anchor not in names_of(props[field]):
+        if not set(banned) & set(names_of(props[field])):
             continue
-        names = [n for n in names_of(props[field]) if n != anchor]
-        options: list[Schema] = [{"type": "string", "enum": names}] if names else []
-        if nullable(props[field]):
-            options.append({"type": "null"})
-        if not options:
+        narrowed = without_names(props[field], banned)
+        if narrowed is None:
             return None
-        props[field] = options[0] if len(options) == 1 else {"anyOf": options}
+        props[field] = narrowed
     return {**variant, "properties": props}
 
 
@@ -440,7 +437,7 @@ def share_anchors(items: Sequence[Schema], found: Sequence[Mention],
             own = [i for i in sharers if all(_uses(v, anchor) for v in goals[i])]
             idle = [i for i in sharers if i not in owned]
             owners = (own or idle or sharers)[:1]
-        narrowed = {i: [w for v in goals[i] if (w := _off(v, anchor)) is not None]
+        narrowed = {i: [w for v in goals[i] if (w := _off(v, {anchor})) is not None]
                     for i in sharers if i not in owners}
         forced = [i for i, kept in narrowed.items() if not kept]  # only ``anchor`` left
         if forced:
@@ -506,11 +503,9 @@ def acyclic_anchors(items: Sequence[Schema], order: Sequence[str]) -> list[Schem
             own = min((place(n) for n in _pinned_objects(v["properties"]["objects"]) or []),
                       default=len(rank))
             named = {n for f in _anchor_fields(v) for n in names_of(v["properties"][f])}
-            for name in sorted(named & others):
-                if v is not None and place(name) >= own:
-                    v = _off(v, name)
-            if v is not None:
-                kept.append(v)
+            later = {n for n in named & others if place(n) >= own}
+            if (w := _off(v, later) if later else v) is not None:
+                kept.append(w)
         if not kept:
             return None
         if kept != variants:

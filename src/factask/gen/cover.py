@@ -33,7 +33,7 @@ plain array, and the check afterwards.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Collection, Iterable, Sequence
 from itertools import permutations
 from typing import Any
 
@@ -64,7 +64,7 @@ def nullable(field: Schema) -> bool:
     return field.get("type") == "null" or any(nullable(o) for o in field.get("anyOf", []))
 
 
-def _free_field(field: Schema, banned: set[str]) -> Schema | None:
+def without_names(field: Schema, banned: Collection[str]) -> Schema | None:
     """An anchor field's schema without the ``banned`` names (None: nothing left)."""
     names = [n for n in names_of(field) if n not in banned]
     options: list[Schema] = [{"type": "string", "enum": names}] if names else []
@@ -121,13 +121,13 @@ def pin(branch: Schema, objects: Sequence[str], anchors: Sequence[str],
                 break
             new[field] = {"const": anchor}
         for field in (f for f in fields if f not in chosen):
-            free = _free_field(props[field], set(objects))
+            free = without_names(props[field], set(objects))
             if free is None:
                 ok = False
                 break
             new[field] = free
         if ok and relation == "stack" and instances < 2:
-            base = _free_field(new["base"], set()) if "base" in new else None
+            base = without_names(new["base"], set()) if "base" in new else None
             if base is None or (nullable(base) and not names_of(base)):
                 ok = False  # a stack of one needs its base
             elif nullable(base):

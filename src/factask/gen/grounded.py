@@ -475,7 +475,8 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     starts = kinds
     if factors is None:
         most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
-        factors = ss.array(ss.obj({"goal": goal}), 1, most)
+        plain = ss.array(ss.obj({"goal": goal}), 1, most)
+        factors = prune(plain, found, order) or plain  # goals whose layout fits only
     else:
         # Every fixed named object is some goal's anchor: an object starting on or in
         # one would start where a goal may put it (a goal met at the start).
@@ -492,7 +493,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},
-        "factors": prune(factors, found, order) or factors,  # goals whose layout fits only
+        "factors": factors,  # a covering shape pruned above (once: the joint checks cost)
     })
 
 

@@ -28,7 +28,7 @@ from factask.geometry import Pose
 from factask.model.errors import SubjectError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.scene.objects import SceneObject, scene_objects
+from factask.scene.objects import SceneObject, points_in_rect, scene_objects
 from factask.sim.build import BodyHandles, add_object, add_table, default_classes, new_spec
 from factask.sim.parts import (
     GEOM_SEPARATOR,
@@ -176,12 +176,10 @@ def _fixtures_under_targets(graph: TaskGraph, goal: Any) -> set[str]:
         start = v.initial
         if v.kind != "fixture" or getattr(start, "type", None) != "pose":
             continue
-        c, s = math.cos(math.radians(start.yaw_deg)), math.sin(math.radians(start.yaw_deg))
-        hx, hy = v.extents[0] / 2, v.extents[1] / 2
-        for pose in goal.poses:
-            dx, dy = pose.x - start.x, pose.y - start.y
-            if abs(c * dx + s * dy) <= hx and abs(-s * dx + c * dy) <= hy:
-                out.add(v.name)
+        targets = np.array([[pose.x, pose.y] for pose in goal.poses])
+        if points_in_rect(targets, np.array([start.x, start.y]), math.radians(start.yaw_deg),
+                          np.array(v.extents[:2]) / 2).any():
+            out.add(v.name)
     return out
 
 

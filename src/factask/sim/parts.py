@@ -30,7 +30,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from factask.geometry import quat_from_yaw
+from factask.geometry import quat_from_axis_angle, quat_from_yaw, quat_mul
 from factask.model.errors import SubjectError
 from factask.model.kinds import (
     ELL_BAR_FRACTION,
@@ -104,6 +104,8 @@ OFFSCREEN_SIZE = (1280, 960)
 XML_PRECISION = 10
 
 HollowShape = Literal["ell", "square"]
+#: A quarter turn about y: a cylinder's own axis (z) onto x, as a log lies.
+_ONTO_X = quat_from_axis_angle((0.0, 1.0, 0.0), math.pi / 2)
 PartType = Literal["box", "cylinder", "sphere"]
 
 
@@ -156,9 +158,7 @@ class Part:
     def quat(self) -> tuple[float, ...] | None:
         """Orientation (w, x, y, z) in the body frame, None for the identity."""
         if self.lying:  # the cylinder's z axis turned onto x (about y), then the yaw
-            c, s = math.cos(self.yaw / 2), math.sin(self.yaw / 2)
-            h = math.sqrt(0.5)
-            return (c * h, -s * h, c * h, s * h)
+            return tuple(quat_mul(quat_from_yaw(self.yaw), _ONTO_X))
         return tuple(quat_from_yaw(self.yaw)) if self.yaw else None
 
     @property

@@ -20,11 +20,11 @@ import math
 from collections.abc import Callable
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject
-from factask.compat.cliport.transforms import yaw_of_xyzw
+from factask.compat.cliport.transforms import rotation, wxyz_to_xyzw, yaw_of_xyzw
+from factask.geometry import quat_from_yaw
 
 #: A cylinder whose axis is within this many degrees of horizontal is lying.
 LYING_TOLERANCE_DEG = 20.0
@@ -32,7 +32,7 @@ LYING_TOLERANCE_DEG = 20.0
 
 def axis_of(quat_xyzw: np.ndarray) -> np.ndarray:
     """The world direction of a cylinder's axis (its body z) at orientation ``quat_xyzw``."""
-    return Rotation.from_quat(np.asarray(quat_xyzw, dtype=float)).as_matrix()[:, 2]
+    return rotation(quat_xyzw).as_matrix()[:, 2]
 
 
 def is_lying(quat_xyzw: np.ndarray) -> bool:
@@ -45,15 +45,13 @@ def log_quat(quat_xyzw: np.ndarray) -> np.ndarray:
     """The x, y, z, w quaternion of a log lying along the cylinder's axis: a turn
     about z only (the log's own axis is its x)."""
     axis = axis_of(quat_xyzw)
-    yaw = math.atan2(float(axis[1]), float(axis[0]))
-    return np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])
+    return wxyz_to_xyzw(quat_from_yaw(math.atan2(float(axis[1]), float(axis[0]))))
 
 
 def _yaw_quat(quat_xyzw: np.ndarray) -> np.ndarray:
     """Only the turn about z of an upright orientation (as every start and target
     keeps it: :func:`~factask.compat.cliport.transforms.yaw_of_xyzw`)."""
-    yaw = yaw_of_xyzw(quat_xyzw)
-    return np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])
+    return wxyz_to_xyzw(quat_from_yaw(yaw_of_xyzw(quat_xyzw)))
 
 
 def lay_down_cylinders(objects: list[RecordedObject], goals: list[RecordedGoal],
