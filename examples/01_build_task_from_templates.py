@@ -52,6 +52,15 @@ print("variables:", task.variable_names())
 print("factor order:", task.factor_order())
 print("weights:", {f.name: round(f.weight, 3) for f in task.factors})
 
+# %% A cylinder lying on its side is a `log`, size (length, diameter, diameter): the
+# bridge template lays one across two blocks it first stands in a row
+pillars = ft.StateVariable(name="pillars", kind="block", color="red", count=2)
+log = ft.StateVariable(name="green_log", kind="log", color="green", size=(0.14, 0.04, 0.04))
+bridge = ft.compose(TEMPLATES["bridge"].instantiate(pillars=pillars, deck=log),
+                    name="log-bridge", description="Balance the green log across two red "
+                                                   "blocks.").ensure_valid()
+print("log bridge:", [(f.name, f.goal.type) for f in bridge.factors])
+
 # %% Validation reports every problem at once, each with a fix
 extra = ft.SubtaskFactor(name="also_zone", description="put the red block in a purple zone",
                          goal=ft.InZone(objects=["red_block"], zone="purple_zone"), weight=0.2)

@@ -19,6 +19,7 @@ os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # offline: bundle
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 from factask.gen import APPROACHES, Generator, LLMClient, LLMConfig, LoopbackServer, Verifier
+from factask.gen.bases import base_order
 from factask.gen.cover import colour_pins
 from factask.gen.demo import DEMO_PROPOSAL, demo_responder
 from factask.gen.grounded import movable
@@ -82,11 +83,14 @@ print("wrote", out / "06_generated.json")
 # names (`factask.gen.mentions`): a matching-colour phrase gives one object per
 # colour, a moving verb before a bowl makes it carried, and the one-shot grammar
 # pins each fixed object to the movable one of its colour (docs/generation.md,
-# "Grounded answers for the local model").
+# "Grounded answers for the local model"); "horizontally" lays a cylinder down (a
+# log), and the words' bases come first in the order goals may build on one another
+# (`factask.gen.bases`: no answer can put two objects on each other).
 
 # %%
 for proposal in ("sort the red and blue blocks into the bowls of the same colour",
-                 "drop the pink ball into the yellow bowl, then put the bowl in the green zone"):
+                 "drop the pink ball into the yellow bowl, then put the bowl in the green zone",
+                 "balance a green cylinder horizontally on top of the two red blocks"):
     found = mentions(proposal)
     print(proposal)
     for m in found:
@@ -94,6 +98,7 @@ for proposal in ("sort the red and blue blocks into the bowls of the same colour
     movers = [m.name for m in movable(found)]
     fixed = [m.name for m in found if m.name not in movers]
     print("    pinned:", colour_pins(movers, fixed, {m.name: m.color for m in found}))
+    print("    bases first:", base_order(found, proposal))
 
 # %%
 server.stop()
