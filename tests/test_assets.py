@@ -201,6 +201,7 @@ def test_square_fixture_is_four_walls() -> None:
     [
         ("cylinder", (0.04, 0.05, 0.06), "round footprint"),
         ("ball", (0.04, 0.04, 0.05), "diameter"),
+        ("log", (0.12, 0.04, 0.05), "both its diameter"),
         ("container", (0.015, 0.1, 0.05), "no room"),
         ("block", (0.04, 0.0, 0.04), "positive"),
         ("ell", (0.04, 0.01, 0.04), "bar width"),
