@@ -33,7 +33,8 @@ def template_table() -> str:
     users: dict[str, list[str]] = {t: [] for t in TEMPLATES}
     for i in list_tasks():
         for t in i.templates:
-            users[t].append(i.name)
+            if t in users:  # a task's own template (unregistered) is not listed
+                users[t].append(i.name)
     rows = ["| template | slots | factor: relation | tasks | used by |", "|---|---|---|---|---|"]
     for name, t in TEMPLATES.items():
         slots = ", ".join(f"`{s.name}`" + ("[]" if s.many else "") for s in t.slots)

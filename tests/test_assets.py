@@ -43,6 +43,7 @@ ODD_SIZES = {
     "ell": (0.08, 0.10, 0.04),
     "fixture": (0.13, 0.12, 0.04),
     "kit": (0.28, 0.20, 0.005),
+    "holed_box": (0.10, 0.08, 0.06),
     "pile": (0.012, 0.01, 0.008),
     "rope": (0.016, 0.01, 0.008),
 }
@@ -205,6 +206,7 @@ def test_square_fixture_is_four_walls() -> None:
         ("container", (0.015, 0.1, 0.05), "no room"),
         ("block", (0.04, 0.0, 0.04), "positive"),
         ("ell", (0.04, 0.01, 0.04), "bar width"),
+        ("holed_box", (0.08, 0.03, 0.05), "no room for its hole"),
         ("teapot", (0.1, 0.1, 0.1), "unknown asset kind"),
     ],
 )
@@ -270,3 +272,23 @@ def test_committed_asset_files_are_fresh() -> None:
         assert path.read_text(encoding="utf-8") == text, (
             f"{path} is stale: run scripts/export_assets.py")
         mujoco.MjModel.from_xml_string(text)
+
+
+def test_holed_box_has_an_open_square_hole_in_the_middle_of_its_x_side() -> None:
+    from factask.model.kinds import side_hole
+
+    size = ODD_SIZES["holed_box"]
+    side, centre = side_hole(size)
+    assert side == pytest.approx(0.5 * min(size[1], size[2])) and centre == size[2] / 2
+    parts = kind_parts("holed_box", size)
+
+    def solid(point: tuple[float, float, float]) -> bool:
+        return any(bool(np.all(np.abs(np.asarray(point) - p.pos) <= p.half_extents + 1e-12))
+                   for p in parts)
+
+    face = size[0] / 2 - 0.001  # inside the +x wall
+    assert not solid((face, 0.0, 0.0))  # the hole: open through the wall
+    assert not solid((0.0, 0.0, 0.0))  # the box is hollow behind it
+    for dy, dz in ((0.6 * side, 0.0), (-0.6 * side, 0.0), (0.0, 0.6 * side), (0.0, -0.6 * side)):
+        assert solid((face, dy, dz)), (dy, dz)  # the wall round the hole
+    assert solid((-face, 0.0, 0.0))  # the other sides are closed

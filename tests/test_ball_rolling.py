@@ -96,3 +96,26 @@ def test_log_rolling_across_comes_to_rest(speed: float) -> None:
     assert abs(pos[0] - 0.5) < 0.005
     assert pos[2] == pytest.approx(radius, abs=0.002)
     assert np.linalg.norm(data.qvel[v:v + 3]) < 1e-3
+
+
+def test_a_rolled_log_reads_lying_flat_with_its_yaw() -> None:
+    """A log is the same lying cylinder however far it has rolled about its axis: its
+    pose reads without the roll (tilt 0, the axis's yaw), so the checks and the oracle
+    do not take a rolled log for one tipped over."""
+    from factask.geometry import quat_from_axis_angle, quat_from_yaw, quat_mul, tilt_deg, yaw_of
+    from factask.sim.compile import get_object_pose
+
+    scene = _log_on_table()
+    data = mujoco.MjData(scene.model)
+    log = scene.objects["log"]
+    q = log.qpos_adr
+    for roll in (0.0, 2.1, -2.9, np.pi):
+        quat = quat_mul(quat_from_yaw(0.7), quat_from_axis_angle((1.0, 0.0, 0.0), roll))
+        data.qpos[q:q + 7] = [0.5, 0.0, 0.02, *quat]
+        pose = get_object_pose(data, log)
+        assert tilt_deg(pose.quat) == pytest.approx(0.0, abs=1e-6)
+        assert yaw_of(pose.quat) == pytest.approx(0.7, abs=1e-9)
+    # A log whose axis is raised keeps the slope: that tilt is real.
+    quat = quat_mul(quat_from_yaw(0.3), quat_from_axis_angle((0.0, 1.0, 0.0), -0.4))
+    data.qpos[q:q + 7] = [0.5, 0.0, 0.05, *quat_mul(quat, quat_from_axis_angle((1, 0, 0), 1.0))]
+    assert tilt_deg(get_object_pose(data, log).quat) == pytest.approx(np.degrees(0.4), abs=1e-6)

@@ -126,6 +126,19 @@ def rotation_matrix(quat: np.ndarray) -> np.ndarray:
     ])
 
 
+def without_roll(quat: np.ndarray) -> np.ndarray:
+    """The orientation with the same x axis and no turn about it (a yaw, then a pitch).
+
+    A body symmetric about its x axis (a lying cylinder, ``log``) looks the same
+    however far it has rolled; this is its orientation read modulo that roll, so its
+    tilt is its axis's slope and its top is up.
+    """
+    x_axis = rotation_matrix(quat)[:, 0]
+    yaw = math.atan2(x_axis[1], x_axis[0])
+    pitch = math.atan2(-x_axis[2], math.hypot(x_axis[0], x_axis[1]))
+    return quat_mul(quat_from_yaw(yaw), quat_from_axis_angle((0.0, 1.0, 0.0), pitch))
+
+
 def tilt_deg(quat: np.ndarray) -> float:
     """Angle (degrees) between the body's z axis and world z (0 = upright)."""
     zaxis = rotate(np.asarray(quat, dtype=float), np.array([0.0, 0.0, 1.0]))

@@ -32,7 +32,8 @@ from factask.library.conventions import (
     TUBE,
 )
 from factask.library.templates import match_pairs
-from factask.model import StateVariable, TaskGraph
+from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
+from factask.relations import Aligned
 
 
 def _row(n: int, x: float = 0.64, span: float = 0.7) -> list[tuple[float, float]]:
@@ -312,3 +313,36 @@ def rotate_and_insert_cylinder() -> TaskGraph:
                     "the slot of the green fixture and insert it there.",
                     use("insert_into_fixture", objects=var("red_cylinder", "log", "red", LOG),
                         fixture=var("green_fixture", "fixture", "green", LOG_FIXTURE)))
+
+
+#: A box with a hole in its side, as high as a log is thick (its hole, in the middle of
+#: the side, then faces a log lying on the table: ``aligned`` mode ``hole``).
+HOLED_BOX = (0.08, 0.08, LOG[2] + 0.01)
+
+#: Line a log up with a box's hole. One task uses it, so it is not a library template
+#: (``templates.TEMPLATES`` holds the shared ones); it only writes the three factors.
+_ALIGN_WITH_HOLE = SubtaskTemplate(
+    name="align_with_hole",
+    description="Line the {objects} up with the hole in the {box}.",
+    slots=[TemplateSlot(name="objects", description="the log to line up", kinds=["log"],
+                        many=True, movable=True),
+           TemplateSlot(name="box", description="the box whose side has the hole",
+                        kinds=["holed_box"])],
+    factors=[SubtaskFactor(
+        name="align", description="line the {objects} up with the hole in the {box}",
+        goal=Aligned(objects=["objects"], reference="box", mode="hole"))],
+)
+
+
+@register("cylinder-alignment", family="insertion")
+def cylinder_alignment() -> TaskGraph:
+    # A cylinder "aligned with the hole" lies on the table in front of the hole, its
+    # axis through it: a log (a suction cup cannot tip an upright cylinder over), in
+    # a box whose hole is at the height of the log's axis.
+    logs = colored("log", THREE, LOG, suffix="cylinder")
+    boxes = colored("holed_box", THREE, HOLED_BOX, suffix="box")
+    return assemble("cylinder-alignment",
+                    "Line each cylinder up with the hole in the side of the box of its "
+                    "colour: red first, then blue, then green.",
+                    match_pairs(_ALIGN_WITH_HOLE, list(zip(logs, boxes, strict=True)),
+                                sequential=True))

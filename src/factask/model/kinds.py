@@ -38,6 +38,7 @@ AssetKind = Literal[
     "ell",
     "fixture",
     "kit",
+    "holed_box",
     "pile",
     "rope",
 ]
@@ -108,6 +109,9 @@ _SPECS = [
              (0.12, 0.12, 0.04), movable=False, receptacle=True, region=True),
     KindSpec("kit", "flat kitting plate", (0.28, 0.20, 0.005), movable=False, support=True,
              region=True),
+    KindSpec("holed_box", "box fixed to the table with a square hole in the middle of its +x "
+             "side (a log is lined up with it: 'aligned' mode 'hole'); size = outer extents",
+             (0.08, 0.08, 0.05), movable=False, asymmetric=True),
     KindSpec("pile", "pile of small blocks pushed as one (Ravens small block: 1 cm cube); "
              "size = one block, count = number of blocks, spawned in a cluster",
              (0.01, 0.01, 0.01), movable=True),
@@ -124,6 +128,16 @@ assert tuple(ASSET_KINDS) == KIND_NAMES, "AssetKind literal and ASSET_KINDS must
 ELL_BAR_FRACTION = 0.375
 #: Wall thickness of containers and fixtures, metres.
 WALL_THICKNESS = 0.01
+#: The side of a ``holed_box``'s square hole as a fraction of its +x face's smaller
+#: extent (a "small hole": half the face's height on a box lower than it is wide).
+HOLE_FRACTION = 0.5
+
+
+def side_hole(size: tuple[float, float, float]) -> tuple[float, float]:
+    """A ``holed_box``'s hole: its side and its centre's height above the box's bottom
+    (metres). The hole is square, in the middle of the +x face.
+    """
+    return HOLE_FRACTION * min(size[1], size[2]), size[2] / 2
 
 
 class UnknownKindError(FactaskError, ValueError):
@@ -197,13 +211,19 @@ def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str
     elif spec.round and not math.isclose(x, y, rel_tol=ROUND_RTOL):
         return (f"a {kind} has a round footprint but size x {x} != size y {y}",
                 "give the diameter as both size x and size y")
-    if kind in ("bowl", "container", "fixture"):
+    if kind in ("bowl", "container", "fixture", "holed_box"):
         walls = 2 * WALL_THICKNESS
         if not (x > walls and y > walls and z > WALL_THICKNESS):
             return (f"a {kind} of size {tuple(size)} has no room inside its walls "
                     f"({WALL_THICKNESS} m thick)",
                     f"make size x and y larger than {walls:.3f} and z larger than "
                     f"{WALL_THICKNESS}")
+    if kind == "holed_box":
+        side, _ = side_hole(size)
+        if side > min(y, z) - 2 * WALL_THICKNESS:
+            return (f"a holed_box of size {tuple(size)} has no room for its hole ({side:.3f} m "
+                    f"square) inside its walls ({WALL_THICKNESS} m thick)",
+                    f"make size y and z at least {4 * WALL_THICKNESS:.2f}")
     if kind == "ell" and not ELL_BAR_FRACTION * x < y:
         return (f"an ell's bar width {ELL_BAR_FRACTION * x:.4f} m ({ELL_BAR_FRACTION} x size "
                 f"x) must be less than size y {y}", "make size y larger than the bar width")

@@ -1,4 +1,5 @@
-"""``aligned``: each object at a reference's position and yaw, or in its corner."""
+"""``aligned``: each object at a reference's position and yaw, in its corner, or lined
+up with its hole."""
 
 from __future__ import annotations
 
@@ -8,9 +9,11 @@ from typing import Any, ClassVar, Literal
 import numpy as np
 
 from factask.model.errors import Problem
+from factask.model.kinds import side_hole
 from factask.model.names import Name
 from factask.model.variables import StateVariable
-from factask.relations.base import RelationBase
+from factask.model.world import TABLE_Z
+from factask.relations.base import RelationBase, Reserve
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import CheckScene, Verdict, check_slots
 from factask.scene.collision import TABLE
@@ -22,17 +25,22 @@ from factask.scene.objects import (
     yaw_rotation_2d,
 )
 
+#: Mode ``hole``: the gap (m) between the box's holed face and the object's end.
+HOLE_GAP = 0.005
+
 
 class Aligned(RelationBase):
     """Align each object with the ``reference`` variable: ``center`` puts it at the
     reference's position and yaw (an ell into its fixture, a block onto a marker);
-    ``corner`` puts the object's corner into the reference corner marker."""
+    ``corner`` puts the object's corner into the reference corner marker; ``hole``
+    lays the object on the table in front of a ``holed_box``'s hole, its x axis (a
+    log's axis) through the hole and its end just short of the box."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"reference": ()}
 
     type: Literal["aligned"] = "aligned"
     reference: Name
-    mode: Literal["center", "corner"] = "center"
+    mode: Literal["center", "corner", "hole"] = "center"
 
     @classmethod
     def example(cls) -> tuple[list[dict[str, Any]], Aligned]:
@@ -53,6 +61,43 @@ class Aligned(RelationBase):
                                "instance of its own",
                                f"give {self.reference!r} count {n}, or use 'on' or "
                                "'in_zone' to put several objects on one"))
+        if self.mode == "hole" and ref is not None:
+            out += self._hole_problems(factor, ref, variables)
+        return out
+
+    def layout_reserves(self, variables: Mapping[str, StateVariable]) -> list[Reserve]:
+        """Mode ``hole``: the table in front of the hole, where the object will lie
+        (the longest and widest of the objects)."""
+        ref = variables.get(self.reference)
+        movers = [variables[o] for o in dict.fromkeys(self.objects) if o in variables]
+        if self.mode != "hole" or ref is None or not movers:
+            return []
+        length = max(v.extents[0] for v in movers)
+        width = max(v.extents[1] for v in movers)
+        return [Reserve(self.reference, ref.extents[0] / 2 + HOLE_GAP + length / 2, 0.0,
+                        (length, width))]
+
+    def _hole_problems(self, factor: str, ref: StateVariable,
+                       variables: Mapping[str, StateVariable]) -> list[Problem]:
+        """Mode ``hole``: the reference has a hole, and each object's axis (at half its
+        height, resting on the table) passes through it."""
+        if ref.kind != "holed_box":
+            return [Problem(factor, "goal.reference",
+                            f"mode 'hole' needs a holed_box as the reference, "
+                            f"{self.reference!r} is a {ref.kind}",
+                            "give the reference kind 'holed_box', or use mode 'center'")]
+        side, centre = side_hole(ref.extents)
+        out = []
+        for name in dict.fromkeys(self.objects):
+            var = variables.get(name)
+            if var is not None and abs(var.extents[2] / 2 - centre) > side / 2:
+                out.append(Problem(
+                    factor, "goal.objects",
+                    f"{name!r}'s axis {var.extents[2] / 2:.3f} m above the table misses "
+                    f"{self.reference!r}'s hole ({side:.3f} m square, centre "
+                    f"{centre:.3f} m up)",
+                    f"give {self.reference!r} a height near {var.extents[2]:.3f} m (the hole "
+                    "is in the middle of its side)"))
         return out
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
@@ -66,14 +111,19 @@ class Aligned(RelationBase):
             robj, rpose = ctx.objs[ref], ctx.current[ref]
             obj = movers[j if j < n else 0]
             surface = rest_surface_z(robj, rpose)
+            support = ref if robj.collides else TABLE
             if self.mode == "corner":
                 v = corner_vertex(robj, rpose)
                 c = v + yaw_rotation_2d(rpose.yaw) @ obj.half_xy
+            elif self.mode == "hole":  # on the table, in front of the +x face
+                ahead = robj.size[0] / 2 + HOLE_GAP + obj.size[0] / 2
+                c = rpose.pos[:2] + yaw_rotation_2d(rpose.yaw) @ np.array([ahead, 0.0])
+                surface, support = TABLE_Z, TABLE
             else:
                 c = rpose.pos[:2]
             slots.append(resting_pose(obj, float(c[0]), float(c[1]), surface, rpose.yaw))
             surfaces.append(surface)
-            supports.append(ref if robj.collides else TABLE)
+            supports.append(support)
             ignore.append({ref})
         nominal = [movers[j if j < n else 0] for j in range(m)]
         matches = np.array([[np.allclose(o.size, nominal[j].size) for j in range(m)]

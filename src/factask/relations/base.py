@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import abc
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from pydantic import BaseModel, ConfigDict, Field
@@ -43,6 +44,22 @@ def _or_kinds(kinds: Mapping[str, tuple[str, ...]], field: str) -> str:
     """", or a corner" for the kinds ``field`` accepts beyond its capabilities."""
     extra = kinds.get(field, ())
     return f", or a {' or '.join(extra)}" if extra else ""
+
+
+@dataclass(frozen=True)
+class Reserve:
+    """Table an anchor keeps clear of other objects' starts: a rectangle in the frame
+    of each instance of variable ``anchor`` (centre ``x``, ``y``; full extents
+    ``size``), which must also lie inside the workspace. The layout sampler keeps it
+    (:mod:`factask.sim.sampling`) where a goal's slot has one place only, fixed by
+    the anchor (in front of a box's hole), so random starts do not make it
+    infeasible.
+    """
+
+    anchor: str
+    x: float
+    y: float
+    size: tuple[float, float]
 
 
 class RelationBase(BaseModel, abc.ABC):
@@ -137,6 +154,15 @@ class RelationBase(BaseModel, abc.ABC):
         if len(hosts) == 1 and (host := hosts.pop()) in anchors:
             return host
         return None
+
+    def layout_reserves(self, variables: Mapping[str, StateVariable]) -> list[Reserve]:
+        """Table the goal's anchors must keep clear at reset (see :class:`Reserve`);
+        none by default: most slots are chosen among many spots.
+
+        Args:
+            variables: The graph's variables by name.
+        """
+        return []
 
     @classmethod
     @abc.abstractmethod

@@ -24,7 +24,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from factask.geometry import Pose
+from factask.geometry import Pose, without_roll
 from factask.model.errors import SubjectError
 from factask.model.graph import TaskGraph
 from factask.model.world import WORKSPACE_X, WORKSPACE_Y
@@ -470,13 +470,16 @@ def get_object_pose(data: mujoco.MjData, handle: ObjectHandle) -> Pose:
         handle: The object.
 
     Returns:
-        Its world pose (bounding-box centre and orientation).
+        Its world pose (bounding-box centre and orientation; a log's orientation
+        without its roll about its axis, :func:`~factask.geometry.without_roll`).
     """
     if handle.mocap_id is not None:
         return Pose(data.mocap_pos[handle.mocap_id].copy(),
                     data.mocap_quat[handle.mocap_id].copy())
     assert handle.qpos_adr is not None
     q = data.qpos[handle.qpos_adr:handle.qpos_adr + 7]
+    if handle.kind == "log":  # symmetric about its axis: read modulo how far it rolled
+        return Pose(q[:3].copy(), without_roll(q[3:7]))
     return Pose(q[:3].copy(), q[3:7].copy())
 
 

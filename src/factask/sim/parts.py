@@ -39,6 +39,7 @@ from factask.model.kinds import (
     default_mass,
     kind_spec,
     shape_problem,
+    side_hole,
 )
 from factask.model.palette import UnknownColorError, rgba
 from factask.model.world import TABLE_X, TABLE_Y, WORKSPACE_X, WORKSPACE_Y
@@ -308,6 +309,26 @@ def _fixture_parts(size: tuple[float, float, float], hollow: HollowShape) -> lis
     ]
 
 
+def _holed_box_parts(size: tuple[float, float, float]) -> list[Part]:
+    """A closed hollow box (no floor: it stands on the table) whose +x wall has a
+    square hole in its middle (:func:`~factask.model.kinds.side_hole`): the wall is
+    four pieces round the hole, and the dark inside shows through it."""
+    x, y, z = (s / 2 for s in size)
+    t = WALL_THICKNESS
+    side, _ = side_hole(size)
+    h = side / 2
+    return [
+        _box("top", (-x + t, -y + t, z - t), (x - t, y - t, z)),
+        _box("wall_nx", (-x, -y, -z), (-x + t, y, z)),
+        _box("wall_py", (-x + t, y - t, -z), (x - t, y, z)),
+        _box("wall_ny", (-x + t, -y, -z), (x - t, -y + t, z)),
+        _box("wall_px_left", (x - t, -y, -z), (x, -h, z)),
+        _box("wall_px_right", (x - t, h, -z), (x, y, z)),
+        _box("wall_px_over", (x - t, -h, h), (x, h, z)),
+        _box("wall_px_under", (x - t, -h, -z), (x, h, -h)),
+    ]
+
+
 def _corner_parts(size: tuple[float, float, float]) -> list[Part]:
     """Two bars along the box's -y edge (arm along +x) and -x edge (arm along +y);
     the L's inner vertex is at (-sx/2 + w, -sy/2 + w) (``factask.scene.objects``)."""
@@ -389,6 +410,8 @@ def kind_parts(
         return _ell_parts(size, ELL_BAR_FRACTION * size[0])
     if kind == "corner":
         return _corner_parts(size)
+    if kind == "holed_box":
+        return _holed_box_parts(size)
     if kind == "pallet":
         return _pallet_parts(size)
     # block, box, zone, line, stand, kit: one box of the full extents.

@@ -13,7 +13,7 @@ and why.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -21,6 +21,7 @@ from factask.geometry import Pose
 from factask.model.graph import TaskGraph
 from factask.model.variables import AtFixedPose, InRegion, StartInside, StartOn
 from factask.model.world import TABLE_Z
+from factask.relations.base import Reserve
 from factask.scene.collision import (
     CLEARANCE,
     MAX_TRIES_PER_OBJECT,
@@ -43,6 +44,7 @@ from factask.scene.objects import (
     placement_area,
     rest_surface_z,
     resting_pose,
+    yaw_rotation_2d,
 )
 from factask.sim.pile import is_pile, layout_area, place_pile
 from factask.sim.rope import is_rope, place_rope
@@ -103,19 +105,47 @@ _CANDIDATE_BATCHES = (8, 32)
 
 
 def _first_free_on_table(occ: Occupancy, obj: SceneObject, placement: object,
-                         rng: np.random.Generator, k: int) -> Pose | None:
+                         rng: np.random.Generator, k: int,
+                         reserves: Sequence[Reserve] = ()) -> Pose | None:
     """The first of ``k`` random table poses of ``obj`` that is free (as
-    :func:`first_free` on all of them, whose random draws it makes all at once)."""
+    :func:`first_free` on all of them, whose random draws it makes all at once),
+    with its ``reserves`` free and inside the workspace too."""
     xy, yaw = _table_draws(obj, placement, rng, k)
     start = 0
     for stop in (*(b for b in _CANDIDATE_BATCHES if b < k), k):
         batch = [resting_pose(obj, x, y, TABLE_Z, a)
                  for (x, y), a in zip(xy[start:stop], yaw[start:stop], strict=True)]
+        if reserves:
+            batch = [p for p in batch
+                     if all(first_free(occ, r, [rp]) for r, rp in _reserved(obj, p, reserves))]
         pose = first_free(occ, obj, batch, solid_fixtures=True)
         if pose is not None:
             return pose
         start = stop
     return None
+
+
+def _reserved(obj: SceneObject, pose: Pose,
+              reserves: Sequence[Reserve]) -> list[tuple[SceneObject, Pose]]:
+    """The rectangles ``obj`` at ``pose`` keeps clear, as flat boxes with their poses."""
+    out = []
+    for i, r in enumerate(reserves):
+        x, y = pose.pos[:2] + yaw_rotation_2d(pose.yaw) @ np.array([r.x, r.y])
+        box = SceneObject(name=f"{obj.name}:reserve{i}", variable=obj.variable, index=0,
+                          kind="box", size=(*r.size, 0.001), color="gray", fixed=True,
+                          symmetry_deg=180.0, mass=0.0, collides=True)
+        out.append((box, Pose.from_xyz_yaw(float(x), float(y), TABLE_Z, pose.yaw)))
+    return out
+
+
+def _layout_reserves(graph: TaskGraph) -> dict[str, list[Reserve]]:
+    """Variable -> the table its instances keep clear for the goals anchored to it."""
+    variables = {v.name: v for v in graph.variables}
+    out: dict[str, list[Reserve]] = {}
+    for f in graph.factors:
+        for r in f.goal.layout_reserves(variables):
+            out.setdefault(r.anchor, []).append(r)
+    return out
 
 
 def _table_draws(obj: SceneObject, placement: object, rng: np.random.Generator,
@@ -173,6 +203,7 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
                  tries: int) -> dict[str, Pose]:
     occ = Occupancy()
     poses: dict[str, Pose] = {}
+    reserves = _layout_reserves(graph)
     for vname in _placement_priority(graph):
         var = graph.variable(vname)
         if is_pile(var) or is_rope(var):
@@ -197,10 +228,14 @@ def _sample_once(graph: TaskGraph, objs: Mapping[str, SceneObject], rng: np.rand
                 if blocked:
                     raise _Placement(inst, f"its fixed pose overlaps {blocked}", retry=False)
             else:
-                pose = _first_free_on_table(occ, obj, var.initial, rng, tries)
+                kept = reserves.get(vname, [])
+                pose = _first_free_on_table(occ, obj, var.initial, rng, tries, kept)
                 if pose is None:
                     where = "its region" if isinstance(var.initial, InRegion) else "the table"
-                    raise _Placement(inst, f"no free spot on {where} in {tries} tries")
+                    room = " with room in front for its goal" if kept else ""
+                    raise _Placement(inst, f"no free spot on {where}{room} in {tries} tries")
+                for box, box_pose in _reserved(obj, pose, kept):
+                    occ.put(box.name, box, box_pose)
             poses[inst] = pose
             occ.put(inst, obj, pose)
     _place_dependents(graph, objs, rng, tries, occ, poses)
@@ -242,7 +277,8 @@ def _physical_overlaps(objs: Mapping[str, SceneObject], obj: SceneObject,
     are often finer than factask's boxes: kit holes), a movable one may not. The
     ``blockers`` are found with no clearance: an author may put objects closer
     than the gap factask's own sampling keeps (Ravens' free-space test is finer)."""
-    return [b for b in blockers if not (obj.fixed and objs[b].fixed)]
+    # A reserve (not in objs) is no body: whether its goal still fits is the solver's.
+    return [b for b in blockers if b in objs and not (obj.fixed and objs[b].fixed)]
 
 
 def _place_given(objs: Mapping[str, SceneObject], occ: Occupancy, poses: dict[str, Pose],
