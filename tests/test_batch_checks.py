@@ -197,3 +197,25 @@ def test_worlds_must_agree_on_what_the_relation_fixes() -> None:
         BatchTargets.stack([next(iter(a.values())), next(iter(b.values()))])
     with pytest.raises(InvalidValueError):
         BatchTargets.stack([])
+
+
+def test_a_rolled_log_is_at_its_target_in_both_checks() -> None:
+    """cylinder-alignment: logs at their targets, rolled about their axes, are placed
+    in the scalar and the batched check alike; a log whose axis is raised 30 deg is not."""
+    name = "cylinder-alignment"
+    graph = _graph(name)
+    objs = objects_by_name(graph)
+    layout, solved = _reset(name, 0)
+    targets: dict[str, Pose] = {}
+    for s in solved.values():
+        targets.update(s.targets(objs))
+
+    def turned(axis: tuple[float, float, float], degrees: float) -> dict[str, Pose]:
+        return {**layout, **{n: Pose(p.pos, quat_mul(p.quat, quat_from_axis_angle(
+            axis, math.radians(degrees)))) for n, p in targets.items()}}
+
+    worlds = [(turned((1.0, 0.0, 0.0), roll), solved, []) for roll in (0.0, 90.0, 180.0, -130.0)]
+    worlds.append((turned((0.0, 1.0, 0.0), 30.0), solved, []))
+    _compare(name, worlds)
+    assert [check_task(graph, solved, w[0], objects=objs).success for w in worlds] == [
+        True, True, True, True, False]

@@ -69,11 +69,14 @@ def tilts_deg(quat: np.ndarray) -> np.ndarray:
 
 
 def upright_tilts_deg(obj: SceneObject, quat: np.ndarray) -> np.ndarray:
-    """Tilt from upright in degrees; 0 for spheres (see
+    """Tilt from upright in degrees; 0 for spheres, a log's axis's slope (see
     :func:`~factask.relations.status.upright_tilt_deg`)."""
     q = np.asarray(quat, dtype=float)
     if obj.kind in SPHERE_KINDS:
         return np.zeros(q.shape[:-1])
+    if obj.kind == "log":  # the slope of the x axis: its rolls about x do not count
+        w, x, y, z = np.moveaxis(q, -1, 0)
+        return np.degrees(np.arcsin(np.clip(np.abs(2 * (x * z - w * y)), 0.0, 1.0)))
     return tilts_deg(q)
 
 

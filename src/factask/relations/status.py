@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from factask.geometry import Pose, tilt_deg, yaw_error_deg
+from factask.geometry import Pose, tilt_deg, without_roll, yaw_error_deg
 from factask.model.errors import FactaskError
 from factask.model.tolerances import Tolerances
 from factask.relations.solving import SolvedFactor
@@ -117,8 +117,11 @@ class Verdict:
 
 
 def upright_tilt_deg(obj: SceneObject, pose: Pose) -> float:
-    """Tilt from upright in degrees (0 for spheres, which have no upright)."""
-    return 0.0 if obj.kind in SPHERE_KINDS else tilt_deg(pose.quat)
+    """Tilt from upright in degrees (0 for spheres, which have no upright; a log's
+    axis's slope, however far it has rolled about it)."""
+    if obj.kind in SPHERE_KINDS:
+        return 0.0
+    return tilt_deg(without_roll(pose.quat) if obj.kind == "log" else pose.quat)
 
 
 def slot_error(obj: SceneObject, pose: Pose, target: Pose, tol: Tolerances,
