@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_batch_checks import LIBRARY, _graph, _reset, _world
+from test_batch_checks import LIBRARY, _graph, _reset, _world, rolled_log_worlds
 
 from factask.batch.checks import check_factor_batch
 from factask.batch.scene import BatchScene
@@ -64,6 +64,10 @@ def _compare(name: str, worlds: list[tuple[dict[str, Pose], dict[str, SolvedFact
 def test_device_slot_checks_equal_the_numpy_ones(name: str, seeds: list[int],
                                                  data: st.DataObject) -> None:
     _compare(name, [_world(data, name, s) for s in seeds])
+
+
+def test_a_rolled_log_fits_its_slot_on_the_device_as_in_numpy() -> None:
+    _compare("cylinder-alignment", rolled_log_worlds())
 
 
 def test_worlds_that_are_not_one_to_one_are_solved_as_numpy_solves_them() -> None:

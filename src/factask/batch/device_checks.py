@@ -46,9 +46,21 @@ DEVICE_SLOT_KINDS = ("at_pose", "stack", "row", "circle", "aligned")
 _DEG = wp.constant(wp.float64(180.0 / math.pi))
 
 
+#: How an object's tilt is measured (:func:`~factask.relations.status.upright_tilt_deg`):
+#: its z axis from world z; not at all (a sphere); its x axis's slope (a log, which may
+#: have rolled about it).
+_TILT_Z, _TILT_NONE, _TILT_AXIS = wp.constant(0), wp.constant(1), wp.constant(2)
+
+
+def _tilt_rule(obj: SceneObject) -> int:
+    if obj.kind in SPHERE_KINDS:
+        return 1
+    return 2 if obj.kind == "log" else 0
+
+
 @wp.kernel
 def slot_fits(poses: wp.array3d(dtype=wp.float64), held: wp.array2d(dtype=wp.int32),
-              cols: wp.array(dtype=wp.int32), sphere: wp.array(dtype=wp.int32),
+              cols: wp.array(dtype=wp.int32), tilt_rule: wp.array(dtype=wp.int32),
               symmetry: wp.array(dtype=wp.float64), target: wp.array4d(dtype=wp.float64),
               matches: wp.array3d(dtype=wp.int32), slot_yaw: wp.array2d(dtype=wp.float64),
               tol: wp.vec4d, check_yaw: wp.int32,
@@ -65,10 +77,14 @@ def slot_fits(poses: wp.array3d(dtype=wp.float64), held: wp.array2d(dtype=wp.int
     qx = poses[w, c, 4]
     qy = poses[w, c, 5]
     qz = poses[w, c, 6]
-    if sphere[i] == 0:
+    if tilt_rule[i] == _TILT_Z:
         zz = qw * qw - qx * qx - qy * qy + qz * qz
         zz = wp.clamp(zz, wp.float64(-1.0), wp.float64(1.0))
         ok = ok and wp.acos(zz) * _DEG <= tol[3]
+    elif tilt_rule[i] == _TILT_AXIS:
+        xz = wp.float64(2.0) * (qx * qz - qw * qy)
+        xz = wp.clamp(wp.abs(xz), wp.float64(0.0), wp.float64(1.0))
+        ok = ok and wp.asin(xz) * _DEG <= tol[3]
     if check_yaw != 0 and symmetry[i] > wp.float64(0.0):
         yaw = wp.atan2(wp.float64(2.0) * (qw * qz + qx * qy),
                        wp.float64(1.0) - wp.float64(2.0) * (qy * qy + qz * qz))
@@ -189,7 +205,7 @@ class DeviceSlotCheck:
         self.shape = (targets.num_worlds, len(targets.objects), targets.matches.shape[2])
         with wp.ScopedDevice(device):
             self.cols = wp.array([index[o] for o in targets.objects], dtype=wp.int32)
-            self.sphere = wp.array([int(o.kind in SPHERE_KINDS) for o in objs], dtype=wp.int32)
+            self.tilt_rule = wp.array([_tilt_rule(o) for o in objs], dtype=wp.int32)
             self.symmetry = wp.array([float(o.symmetry_deg) for o in objs], dtype=wp.float64)
             self.target = wp.array(targets.target_pos(objects), dtype=wp.float64)
             self.matches = wp.array(targets.matches.astype(np.int32), dtype=wp.int32)
@@ -214,7 +230,7 @@ class DeviceSlotCheck:
             satisfied = wp.zeros(w, dtype=wp.int32)
             if n and m:
                 wp.launch(slot_fits, dim=(w, n, m),
-                          inputs=[poses, held, self.cols, self.sphere, self.symmetry,
+                          inputs=[poses, held, self.cols, self.tilt_rule, self.symmetry,
                                   self.target, self.matches, self.slot_yaw, self.tol,
                                   int(self.check_yaw)], outputs=[fits])
             wp.launch(assign_simple, dim=w, inputs=[fits, int(self.chain)],
