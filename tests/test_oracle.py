@@ -122,6 +122,34 @@ def test_oracle_replans_after_a_placed_object_is_displaced() -> None:
         env.close()
 
 
+def test_oracle_clears_what_a_later_goal_moves_from_under_a_target() -> None:
+    """construct-corner-blocks, seed 6: the blue block starts in the open square under
+    the green block's target (the green rests on the two red blocks' corners above
+    it). Set down there, the green would rest on the blue one too, and taking the blue
+    up for its own goal would pull the green off: the oracle moves the blue first."""
+    from factask.scene.collision import beneath
+
+    graph = get_task("construct-corner-blocks")
+    env = FactaskEnv(graph)
+    try:
+        env.reset(seed=6)
+        target = env.solved["junction_corner"].targets(env.objects)["green_block"]
+        assert beneath("green_block", target, env.objects, env.object_poses()) == [
+            "blue_block"]
+        oracle = Oracle(env, seed=6)
+        whys = []
+        for _ in range(graph.max_actions()):
+            planned = oracle.plan()
+            if planned is None:
+                break
+            whys.append(planned.purpose)
+            env.step(planned.as_env_action())
+        assert whys[2] == "clear under the target of green_block", whys
+        assert env.status().success, oracle.failure
+    finally:
+        env.close()
+
+
 # ------------------------------------------------------------ success definitions
 def test_episode_success_is_reward_threshold() -> None:
     """EpisodeResult.success is ``reward >= SUCCESS_REWARD`` (0.99)."""

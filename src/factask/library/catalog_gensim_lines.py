@@ -18,9 +18,11 @@ from factask.library.builders import (
     use,
     var,
 )
-from factask.library.conventions import BALL, BLOCK, CYLINDER, FIVE, FOUR, LINE, NEAR
+from factask.library.conventions import BALL, BLOCK, CORNER, CYLINDER, FIVE, FOUR, LINE, NEAR
 from factask.library.templates import match_pairs
-from factask.model import StateVariable, TaskGraph
+from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
+from factask.relations import AtPose, TargetPose
+from factask.scene.objects import corner_arm_width
 
 PALLET = (0.20, 0.20, 0.0375)
 #: A pallet with room for four slot frames side by side.
@@ -220,3 +222,57 @@ def colored_cylinder_in_square() -> TaskGraph:
                     "square, between its red and green edges.",
                     along, use("align_along_line", objects=cylinders[4],
                                line=[edges[0], edges[2]]))
+
+
+#: The corner marker's inner vertex in its own frame (x = y), see corner_vertex.
+_VERTEX = -CORNER[0] / 2 + corner_arm_width(CORNER)
+#: Between the two base blocks along the corner's arms (they would touch corners).
+_BASE_GAP = 0.002
+#: A base block's centre along its arm, from the vertex: the square at the junction
+#: stays open, a block's side plus the gap.
+_ALONG = BLOCK[0] * 1.5 + _BASE_GAP
+#: The top block's centre from the vertex (on the diagonal): over the open square's
+#: far corner, resting on one corner of each base block (1.9 x 1.9 cm each).
+_JUNCTION = BLOCK[0] + _BASE_GAP / 2
+
+#: A corner of blocks: two along the corner's arms, one bridging them at the junction.
+#: One task uses it (not registered, see templates.TEMPLATES).
+_CORNER_JUNCTION = SubtaskTemplate(
+    name="corner_junction",
+    description="Put the {base} along the two arms of the {corner} and the {top} on both "
+                "of them where the arms meet.",
+    slots=[TemplateSlot(name="base", description="two blocks, one per arm", kinds=["block"],
+                        many=True, movable=True),
+           TemplateSlot(name="top", description="the block bridging them", kinds=["block"],
+                        movable=True),
+           TemplateSlot(name="corner", description="the corner marker", kinds=["corner"])],
+    factors=[
+        SubtaskFactor(
+            name="base", description="put the {base} along the two arms of the {corner}",
+            goal=AtPose(objects=["base"], frame="corner", check_yaw=False, poses=[
+                TargetPose(x=_VERTEX + _ALONG, y=_VERTEX + BLOCK[1] / 2),
+                TargetPose(x=_VERTEX + BLOCK[0] / 2, y=_VERTEX + _ALONG)])),
+        SubtaskFactor(
+            name="junction", description="put the {top} on the {base} where the arms meet",
+            after=["base"],
+            # Its height is given: its centre is over the open square, not over a block.
+            goal=AtPose(objects=["top"], frame="corner", check_yaw=False, poses=[
+                TargetPose(x=_VERTEX + _JUNCTION, y=_VERTEX + _JUNCTION,
+                           z=BLOCK[2] * 1.5 - CORNER[2] / 2)])),
+    ],
+)
+
+
+@register("construct-corner-blocks", family="corners")
+def construct_corner_blocks() -> TaskGraph:
+    corner = var("corner", "corner", "gray", CORNER, description="the corner marker")
+    reds = var("red_blocks", "block", "red", BLOCK, count=2)
+    green, blue = colored("block", ("green", "blue"), BLOCK)
+    junction = _CORNER_JUNCTION.instantiate(prefix="corner", base=reds, top=green,
+                                            corner=corner)
+    return assemble("construct-corner-blocks",
+                    "Build a corner of blocks: the two red blocks along the corner's two "
+                    "arms, the green block on both of them where the arms meet, then the "
+                    "blue block on top of the green one.",
+                    junction, use("place_on_top", objects=blue, support=green,
+                                  after=[junction]))

@@ -358,6 +358,19 @@ def occupying(name: str, target: Pose, objects: Mapping[str, SceneObject],
     return out
 
 
+def beneath(name: str, target: Pose, objects: Mapping[str, SceneObject],
+            poses: Mapping[str, Pose]) -> list[str]:
+    """Free objects (other than ``name``) under the footprint ``name`` takes at
+    ``target``, wholly below it: what it would rest on, or hover over."""
+    me = objects[name]
+    bottom = target.pos[2] - me.half[2]
+    corners = footprint_corners(me, target, margin=-0.002)
+    return [other for other, obj in objects.items()
+            if other != name and not obj.fixed and obj.collides
+            and top_z(obj, poses[other]) <= bottom + REST_EPS
+            and bool(obb_overlaps(corners, footprint_corners(obj, poses[other]))[0, 0])]
+
+
 def parking_spot(name: str, objects: Mapping[str, SceneObject], poses: Mapping[str, Pose],
                  reserved: Iterable[tuple[SceneObject, Pose]], rng: np.random.Generator,
                  clearance: float, samples: int) -> Pose | None:

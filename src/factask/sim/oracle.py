@@ -38,8 +38,9 @@ from factask.model.kinds import yaw_symmetry_deg
 from factask.relations.pile_in_zone import PileInZone
 from factask.relations.rope import RopeAlong
 from factask.relations.status import MAX_TILT_DEG, FactorStatus
-from factask.scene.collision import occupying, parking_spot, resting_on
+from factask.scene.collision import beneath, occupying, parking_spot, resting_on
 from factask.scene.objects import SPHERE_KINDS, SceneObject
+from factask.sim.checks import TaskStatus
 from factask.sim.env import FactaskEnv
 from factask.sim.low_carry import CarryAction
 from factask.sim.pick_points import pick_and_place_points
@@ -131,6 +132,11 @@ class Oracle:
             return None
         return self._action(self.env.objects[name], poses[name], spot, factor, why)
 
+    def _moved_later(self, fname: str, status: TaskStatus) -> set[str]:
+        """Objects a goal other than ``fname``, not satisfied yet, has still to place."""
+        return {o for f, fs in status.factors.items() if f != fname and not fs.satisfied
+                for o in self.env.solved[f].objects if o not in fs.placed}
+
     # ------------------------------------------------------------------- act
     def plan(self) -> OracleAction | PushAction | CarryAction | None:
         """The next action, or None when done or giving up (see :attr:`failure`)."""
@@ -178,6 +184,16 @@ class Oracle:
             blockers = occupying(name, targets[name], objs, poses, keep=fstatus.placed)
             if blockers:
                 return self._move_away(blockers[0], poses, fname, f"clear the target of {name}")
+            # Something under the target that a goal still to do will move, and that the
+            # goal does not mean it to rest on: move it now, or taking it later pulls it
+            # from under (or bumps) what rests there. (A support the goal names may be
+            # moved later on purpose: towers-of-hanoi's disks.)
+            solved = env.solved[fname]
+            meant = {*solved.supports, *solved.support_group}
+            later = self._moved_later(fname, status) - meant
+            under = [o for o in beneath(name, targets[name], objs, poses) if o in later]
+            if under:
+                return self._move_away(under[0], poses, fname, f"clear under the target of {name}")
             self.attempts[(fname, name)] += 1
             if self.attempts[(fname, name)] > MAX_ATTEMPTS_PER_OBJECT:
                 self.failure = (f"factor {fname!r}: could not place {name!r} after "
