@@ -8,7 +8,8 @@ Piles here are smaller than Ravens' 50 blocks where a task has several, so the
 scene stays within the graph model's object limit.
 
 A rope (kind ``rope``) is a chain of linked segments; ``lay_rope_along`` lays
-one straight along a line (``rope_along``, Ravens' 2 cm tolerance per segment).
+one straight along a line (``rope_along``, Ravens' 2 cm tolerance per segment);
+connect-boxes-with-rope lays one from a block to another (its own template).
 
 The templates of these tasks are defined here, beside their kinds, and added to
 the library's registry (:data:`factask.library.templates.TEMPLATES`) on import.
@@ -31,6 +32,7 @@ from factask.model import (
 from factask.model.tolerances import Tolerances
 from factask.model.world import WORKSPACE_Y
 from factask.relations import PileInZone, RopeAlong
+from factask.relations.rope import ANCHOR_GAP, SLOT_PITCH
 
 #: A Ravens small block: a 1 cm cube.
 SMALL_BLOCK = (0.01, 0.01, 0.01)
@@ -276,4 +278,40 @@ def push_piles_into_letter() -> TaskGraph:
         "pile into its stem, the blue pile into its foot.",
         use("push_pile_into_zone", prefix="stem", objects=[stem_pile], zone=stem),
         use("push_pile_into_zone", prefix="foot", objects=[foot_pile], zone=foot),
+    )
+
+
+#: A rope from one anchor to another (a block beside each end: GenSim's
+#: connect-boxes-with-rope). One task uses it (not registered, see templates.TEMPLATES).
+_CONNECT_WITH_ROPE = SubtaskTemplate(
+    name="connect_with_rope",
+    description="Lay the {rope} straight from the {start} to the {end}.",
+    slots=[TemplateSlot(name="rope", description="the rope", kinds=["rope"], movable=True),
+           TemplateSlot(name="start", description="the anchor at the rope's one end"),
+           TemplateSlot(name="end", description="the anchor at the rope's other end")],
+    factors=[SubtaskFactor(
+        name="rope_along", description="lay the {rope} from the {start} to the {end}",
+        goal=RopeAlong(objects=["rope"], start="start", end="end", tolerances=ROPE_TOLERANCE),
+    )],
+)
+
+#: A Ravens block (4 cm cube).
+BLOCK = (0.04, 0.04, 0.04)
+
+
+@register("connect-boxes-with-rope")
+def connect_boxes_with_rope() -> TaskGraph:
+    # Two fixed blocks across the table, as far apart as the rope's run needs: its
+    # slots fill the space between their faces, with the anchor gap at each end.
+    rope = _rope("yellow")
+    apart = BLOCK[0] + 2 * ANCHOR_GAP + ROPE_SEGMENTS * ROPE_SEGMENT[0] * SLOT_PITCH
+    red = var("red_block", "block", "red", BLOCK, fixed=True, initial=at(0.5, -apart / 2),
+              description="the red block")
+    blue = var("blue_block", "block", "blue", BLOCK, fixed=True, initial=at(0.5, apart / 2),
+               description="the blue block")
+    return assemble(
+        "connect-boxes-with-rope",
+        "Connect the red and the blue block with the rope: lay it straight from one "
+        "block to the other.",
+        _CONNECT_WITH_ROPE.instantiate(rope=rope, start=red, end=blue),
     )

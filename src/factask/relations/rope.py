@@ -260,13 +260,13 @@ def run_yaw(points: np.ndarray, k: int) -> float:
 def rope_slot_order(targets: Mapping[str, int], n: int,
                     distance: Mapping[str, float], far_end: float = 0.5,
                     bend: Mapping[str, float] | None = None,
-                    kink_deg: float = 90.0, near: float = 0.04) -> str:
+                    kink_deg: float = 90.0, near: float = 0.04, first_end: int = 0) -> str:
     """The segment to place next.
 
-    1. The one for the run's first slot, then the one for its last (pulling the
-       rope out straight behind it), each while it is at least ``far_end`` times as
-       far off as the farthest segment (one a little off waits: moving an end drags
-       the rope).
+    1. The one for the run's ``first_end`` slot (its first, 0, or its last), then
+       the one for the other end (pulling the rope out straight behind it), each
+       while it is at least ``far_end`` times as far off as the farthest segment
+       (one a little off waits: moving an end drags the rope).
     2. The segment turned farthest from the run's direction, by more than
        ``kink_deg``, among those within ``near`` of their slots: a fold, which holds
        rope the ends lack (placing the ends again would only drag it along).
@@ -283,10 +283,11 @@ def rope_slot_order(targets: Mapping[str, int], n: int,
             holds rope). None: no folds are looked for.
         kink_deg: See above.
         near: See above (m).
+        first_end: The slot (0 or ``n - 1``) whose end goes first.
     """
     by_slot = {slot: name for name, slot in targets.items()}
     far = max(targets, key=lambda name: distance[name])
-    for end in (0, n - 1):
+    for end in ((0, n - 1) if first_end == 0 else (n - 1, 0)):
         name = by_slot.get(end)
         if name is not None and distance[name] >= far_end * distance[far]:
             return name
