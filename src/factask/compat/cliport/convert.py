@@ -292,6 +292,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
         tol = Tolerances(xy=pos_eps, yaw_deg=rot_eps_deg)
     extra: list[StateVariable] = []
     taken = set(names.values())
+    spacing: dict[int, float] = {}  # goal index -> distance between side-by-side copies
     for g in goals:
         rows = [i for i in range(len(g.objs)) if g.metric != "pose" or g.matches[i].any()]
         if len(rows) < len(g.objs):
@@ -299,7 +300,12 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
                  "(a zero row of matches); they are left out")
             g.objs = [g.objs[i] for i in rows]
             g.matches = g.matches[rows, :]
-        share_targets(g, warn, spread=SEPARATE_LIMIT * pos_eps)
+        gap = share_targets(g, warn, spread=SEPARATE_LIMIT * pos_eps)
+        if gap is not None and gap / 2 < pos_eps:
+            spacing[g.index] = gap
+            warn(f"goal {g.index}: its copies side by side are {gap * 1000:.1f} mm apart; "
+                 f"position tolerance {gap / 2 * 1000:.1f} mm (was {pos_eps * 1000:.1f}), so "
+                 "each object is within it of its own copy only")
     shifted = separate_targets([g for g in goals if not in_ropes & {o.obj_id for o in g.objs}],
                                SEPARATE_LIMIT * pos_eps)
     for index, shift in sorted(shifted.items()):
@@ -321,9 +327,9 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
             continue
         objs = [names[o.obj_id] for o in g.objs]
         extra_kw = {"tolerances": tol} if tol is not None else {}
-        if g.index in shifted:
-            extra_kw = {"tolerances": Tolerances(xy=pos_eps - shifted[g.index],
-                                                 yaw_deg=rot_eps_deg)}
+        if g.index in shifted or g.index in spacing:
+            xy = min(pos_eps - shifted.get(g.index, 0.0), spacing.get(g.index, math.inf) / 2)
+            extra_kw = {"tolerances": Tolerances(xy=xy, yaw_deg=rot_eps_deg)}
         rope_rel = rope_goal(g, ropes, extra_kw) if in_ropes else None
         if rope_rel is not None:  # a rope's beads laid on their targets
             rel: Any = rope_rel

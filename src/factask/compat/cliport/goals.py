@@ -22,7 +22,12 @@ from scipy.optimize import linear_sum_assignment
 
 from factask.compat.cliport.errors import CliportImportError, Unsupported
 from factask.compat.cliport.recorder import RecordedObject, Session
-from factask.compat.cliport.transforms import split_pose, xyzw_to_wxyz, yaw_of_xyzw
+from factask.compat.cliport.transforms import (
+    footprint_separation,
+    split_pose,
+    xyzw_to_wxyz,
+    yaw_of_xyzw,
+)
 from factask.geometry import tilt_deg
 from factask.model.kinds import kind_spec
 from factask.model.tolerances import Z_TOLERANCE
@@ -94,6 +99,12 @@ def read_goals(task: Any, session: Session) -> list[RecordedGoal]:
                        dtype=float)
         if m.ndim == 1 and len(ids) == 1:
             m = m.reshape(1, -1)
+        if m.ndim == 2 and m.shape[0] > len(ids):
+            # Ravens reads row i for object i only: rows past the objects (a matrix
+            # written for the objects a short symmetries list dropped) are never read.
+            session.warn(f"goal {i}: matches has {m.shape[0]} row(s) for {len(ids)} "
+                         "object(s); the extra rows are ignored, as Ravens ignores them")
+            m = m[:len(ids)]
         if metric == "pose" and m.ndim == 2 and m.shape[0] == len(ids) \
                 and m.shape[1] != len(targets):
             # Ravens only looks at the matrix's columns: extra targets are never matched,
@@ -141,13 +152,30 @@ def _zone_list(params: Any) -> list[Any]:
 
 
 
+@dataclass(frozen=True)
+class _Foot:
+    """A footprint as the author turned it: centre, yaw, half extents; a round one
+    (ball, cylinder, bowl) is a disc whose radius is ``half[0]``."""
+
+    x: float
+    y: float
+    yaw: float
+    half: tuple[float, float]
+    round: bool
+
+
+def _foot(x: float, y: float, size: tuple[float, float, float], yaw: float,
+          kind: str) -> _Foot:
+    return _Foot(x, y, yaw, (size[0] / 2, size[1] / 2), kind_spec(kind).round)
+
+
 @dataclass
 class _Slot:
     key: tuple[int, int]
     x: float
     y: float
     z: float
-    half: tuple[float, float]
+    foot: _Foot
     height: float
     objects: frozenset[int]  # ids of the objects that may take the target
     certain: bool  # every target of its goal gets an object (not a choice among them)
@@ -163,10 +191,27 @@ def half_xy(size: tuple[float, float, float], yaw: float) -> tuple[float, float]
     return c * hx + s * hy, s * hx + c * hy
 
 
-def _overlap(ax: float, ay: float, ah: tuple[float, float], bx: float, by: float,
-             bh: tuple[float, float]) -> bool:
-    return (abs(ax - bx) < ah[0] + bh[0] - OVERLAP_SHRINK
-            and abs(ay - by) < ah[1] + bh[1] - OVERLAP_SHRINK)
+def _overlap(a: _Foot, b: _Foot) -> bool:
+    """Whether two footprints overlap by more than ``OVERLAP_SHRINK``, turned as the
+    author turned them (not the boxes around them: a sphere between two blocks of a
+    row turned 45 degrees is not on either block)."""
+    if a.round and b.round:
+        return math.hypot(a.x - b.x, a.y - b.y) < a.half[0] + b.half[0] - OVERLAP_SHRINK
+    # A disc against a rectangle: the square around the disc, square to the rectangle.
+    ya = b.yaw if a.round else a.yaw
+    yb = a.yaw if b.round else b.yaw
+    move = footprint_separation((np.array([a.x, a.y]), ya, a.half),
+                                (np.array([b.x, b.y]), yb, b.half))
+    return move is not None and float(np.linalg.norm(move)) > OVERLAP_SHRINK
+
+
+def _centre_on(a: _Foot, b: _Foot) -> bool:
+    """Whether ``a``'s centre lies strictly inside footprint ``b``."""
+    dx, dy = a.x - b.x, a.y - b.y
+    if b.round:
+        return math.hypot(dx, dy) < b.half[0]
+    c, s = math.cos(b.yaw), math.sin(b.yaw)
+    return abs(c * dx + s * dy) < b.half[0] and abs(-s * dx + c * dy) < b.half[1]
 
 
 def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
@@ -193,10 +238,12 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             if not allowed:
                 continue
             yaw = yaw_of_xyzw(quat)
-            size = max((o.size for o in allowed), key=lambda s: s[2])
+            tallest = max(allowed, key=lambda o: o.size[2])
+            size = tallest.size
             receptacle = all(kind_spec(o.kind).receptacle for o in allowed)
             slots.append(_Slot((g.index, j), float(pos[0]), float(pos[1]), float(pos[2]),
-                               half_xy(size, yaw), size[2],
+                               _foot(float(pos[0]), float(pos[1]), size, yaw, tallest.kind),
+                               size[2],
                                frozenset(o.obj_id for o in allowed),
                                len(g.objs) >= len(g.targets),
                                max(floor_thickness(o.kind) for o in allowed)
@@ -212,8 +259,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         # factask builds taller than the author's size hint still carries the row
         # the author put 3.5 cm up, and every layer stacked on that row).
         placed = top if o.placed_top is None else o.placed_top
-        fixed.append((float(o.pos[0]), float(o.pos[1]), half_xy(o.size, yaw_of_xyzw(o.quat)),
-                      top, placed, spec.receptacle))
+        fixed.append((_foot(float(o.pos[0]), float(o.pos[1]), o.size, yaw_of_xyzw(o.quat),
+                            o.kind), top, placed, spec.receptacle))
     out: dict[tuple[int, int], float] = {}
     done: list[tuple[_Slot, float]] = []
     # In queue order (then the author's z within a goal), as the robot places them:
@@ -226,8 +273,8 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         done = [(other, z) for other, z in done if other.key[0] == slot.key[0]
                 or not other.objects <= goal_objects[slot.key[0]]]
         support, on_floor = 0.0, True
-        for fx, fy, fh, top, placed, receptacle in fixed:
-            if (placed <= slot.z and _overlap(slot.x, slot.y, slot.half, fx, fy, fh)
+        for foot, top, placed, receptacle in fixed:
+            if (placed <= slot.z and _overlap(slot.foot, foot)
                     and top > support):
                 support, on_floor = top, receptacle
         for other, z in done:
@@ -241,11 +288,10 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
             # one is: it supports this one if it stands right under its centre (a
             # tower sent to one point); neighbours (kit holes, a row) do not stack.
             if other.z < slot.z - OVERLAP_SHRINK:
-                below = _overlap(slot.x, slot.y, slot.half, other.x, other.y, other.half)
+                below = _overlap(slot.foot, other.foot)
             else:
                 below = (other.key[0] < slot.key[0] and other.z <= slot.z + Z_TOLERANCE
-                         and abs(slot.x - other.x) < other.half[0]
-                         and abs(slot.y - other.y) < other.half[1])
+                         and _centre_on(slot.foot, other.foot))
             if not below:
                 continue
             if other.floor is not None:

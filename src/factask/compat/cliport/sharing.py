@@ -16,6 +16,7 @@ import numpy as np
 
 from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject
+from factask.compat.cliport.transforms import footprint_separation as _separation
 from factask.compat.cliport.transforms import yaw_of_xyzw
 from factask.model.kinds import kind_spec
 from factask.model.tolerances import Z_TOLERANCE
@@ -34,7 +35,7 @@ def _ring(count: int, objs: list[RecordedObject]) -> float:
     return width / 2 / math.sin(math.pi / count)
 
 
-def share_targets(goal: RecordedGoal, warn: Any, spread: float = 0.0) -> None:
+def share_targets(goal: RecordedGoal, warn: Any, spread: float = 0.0) -> float | None:
     """Give each object of a pose goal that shares its targets (``replace=True``, more
     objects than targets) a copy of a target of its own: copies at one point stacked,
     or side by side around it when the objects cannot carry one another.
@@ -50,10 +51,17 @@ def share_targets(goal: RecordedGoal, warn: Any, spread: float = 0.0) -> None:
     touching its neighbours, when the ring's radius is within ``spread`` (the author's
     ``pos_eps`` less a margin: every copy stays within the author's tolerance of the
     target, so Ravens' XY check holds too); otherwise they are stacked as before.
+
+    Returns:
+        The distance (m) between neighbouring copies side by side, the smallest over
+        the goal's rings, or None when no copies are side by side. A position
+        tolerance of half that tells the copies apart: with a wider one (a bowl's
+        5 cm for 3 cm balls 4.3 cm apart) one ball is within tolerance of both copies,
+        and the oracle took the copy it stands on for free and put the next ball on it.
     """
     n, m = len(goal.objs), len(goal.targets)
     if goal.metric != "pose" or not goal.replace or n <= m or m == 0:
-        return
+        return None
     taken = [0] * m
     owner: list[int] = []  # the target each object's copy is of
     for i in range(n):
@@ -63,6 +71,7 @@ def share_targets(goal: RecordedGoal, warn: Any, spread: float = 0.0) -> None:
         taken[j] += 1
     targets, matches_cols = [], []
     ringed: list[bool] = []  # per shared target: side by side (True) or stacked
+    spacing: float | None = None
     for j, (pos, quat) in enumerate(goal.targets):
         allowed = [o for i, o in enumerate(goal.objs) if goal.matches[i, j]]
         height = max((o.size[2] for o in allowed), default=0.0)
@@ -79,6 +88,9 @@ def share_targets(goal: RecordedGoal, warn: Any, spread: float = 0.0) -> None:
             matches_cols.append(goal.matches[:, j])
         if k_all > 1:
             ringed.append(ring <= spread)
+            if ring <= spread:
+                gap = 2 * ring * math.sin(math.pi / k_all)
+                spacing = gap if spacing is None else min(spacing, gap)
     goal.targets = targets
     goal.matches = np.stack(matches_cols, axis=1).astype(int)
     stacked = "/".join(str(t) for t, r in zip([t for t in taken if t > 1], ringed,
@@ -90,29 +102,7 @@ def share_targets(goal: RecordedGoal, warn: Any, spread: float = 0.0) -> None:
                         "one another)"] if side else []))
     warn(f"goal {goal.index}: {n} objects share {m} target pose(s) (replace=True; Ravens "
          f"checks XY only): each gets a copy of one, {how}")
-
-
-def _separation(a: tuple[np.ndarray, float, tuple[float, float]],
-                b: tuple[np.ndarray, float, tuple[float, float]]) -> np.ndarray | None:
-    """The shortest XY move of footprint ``b`` that clears footprint ``a`` (both
-    turned rectangles: centre, yaw, half extents), or None if they do not overlap."""
-    axes = [np.array([math.cos(y), math.sin(y)]) for _, y, _ in (a, b)]
-    axes += [np.array([-v[1], v[0]]) for v in axes]
-    gap = b[0] - a[0]
-    best: np.ndarray | None = None
-    depth = math.inf
-    for n in axes:
-        reach = 0.0
-        for _, yaw, (hx, hy) in (a, b):
-            u = np.array([math.cos(yaw), math.sin(yaw)])
-            reach += hx * abs(float(u @ n)) + hy * abs(float(u[1] * n[0] - u[0] * n[1]))
-        d = float(gap @ n)
-        overlap = reach - abs(d)
-        if overlap <= 0:
-            return None
-        if overlap < depth:
-            depth, best = overlap, n * overlap * (1.0 if d >= 0 else -1.0)
-    return best
+    return spacing
 
 
 def separate_targets(goals: list[RecordedGoal], limit: float) -> dict[int, float]:

@@ -21,8 +21,8 @@ import numpy as np
 
 from factask.compat.cliport.goals import half_xy
 from factask.compat.cliport.recorder import RecordedObject
-from factask.compat.cliport.sharing import SEPARATE_GAP, SEPARATE_ROUNDS, _separation
-from factask.compat.cliport.transforms import xyzw_to_wxyz, yaw_of_xyzw
+from factask.compat.cliport.sharing import SEPARATE_GAP, SEPARATE_ROUNDS
+from factask.compat.cliport.transforms import footprint_separation, xyzw_to_wxyz, yaw_of_xyzw
 from factask.geometry import Pose, tilt_deg
 from factask.model.kinds import WALL_THICKNESS, kind_spec
 from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn
@@ -77,14 +77,14 @@ def separate_starts(objects: list[RecordedObject], movable: set[int], names: dic
     solid = [o for o in objects if kind_spec(o.kind).collides]
     pairs = [(a, b) for i, a in enumerate(solid) for b in solid[i + 1:]
              if (a.obj_id in movable or b.obj_id in movable)
-             and _separation(_footprint(a), _footprint(b)) is not None]
+             and footprint_separation(_footprint(a), _footprint(b)) is not None]
     if not pairs:
         return
     start = {o.obj_id: np.array(o.pos, dtype=float) for o in solid}
     for _ in range(SEPARATE_ROUNDS):
         pushed = False
         for a, b in pairs:
-            move = _separation(_footprint(a), _footprint(b))
+            move = footprint_separation(_footprint(a), _footprint(b))
             if move is None:
                 continue
             move = move * (1 + 2 * SEPARATE_GAP / max(float(np.linalg.norm(move)), 1e-9))
@@ -97,7 +97,7 @@ def separate_starts(objects: list[RecordedObject], movable: set[int], names: dic
         if not pushed:
             break
     shifts = {o.obj_id: float(np.linalg.norm(o.pos[:2] - start[o.obj_id][:2])) for o in solid}
-    left = any(_separation(_footprint(a), _footprint(b)) is not None for a, b in pairs)
+    left = any(footprint_separation(_footprint(a), _footprint(b)) is not None for a, b in pairs)
     if left or max(shifts.values()) > limit:
         for o in solid:
             o.pos = start[o.obj_id]

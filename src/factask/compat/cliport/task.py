@@ -130,6 +130,19 @@ class Task:
             return obj_ids
         if symmetries is None:
             symmetries = [0.0] * len(obj_ids)
+        if np.ndim(symmetries) == 0:
+            # One number for every object (GenSim's zip would raise on it).
+            active_session().warn(f"add_goal: symmetries={symmetries!r} is one number; it "
+                                  "is every object's symmetry")
+            symmetries = [symmetries] * len(obj_ids)
+        symmetries = list(symmetries)
+        if len(symmetries) < len(obj_ids):
+            # GenSim zips the two lists: the objects past the symmetries drop out of
+            # the goal (Ravens never checks them), whatever the author meant.
+            active_session().warn(
+                f"add_goal: {len(symmetries)} symmetr{'y' if len(symmetries) == 1 else 'ies'} "
+                f"for {len(obj_ids)} objects; as in GenSim (zip_obj_ids) the goal keeps the "
+                f"first {len(symmetries)} object(s) only")
         return [(oid, (sym, None)) for oid, sym in zip(obj_ids, symmetries, strict=False)]
 
     def add_goal(self, objs: Any, matches: Any, targ_poses: Any, replace: bool,

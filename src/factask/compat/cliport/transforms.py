@@ -9,6 +9,7 @@ helpers at the bottom convert.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -113,3 +114,34 @@ def wxyz_to_xyzw(quat_wxyz: Any) -> np.ndarray:
     """Reorder a MuJoCo quaternion into PyBullet's (x, y, z, w)."""
     w, x, y, z = (float(c) for c in np.asarray(quat_wxyz, dtype=float).reshape(4))
     return as_quat_xyzw((x, y, z, w))
+
+
+def footprint_separation(a: tuple[np.ndarray, float, tuple[float, float]],
+                         b: tuple[np.ndarray, float, tuple[float, float]]) -> np.ndarray | None:
+    """The shortest XY move of footprint ``b`` that clears footprint ``a``.
+
+    Args:
+        a: A turned rectangle: centre (x, y), yaw (rad), half extents (x, y).
+        b: Another, in the same form.
+
+    Returns:
+        The move (2,), its length the overlap's depth, or None if they do not
+        overlap (separating-axis test on both rectangles' axes).
+    """
+    axes = [np.array([math.cos(y), math.sin(y)]) for _, y, _ in (a, b)]
+    axes += [np.array([-v[1], v[0]]) for v in axes]
+    gap = b[0] - a[0]
+    best: np.ndarray | None = None
+    depth = math.inf
+    for n in axes:
+        reach = 0.0
+        for _, yaw, (hx, hy) in (a, b):
+            u = np.array([math.cos(yaw), math.sin(yaw)])
+            reach += hx * abs(float(u @ n)) + hy * abs(float(u[1] * n[0] - u[0] * n[1]))
+        d = float(gap @ n)
+        overlap = reach - abs(d)
+        if overlap <= 0:
+            return None
+        if overlap < depth:
+            depth, best = overlap, n * overlap * (1.0 if d >= 0 else -1.0)
+    return best
