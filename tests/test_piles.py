@@ -193,6 +193,26 @@ def test_a_push_moves_a_block_along_the_table_and_keeps_the_blade_low() -> None:
     assert min(lowest) == pytest.approx(BLADE_LIFT + BLADE_DEPTH, abs=0.003)
 
 
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_piles_slots_go_beside_a_fixture_standing_in_its_zone(seed: int) -> None:
+    # The ell fixed in the zone: the slots (markers, obstacles at reset) keep clear of
+    # it, instead of the reset refusing the layout (slot collides with the ell).
+    ell = {"name": "red_ell", "kind": "ell", "color": "red", "size": [0.08, 0.08, 0.04],
+           "fixed": True, "initial": {"type": "pose", "x": 0.62, "y": 0.0}}
+    data = _sweep(10, extra=[ell]).to_dict()
+    zone = next(v for v in data["variables"] if v["name"] == "green_zone")
+    zone.update(size=[0.16, 0.16, 0.001], initial={"type": "pose", "x": 0.6, "y": 0.0})
+    graph = parse_graph(data)
+    layout, solved = reset_layout(graph, np.random.default_rng(seed))
+    objs = objects_by_name(graph)
+    targets = solved["sweep"].targets(objs)
+    xy = np.array([p.pos[:2] for p in targets.values()])
+    local = np.abs(xy - layout["red_ell"].pos[:2])
+    assert not np.any(np.all(local < 0.04 + 0.005, axis=1))  # none on the ell
+    zone_half = 0.08
+    assert np.all(np.abs(xy - [0.6, 0.0]) <= zone_half)  # all in the zone
+
+
 @pytest.mark.parametrize("yaw", [0.3, 1.2, 2.6])
 def test_a_lone_block_is_carried_the_whole_push(yaw: float) -> None:
     # A block left alone (the last of a pile, a detour's leg) must stay in front of

@@ -11,7 +11,14 @@ from factask.model import parse_graph
 from factask.model.graph import TaskGraph
 from factask.scene.objects import Area
 from factask.sim.push import BLADE_WIDTH
-from factask.sim.push_oracle import CLEARANCE, LEAD, crosses, entry_distance, plan_route
+from factask.sim.push_oracle import (
+    CLEARANCE,
+    LEAD,
+    crosses,
+    entry_distance,
+    obstacle_regions,
+    plan_route,
+)
 
 ZONE = Area(np.array([0.55, 0.3]), 0.0, np.array([0.075, 0.075]))
 BACK = 0.02
@@ -76,6 +83,26 @@ def test_every_first_leg_keeps_clear_of_the_grown_regions(bx: float, by: float, 
         return
     for a, b in _corridors(block, route.via, ZONE):
         assert not crosses(a, b, grown)
+
+
+def test_obstacles_are_other_piles_and_bodies_but_not_what_stands_in_the_own_zone() -> None:
+    from factask.library import get_task
+    from factask.scene.objects import objects_by_name
+    from factask.sim.reset import reset_layout
+
+    graph = get_task("color-coordinated-insertion-and-sweeping")
+    poses, solved = reset_layout(graph, np.random.default_rng(0))
+    objs = objects_by_name(graph)
+    red = next(s for name, s in solved.items() if "red" in name)
+    regions = obstacle_regions(red, objs, poses, held=set())
+    centres = [tuple(np.round(r.center, 6)) for r in regions]
+    own_ell = tuple(np.round(poses["red_ell"].pos[:2], 6))
+    assert own_ell not in centres  # the red fixture stands in the red zone: no obstacle
+    for c in ("blue", "green"):
+        assert tuple(np.round(poses[f"{c}_ell"].pos[:2], 6)) in centres
+        pile = np.array([poses[i].pos[:2] for i in graph.variable(f"{c}_pile").instances])
+        assert all(any(r.contains(pile[k:k + 1])[0] for r in regions)
+                   for k in range(len(pile)))
 
 
 def crossing_piles() -> TaskGraph:

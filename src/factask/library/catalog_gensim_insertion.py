@@ -17,6 +17,7 @@ from factask.library.builders import (
     use,
     var,
 )
+from factask.library.catalog_deformable import BAND, PILE_X, SMALL_BLOCK, ZONE_X
 from factask.library.conventions import (
     BALL,
     BLOCK,
@@ -33,6 +34,7 @@ from factask.library.conventions import (
 )
 from factask.library.templates import match_pairs
 from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
+from factask.model.world import WORKSPACE_Y
 from factask.relations import Aligned
 
 
@@ -346,3 +348,41 @@ def cylinder_alignment() -> TaskGraph:
                     "colour: red first, then blue, then green.",
                     match_pairs(_ALIGN_WITH_HOLE, list(zip(logs, boxes, strict=True)),
                                 sequential=True))
+
+
+#: color-coordinated-insertion-and-sweeping: a zone wide enough for its ell fixture
+#: and, on the side the pile comes from, a strip the swept blocks rest in.
+SWEEP_ZONE = (0.16, 0.16, 0.001)
+#: How far (m) the ell stands from its zone's centre, away from the pile's side.
+ELL_BACK = 0.02
+
+
+@register("color-coordinated-insertion-and-sweeping", family="deformable")
+def color_coordinated_insertion_and_sweeping() -> TaskGraph:
+    # The description inserts small blocks into ell-shaped fixtures and then sweeps
+    # the same blocks into zones; the assets are ell pieces, small blocks and zones.
+    # One tool does not do both (a spatula cannot pick; a suction cup cannot sweep),
+    # and a block cannot end in two places, so the ell fixtures stand in the zones of
+    # their colours (fixed, as fixtures are) and each colour's blocks, a pile, are
+    # swept into the zone holding its ell: into the fixture's zone, beside the ell.
+    # Each colour has its own band across the table, as in sweep-and-sort-blocks.
+    colors = THREE
+    width = (WORKSPACE_Y[1] - WORKSPACE_Y[0] - 0.2) / len(colors)
+    fragments, ells = [], []
+    for k, c in enumerate(colors):
+        y = WORKSPACE_Y[0] + 0.1 + (k + 0.5) * width
+        pile = var(f"{c}_pile", "pile", c, SMALL_BLOCK, count=10,
+                   initial=region(PILE_X, (y - BAND, y + BAND)),
+                   description=f"a pile of 10 small {c} blocks")
+        zone = var(f"{c}_zone", "zone", c, SWEEP_ZONE, initial=at(ZONE_X, y),
+                   description=f"the {c} zone")
+        ells.append(var(f"{c}_ell", "ell", c, ELL, fixed=True,
+                        initial=at(ZONE_X + ELL_BACK, y, 180.0),
+                        description=f"the {c} ell-shaped fixture in the {c} zone"))
+        fragments.append(use("push_pile_into_zone", prefix=c, objects=[pile], zone=zone))
+    return assemble(
+        "color-coordinated-insertion-and-sweeping",
+        "Red, blue and green ell-shaped fixtures stand in the zones of their colours; "
+        "sweep the piles of small blocks of the same colours into those zones, beside "
+        "their fixtures, without pushing blocks across another colour's zone.",
+        fragments, extra=ells)

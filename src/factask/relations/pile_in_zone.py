@@ -38,6 +38,7 @@ from factask.scene.objects import (
     Area,
     SceneObject,
     placement_area,
+    points_in_rect,
     rest_surface_z,
     resting_pose,
     yaw_rotation_2d,
@@ -79,6 +80,47 @@ def block_inside(area: Area, xy: np.ndarray, side: float) -> np.ndarray:
     return per_axis.prod(axis=1)
 
 
+def _bodies_in(ctx: SolveContext, area: Area, movers: list[SceneObject]) -> list[Area]:
+    """Footprints of the other objects with a body standing in ``area`` now (a
+    fixture in the zone): a pile's blocks come to rest beside them, not on them."""
+    skip = {o.name for o in movers}
+    out = []
+    for name, obj in ctx.objs.items():
+        pose = ctx.current.get(name)
+        if name in skip or pose is None or not obj.collides or obj.kind == PILE_KIND:
+            continue
+        if area.contains(pose.pos[None, :2])[0]:
+            out.append(Area(pose.pos[:2].copy(), pose.yaw, obj.half_xy))
+    return out
+
+
+def _slot_cells(area: Area, block: SceneObject, n: int, bodies: list[Area]) -> list[np.ndarray]:
+    """``n`` slot centres on a square grid over ``area`` (a whole block side from its
+    edge, so any yaw stays inside), clear of ``bodies``: the grid is made finer until
+    enough of its cells are clear; with none in the zone, the plain ceil(sqrt(n))
+    grid."""
+    half = area.packing_half()
+    reach = 2 * float(block.half_xy.max())
+    inset = np.maximum(half - reach, 0.0)
+    rot = yaw_rotation_2d(area.yaw)
+    cols = math.ceil(math.sqrt(n))
+    plain: list[np.ndarray] = []
+    for _ in range(4):
+        step = 2 * inset / max(cols - 1, 1)
+        cells = []
+        for r in range(cols):
+            for c in range(cols):
+                local = np.zeros(2) if cols == 1 else -inset + step * np.array([c, r], float)
+                cells.append(area.center + rot @ local)
+        plain = plain or cells
+        free = [p for p in cells if not any(
+            points_in_rect(p[None], b.center, b.yaw, b.half + reach)[0] for b in bodies)]
+        if len(free) >= n:
+            return free[:n]
+        cols += 1
+    return plain[:n]  # no clear grid: the plain one (the reset reports the overlap)
+
+
 def block_side(obj: SceneObject) -> float:
     """Side (m) of the square of a block's footprint area."""
     return math.sqrt(obj.footprint_area)
@@ -113,8 +155,9 @@ class PileInZone(RelationBase):
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         """Nominal slots on a grid over the region (markers, obstacles for later
-        goals); blocks are pushed, so the slots may overlap one another and the
-        blocks' starts."""
+        goals), clear of any object with a body standing in it (a fixture: the
+        blocks come to rest beside it); blocks are pushed, so the slots may overlap
+        one another and the blocks' starts."""
         hosts = ctx.inst(self.zone)
         n = len(movers)
         slots = []
@@ -125,19 +168,10 @@ class PileInZone(RelationBase):
                 continue
             hobj, hpose = ctx.objs[host], ctx.current[host]
             area = placement_area(hobj, hpose)
-            half = area.packing_half()
-            cols = math.ceil(math.sqrt(len(mine)))
             obj = movers[mine[0]]
-            # Slots keep a whole block side from the edge (any yaw stays inside).
-            inset = half - 2 * float(obj.half_xy.max())
-            step = 2 * np.maximum(inset, 0.0) / max(cols - 1, 1)
             surface = rest_surface_z(hobj, hpose)
-            for a, i in enumerate(mine):
-                r, c = divmod(a, cols)
-                local = -np.maximum(inset, 0.0) + step * np.array([c, r], dtype=float)
-                if cols == 1:
-                    local = np.zeros(2)
-                x, y = area.center + yaw_rotation_2d(area.yaw) @ local
+            cells = _slot_cells(area, obj, len(mine), _bodies_in(ctx, area, movers))
+            for (x, y), i in zip(cells, mine, strict=True):
                 slots.append((i, resting_pose(movers[i], float(x), float(y), surface,
                                               area.yaw)))
                 surfaces.append((i, surface))

@@ -13,8 +13,10 @@ comes down to where the blocks it drives stop), so it must not cross what other
 goals have placed: the **obstacle regions** (:func:`obstacle_regions`) are the
 blocks of other piles (outside this goal's zone; a marked region holding some is
 an obstacle as a whole) and every other object with a body (a fixture, an ell,
-a box). Each region grown by the blade's half width and :data:`CLEARANCE` is
-what the aimed block's line must keep out of. When the straight line into the
+a box) outside this goal's zone (one standing in it is not: the push stops
+:data:`DEPTH` inside the zone's edge and the blocks it drives rest against it).
+Each region grown by the blade's half width and :data:`CLEARANCE` is what the
+aimed block's line must keep out of. When the straight line into the
 zone crosses one, the block is routed in legs (:func:`plan_route`): around the
 grown regions' corners (a visibility graph), one push per leg, the blocks left
 at a corner pushed on by the next call. Blocks whose route has fewer legs are
@@ -215,7 +217,8 @@ def obstacle_regions(solved: SolvedFactor, objects: Mapping[str, SceneObject],
     The blocks of other piles, except those inside this factor's own regions (two
     piles may share a zone), as boxes around groups of them; a marked region (a
     zone) holding any such block, as a whole; every other object with a body
-    (fixtures, ells, boxes), its footprint. Held objects are off the table.
+    (fixtures, ells, boxes) outside this factor's zones, its footprint. Held
+    objects are off the table.
 
     Args:
         solved: The factor's solved targets (its blocks and regions).
@@ -239,7 +242,10 @@ def obstacle_regions(solved: SolvedFactor, objects: Mapping[str, SceneObject],
             continue
         pose = poses[name]
         if obj.collides:
-            out.append(Area(pose.pos[:2].copy(), pose.yaw, obj.half_xy))
+            # A body standing in this goal's zone (a fixture) is no obstacle: the push
+            # stops DEPTH inside the zone's edge, the blocks it drives rest against it.
+            if not any(z.contains(pose.pos[None, :2])[0] for z in zones):
+                out.append(Area(pose.pos[:2].copy(), pose.yaw, obj.half_xy))
         elif obj.spec.region and len(xy):
             area = placement_area(obj, pose)
             if area.contains(xy).any():
