@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -76,3 +77,26 @@ def test_the_separating_move_clears_the_footprints(dx: float, dy: float, ya: flo
     # Moved a hair further than the move, b no longer overlaps a.
     cleared = (b[0] + move * 1.001, yb, b[2])
     assert footprint_separation(a, cleared) is None
+
+
+def _container(i: int, size: tuple[float, float, float], yaw: float) -> RecordedObject:
+    return RecordedObject(obj_id=i, urdf="container/container-template.urdf", kind="container",
+                          size=size, color="brown", category="fixed",
+                          pos=np.array([0.5, 0.0, size[2] / 2]),
+                          quat=np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]))
+
+
+@given(st.floats(0.0, 2 * math.pi), st.floats(-0.5, 0.5), st.floats(0.0, 0.01))
+def test_a_box_too_wide_to_go_in_rests_on_the_rim_and_a_narrow_one_on_the_floor(
+        yaw: float, turn: float, above: float) -> None:
+    # A lid wider than the container's opening, put at (or a little above) the rim,
+    # rests on the walls; a box that fits, at the same author z, drops to the floor.
+    host = _container(5, (0.1, 0.1, 0.05), yaw)
+    for i, (size, expect) in enumerate([((0.12, 0.12, 0.01), 0.05 + 0.005),
+                                        ((0.05, 0.05, 0.01), 0.005)]):
+        box = RecordedObject(obj_id=6 + i, urdf="box/box-template.urdf", kind="box", size=size,
+                             color="red", category="rigid", pos=np.array([0.3, 0.3, 0.005]),
+                             quat=np.array([0.0, 0.0, 0.0, 1.0]), random_start=True)
+        goal = _goal(0, box, np.array([0.5, 0.0]), 0.055 + above, yaw + turn)
+        assert resting_heights([goal], [host, box], {box.obj_id})[(0, 0)] == \
+            pytest.approx(expect)

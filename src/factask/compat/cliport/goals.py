@@ -29,7 +29,7 @@ from factask.compat.cliport.transforms import (
     yaw_of_xyzw,
 )
 from factask.geometry import tilt_deg
-from factask.model.kinds import kind_spec
+from factask.model.kinds import WALL_THICKNESS, kind_spec
 from factask.model.tolerances import Z_TOLERANCE
 from factask.relations import TargetPose
 from factask.scene.objects import floor_thickness
@@ -205,6 +205,23 @@ def _overlap(a: _Foot, b: _Foot) -> bool:
     return move is not None and float(np.linalg.norm(move)) > OVERLAP_SHRINK
 
 
+def _on_rim(slot: _Slot, host: _Foot, rim: float) -> bool:
+    """Whether what goes to ``slot`` is too wide to go between the walls of receptacle
+    ``host`` (turned as the author turned both) and the author put it at the rim's
+    height or above: it rests on the walls, not on the floor."""
+    if slot.z - slot.height / 2 < rim - Z_TOLERANCE:
+        return False
+    if slot.foot.round:
+        half = (slot.foot.half[0], slot.foot.half[0])
+    else:
+        size = (2 * slot.foot.half[0], 2 * slot.foot.half[1], slot.height)
+        half = half_xy(size, slot.foot.yaw - host.yaw)
+    room = (host.half[0] - WALL_THICKNESS, host.half[1] - WALL_THICKNESS)
+    if host.round:
+        return math.hypot(*half) > room[0] if not slot.foot.round else half[0] > room[0]
+    return half[0] > room[0] or half[1] > room[1]
+
+
 def _centre_on(a: _Foot, b: _Foot) -> bool:
     """Whether ``a``'s centre lies strictly inside footprint ``b``."""
     dx, dy = a.x - b.x, a.y - b.y
@@ -259,8 +276,9 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         # factask builds taller than the author's size hint still carries the row
         # the author put 3.5 cm up, and every layer stacked on that row).
         placed = top if o.placed_top is None else o.placed_top
+        rim = bottom + o.size[2] if spec.receptacle else None
         fixed.append((_foot(float(o.pos[0]), float(o.pos[1]), o.size, yaw_of_xyzw(o.quat),
-                            o.kind), top, placed, spec.receptacle))
+                            o.kind), top, placed, rim))
     out: dict[tuple[int, int], float] = {}
     done: list[tuple[_Slot, float]] = []
     # In queue order (then the author's z within a goal), as the robot places them:
@@ -273,10 +291,15 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
         done = [(other, z) for other, z in done if other.key[0] == slot.key[0]
                 or not other.objects <= goal_objects[slot.key[0]]]
         support, on_floor = 0.0, True
-        for foot, top, placed, receptacle in fixed:
-            if (placed <= slot.z and _overlap(slot.foot, foot)
-                    and top > support):
-                support, on_floor = top, receptacle
+        for foot, top, placed, rim in fixed:
+            if not (placed <= slot.z and _overlap(slot.foot, foot)):
+                continue
+            if rim is not None and _on_rim(slot, foot, rim):
+                # Too wide to go in, put at its rim: it rests on the walls (a lid).
+                if rim > support:
+                    support, on_floor = rim, False
+            elif top > support:
+                support, on_floor = top, rim is not None
         for other, z in done:
             if not other.certain:
                 # A goal with more targets than objects fills the ones the robot
