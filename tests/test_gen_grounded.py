@@ -153,6 +153,31 @@ def test_the_compact_schema_refuses_goals_that_cannot_be_meant(goal) -> None:
     assert schema_problems(data, grounded.compact_graph_schema(mentions(PROPOSAL)))
 
 
+def test_a_cylinder_lined_up_with_a_holed_box_takes_mode_hole_only() -> None:
+    proposal = ("three cylinders (red, blue and green) and three boxes of the same colours. "
+                "The boxes have a small hole on one of their sides. Align each cylinder "
+                "with the hole in the box of its colour.")
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    answer = {"variables": [{"name": f"{c}_cylinder", "initial": {"type": "table"}}
+                            for c in ("red", "blue", "green")],
+              "factors": [{"goal": {"type": "aligned", "objects": [f"{c}_cylinder"],
+                                    "reference": f"{c}_holed_box", "mode": "hole"}}
+                          for c in ("red", "blue", "green")]}
+    assert schema_problems(answer, schema) == []
+    centred = json.loads(json.dumps(answer))
+    centred["factors"][0]["goal"]["mode"] = "center"  # on top of the box: no meaning
+    assert schema_problems(centred, schema)
+    graph = TaskGraph.model_validate(
+        grounded.expand_graph(answer, found, "t", proposal)).ensure_valid()
+    assert {v.kind for v in graph.variables} == {"cylinder", "holed_box"}
+    # A fixture is still aligned by centre or corner, never by a hole.
+    fixture = "insert the red ell into the green fixture"
+    modes = re.findall(r'"mode": \{[^}]*\}', json.dumps(
+        grounded.compact_graph_schema(mentions(fixture), fixture)))
+    assert modes and all('"hole"' not in m for m in modes)
+
+
 def test_a_fixed_object_starts_on_the_table() -> None:
     data = json.loads(json.dumps(COMPACT))  # a fixed object is no decision: not written
     data["variables"].append({"name": "blue_zone", "initial": {"type": "table"}})

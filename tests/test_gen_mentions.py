@@ -253,6 +253,21 @@ def test_a_cylinder_the_words_lay_on_its_side_is_a_log() -> None:
     assert _names("put the red cylinder in the bowl")[0][1] == "cylinder"
 
 
+def test_a_box_the_words_give_a_hole_is_a_holed_box_and_its_hole_no_object() -> None:
+    # "with a hole": that box; "the boxes have a hole" (after they were named): all.
+    assert _names("align the green cylinder with the hole of a yellow box with a small "
+                  "hole on one side, and put the red block in the blue box") == [
+        ("green_cylinder", "cylinder", "green", 1),
+        ("yellow_holed_box", "holed_box", "yellow", 1),
+        ("red_block", "block", "red", 1), ("blue_box", "box", "blue", 1)]
+    assert [m.kind for m in mentions(
+        "three cylinders (red, blue and green) and three boxes of the same colours. The "
+        "boxes have a small hole on one of their sides. Align each cylinder with the hole "
+        "in the box of its colour.")] == ["cylinder"] * 3 + ["holed_box"] * 3
+    assert _names("put the red block in the box")[1][1] == "box"
+    assert _names("insert the peg into the hole")[1][1] == "fixture"
+
+
 @given(st.lists(st.sampled_from([*COLOR_NAMES[:6], "and", "four", "two", "blocks", "bowls",
                                  "zones", "of", "the", "same", "colour", "matching",
                                  "(", ")", ","]), max_size=40).map(" ".join))

@@ -399,7 +399,7 @@ def test_hole_alignment_lays_the_log_in_front_of_the_hole_its_axis_through_it() 
 
 
 @pytest.mark.parametrize(("reference", "size", "words"), [
-    ("box", [0.08, 0.08, 0.05], "mode 'hole' needs a holed_box"),
+    ("box", [0.08, 0.08, 0.05], "mode .hole. does not fit .r., a box"),
     ("holed_box", [0.08, 0.08, 0.12], "misses 'r''s hole"),
 ])
 def test_hole_alignment_refuses_a_reference_without_a_hole_in_reach(

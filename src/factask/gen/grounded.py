@@ -57,6 +57,7 @@ from factask.model.order import in_listed_order
 from factask.model.palette import COLOR_NAMES
 from factask.model.variables import StateVariable
 from factask.relations import RELATION_TYPES
+from factask.relations.aligned import modes_for
 
 Schema = ss.Schema
 
@@ -232,6 +233,8 @@ def relation_over(relation: str, kinds: dict[str, str],
         return None
     props = schema["properties"]
     props["objects"] = ss.array(ss.name(movers), 1, len(movers))
+    if relation == "aligned" and "mode" in props:
+        _narrow_modes(props, kinds)
     if relation in GROUP_RELATIONS and counts is not None:
         if sum(counts.get(n, 1) for n in movers) < 2:
             if relation != "stack" or "base" not in props:
@@ -251,6 +254,32 @@ def relation_over(relation: str, kinds: dict[str, str],
                 props[field] = narrowed
         return schema
     return _split_by_anchor(schema, relation, movers)
+
+
+def _narrow_modes(props: Schema, kinds: dict[str, str]) -> None:
+    """An ``aligned`` goal's modes: those its possible references take
+    (:func:`~factask.relations.aligned.modes_for`: a holed box only ``hole``)."""
+    ref = props.get("reference", {})
+    names = [o.get("const") for o in ref.get("anyOf", [ref]) if "const" in o]
+    names += [n for o in ref.get("anyOf", [ref]) for n in o.get("enum", [])]
+    modes = {m for n in names if n in kinds for m in modes_for(kinds[n])}
+    allowed = [m for m in props["mode"].get("enum", []) if m in modes]
+    if allowed:
+        props["mode"] = {"type": "string", "enum": allowed}
+
+
+def _narrow_all_modes(schema: Any, kinds: dict[str, str]) -> None:
+    """:func:`_narrow_modes` on every ``aligned`` goal inside ``schema`` (once the
+    covering shapes have fixed each goal's reference)."""
+    if isinstance(schema, list):
+        for item in schema:
+            _narrow_all_modes(item, kinds)
+    elif isinstance(schema, dict):
+        props = schema.get("properties", {})
+        if props.get("type", {}).get("const") == "aligned" and "mode" in props:
+            _narrow_modes(props, kinds)
+        for value in schema.values():
+            _narrow_all_modes(value, kinds)
 
 
 def _split_by_anchor(schema: Schema, relation: str, movers: list[str]) -> Schema | None:
@@ -490,6 +519,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
                                  "initial": _placement(m.name, {**before, m.name: m.kind},
                                                        moved)}))
             before[m.name] = m.kind
+    _narrow_all_modes(factors, kinds)
     return ss.obj({
         "variables": {"type": "array", "prefixItems": items, "items": False,
                       "minItems": len(items), "maxItems": len(items)},

@@ -39,6 +39,8 @@ KIND_WORDS: dict[str, str] = {
     "plate": "stand", "hole": "fixture", "slot": "fixture", "socket": "fixture",
     "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
     "heap": "pile", "board": "kit", "silhouette": "fixture",
+    # A box with a hole in its side (one word: see HOLED_BOXES).
+    "holedbox": "holed_box",
     # Objects of no stated shape are blocks: "pack the objects into the container".
     "object": "block", "item": "block", "piece": "block", "shape": "block",
 }
@@ -366,9 +368,26 @@ def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Men
     return out
 
 
+#: "a box with a small hole on one side": that box is a ``holed_box``; "the boxes have a
+#: hole in their sides" (a sentence of its own, after the boxes were named): every box.
+HOLED_BOXES = re.compile(
+    r"\bbox(es)?\s+(?:(?:each|all)\s+)?(?:(with|having)|ha(?:s|ve)|that\s+ha(?:s|ve))\s+"
+    r"(?:a|an|one)\s+(?:(?:small|little|round|square|tiny)\s+)*(?:hole|opening)s?"
+    r"(?:\s+(?:on|in|at)\s+(?:one\s+of\s+)?(?:its|their|the|a|one)\s+(?:[a-z]+\s+)?sides?)?")
+#: "the hole in the red box": the box (its hole is no object of its own).
+HOLE_OF_BOX = re.compile(r"\b(?:the\s+)?holes?\s+(?:in|of|on)\s+(?=(?:the|each|its|their|a)\s)")
+
+
 def words_of(text: str) -> list[str]:
     """The words of ``text``, with :data:`PHRASES` read as their kind words."""
     text = text.replace("_", " ").replace("-", " ")
+    found = list(HOLED_BOXES.finditer(text))
+    if found:
+        every = any(m.group(2) is None for m in found)
+        text = HOLED_BOXES.sub(lambda m: f"holedbox{m.group(1) or ''}", text)
+        text = HOLE_OF_BOX.sub("", text)
+        if every:
+            text = re.sub(r"\bbox(es)?\b", r"holedbox\1", text)
     for pattern, kind_word in PHRASES:
         text = pattern.sub(kind_word, text)
     return _WORD.findall(text)

@@ -29,6 +29,12 @@ from factask.scene.objects import (
 HOLE_GAP = 0.005
 
 
+def modes_for(reference_kind: str) -> tuple[str, ...]:
+    """The modes an ``aligned`` goal may take with a reference of this kind: a
+    ``holed_box`` is lined up with (``hole``) and nothing else is."""
+    return ("hole",) if reference_kind == "holed_box" else ("center", "corner")
+
+
 class Aligned(RelationBase):
     """Align each object with the ``reference`` variable: ``center`` puts it at the
     reference's position and yaw (an ell into its fixture, a block onto a marker);
@@ -61,7 +67,14 @@ class Aligned(RelationBase):
                                "instance of its own",
                                f"give {self.reference!r} count {n}, or use 'on' or "
                                "'in_zone' to put several objects on one"))
-        if self.mode == "hole" and ref is not None:
+        if ref is not None and self.mode not in modes_for(ref.kind):
+            fix = " or ".join(repr(m) for m in modes_for(ref.kind))
+            out.append(Problem(factor, "goal.mode",
+                               f"mode {self.mode!r} does not fit {self.reference!r}, a "
+                               f"{ref.kind} (a holed_box is lined up with its hole: mode "
+                               "'hole'; anything else is aligned by centre or corner)",
+                               f"use mode {fix}"))
+        elif self.mode == "hole" and ref is not None:
             out += self._hole_problems(factor, ref, variables)
         return out
 
@@ -81,11 +94,6 @@ class Aligned(RelationBase):
                        variables: Mapping[str, StateVariable]) -> list[Problem]:
         """Mode ``hole``: the reference has a hole, and each object's axis (at half its
         height, resting on the table) passes through it."""
-        if ref.kind != "holed_box":
-            return [Problem(factor, "goal.reference",
-                            f"mode 'hole' needs a holed_box as the reference, "
-                            f"{self.reference!r} is a {ref.kind}",
-                            "give the reference kind 'holed_box', or use mode 'center'")]
         side, centre = side_hole(ref.extents)
         out = []
         for name in dict.fromkeys(self.objects):
