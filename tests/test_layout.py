@@ -308,6 +308,19 @@ def test_conflicting_fixed_poses_fail_without_retrying() -> None:
     assert not info.value.retryable
 
 
+@pytest.mark.parametrize("marker", ["zone", "line"])
+def test_an_author_may_start_an_object_on_a_flat_marker(marker: str) -> None:
+    """A zone or a line has no body: a block given a pose on one starts there (a
+    CLIPort file that starts blocks in the zones they are to leave was refused)."""
+    g = make_graph(
+        [{"name": "m", "kind": marker, "initial": {"type": "pose", "x": 0.5, "y": 0.2}},
+         {"name": "a", "kind": "block", "initial": {"type": "pose", "x": 0.5, "y": 0.2}},
+         {"name": "z", "kind": "zone", "initial": {"type": "pose", "x": 0.5, "y": -0.2}}],
+        [{"name": "f", "goal": {"type": "in_zone", "objects": ["a"], "zone": "z"}}])
+    layout = sample_layout(g, np.random.default_rng(0))
+    assert np.allclose(layout["a"].pos[:2], [0.5, 0.2])
+
+
 # ------------------------------------------------------------------ solving
 @settings(max_examples=20)
 @given(st.integers(0, 10_000), st.sampled_from(sorted(GRAPHS)))

@@ -276,9 +276,12 @@ def _physical_overlaps(objs: Mapping[str, SceneObject], obj: SceneObject,
     bodies may interpenetrate (both are welded to the world; the author's shapes
     are often finer than factask's boxes: kit holes), a movable one may not. The
     ``blockers`` are found with no clearance: an author may put objects closer
-    than the gap factask's own sampling keeps (Ravens' free-space test is finer)."""
+    than the gap factask's own sampling keeps (Ravens' free-space test is finer). A
+    flat marker (a zone, a line: no collision) is no body either: an author may
+    start an object on one."""
     # A reserve (not in objs) is no body: whether its goal still fits is the solver's.
-    return [b for b in blockers if b in objs and not (obj.fixed and objs[b].fixed)]
+    return [b for b in blockers if b in objs and obj.collides and objs[b].collides
+            and not (obj.fixed and objs[b].fixed)]
 
 
 def _place_given(objs: Mapping[str, SceneObject], occ: Occupancy, poses: dict[str, Pose],
