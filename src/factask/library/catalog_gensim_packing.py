@@ -50,6 +50,31 @@ def packing_boxes_pairs() -> TaskGraph:
                     extra=others)
 
 
+@register("packing-seen-google-objects-seq", family="packing")
+def packing_seen_google_objects_seq() -> TaskGraph:
+    # Ravens' scanned Google objects cannot be shipped (no downloads): everyday objects
+    # of distinct primitive kinds and colours stand in for them. What the task asks
+    # is kept: only the objects named, into the brown box, one per instruction in the
+    # order given, the others left out.
+    named = [var("yellow_cylinder", "cylinder", "yellow", (0.04, 0.04, 0.07)),
+             var("blue_box", "box", "blue", (0.07, 0.04, 0.03)),
+             var("green_ell", "ell", "green", (0.06, 0.06, 0.03)),
+             var("red_ball", "ball", "red", (0.05, 0.05, 0.05))]
+    others = [var("purple_cylinder", "cylinder", "purple", (0.05, 0.05, 0.05),
+                  description="an object not named: it stays out"),
+              var("orange_block", "block", "orange", (0.04, 0.04, 0.04),
+                  description="an object not named: it stays out")]
+    box = var("brown_box", "container", "brown", BROWN_BOX, description="the brown box")
+    steps: list[TaskGraph] = []
+    for obj in named:
+        steps.append(use("put_in_container", objects=obj, container=box, after=steps[-1:]))
+    return assemble("packing-seen-google-objects-seq",
+                    "Put the objects named at each step into the brown box, in that order: "
+                    "the yellow cylinder, the blue box, the green ell, then the red ball; the "
+                    "purple cylinder and the orange block stay out.",
+                    steps, extra=others)
+
+
 @register("towers-of-hanoi-seq", family="stacking")
 def towers_of_hanoi_seq() -> TaskGraph:
     # The same seven moves as towers-of-hanoi, each its own milestone: GenSim's
