@@ -9,9 +9,12 @@ container``. The base rows lie along their zone, pallet or container
 
 from __future__ import annotations
 
+import math
+
 from factask.library.builders import assemble, register, use, var
 from factask.library.conventions import BLOCK
-from factask.model import StateVariable, TaskGraph
+from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
+from factask.relations import AtPose, TargetPose
 
 #: A pallet a row of five blocks fits along (GenSim's bridge pallet).
 LONG_PALLET = (0.30, 0.15, 0.02)
@@ -98,3 +101,60 @@ def color_coordinated_block_bridge() -> TaskGraph:
                     "row (red at the edges, blue between), and a green block on each red and "
                     "blue pair.",
                     _pyramid(base, pallet, [[greens]]))
+
+
+#: A square pallet the triangle pyramid stands on.
+TRIANGLE_PALLET = (0.20, 0.20, 0.0375)
+#: Side of the triangle of block centres (m): 4 cm cubes at its corners, all at yaw
+#: 0, keep 3 mm between the nearest two; the layer above (the triangle turned 60
+#: degrees) then rests on corners of two blocks each, its centres at least 5.5 mm
+#: inside the hull of what holds them (more apart, that margin shrinks).
+TRIANGLE_SIDE = 0.05
+
+
+def _triangle(turn_deg: float, z: float | None = None) -> list[TargetPose]:
+    """Block centres at the corners of a triangle of :data:`TRIANGLE_SIDE` centred on
+    the pallet, the first corner at ``90 + turn_deg`` degrees."""
+    radius = TRIANGLE_SIDE / math.sqrt(3)
+    return [TargetPose(x=radius * math.cos(math.radians(90 + turn_deg + 120 * k)),
+                       y=radius * math.sin(math.radians(90 + turn_deg + 120 * k)), z=z)
+            for k in range(3)]
+
+
+#: Two triangle layers, the upper one turned 60 degrees: each upper block over an edge
+#: of the lower triangle. One task uses it (not registered, see templates.TEMPLATES).
+_TRIANGLE_LAYERS = SubtaskTemplate(
+    name="triangle_layers",
+    description="Lay the {lower} in a triangle on the {pallet}, then the {upper} on them "
+                "in a triangle turned 60 degrees.",
+    slots=[TemplateSlot(name="lower", description="three blocks", kinds=["block"],
+                        many=True, movable=True),
+           TemplateSlot(name="upper", description="three blocks", kinds=["block"],
+                        many=True, movable=True),
+           TemplateSlot(name="pallet", description="the pallet", kinds=["pallet"])],
+    factors=[
+        SubtaskFactor(name="lower", description="lay the {lower} in a triangle on the "
+                      "{pallet}", goal=AtPose(objects=["lower"], frame="pallet",
+                                              check_yaw=False, poses=_triangle(0.0))),
+        SubtaskFactor(name="upper", description="put the {upper} on the {lower} in a "
+                      "triangle turned 60 degrees", after=["lower"],
+                      # Heights given: an upper centre lies over the gap between two
+                      # lower blocks, not over one of them.
+                      goal=AtPose(objects=["upper"], frame="pallet", check_yaw=False,
+                                  poses=_triangle(60.0, TRIANGLE_PALLET[2] / 2
+                                                  + BLOCK[2] * 1.5))),
+    ],
+)
+
+
+@register("multi-level-pyramid-construction", family="structures")
+def multi_level_pyramid_construction() -> TaskGraph:
+    pallet = var("pallet", "pallet", "brown", TRIANGLE_PALLET, description="the pallet")
+    greens = var("green_blocks", "block", "green", BLOCK, count=3)
+    blues = var("blue_blocks", "block", "blue", BLOCK, count=3)
+    return assemble("multi-level-pyramid-construction",
+                    "Build a two-level pyramid on the pallet: the three green blocks side by "
+                    "side in a triangle, then the three blue blocks on them in a triangle "
+                    "turned 60 degrees.",
+                    _TRIANGLE_LAYERS.instantiate(prefix="pyramid", lower=greens, upper=blues,
+                                                 pallet=pallet))
