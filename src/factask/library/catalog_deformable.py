@@ -20,14 +20,13 @@ from __future__ import annotations
 from typing import Any
 
 from factask.library.builders import assemble, at, region, register, use, var
-from factask.library.templates import REGIONS, TEMPLATES
+from factask.library.templates import REGIONS, TEMPLATES, slot
 from factask.model import (
     AtFixedPose,
     StateVariable,
     SubtaskFactor,
     SubtaskTemplate,
     TaskGraph,
-    TemplateSlot,
 )
 from factask.model.tolerances import Tolerances
 from factask.model.world import WORKSPACE_Y
@@ -49,10 +48,9 @@ _DEFORMABLE_TEMPLATES = [
     SubtaskTemplate(
         name="push_pile_into_zone",
         description="Push the small blocks of the {objects} into the {zone} with the spatula.",
-        slots=[TemplateSlot(name="objects", description="the piles of small blocks to push",
-                            kinds=["pile"], many=True, movable=True),
-               TemplateSlot(name="zone", description="the target region",
-                            kinds=REGIONS)],  # type: ignore[arg-type]
+        slots=[slot("objects", "the piles of small blocks to push", ["pile"], many=True,
+                    movable=True),
+               slot("zone", "the target region", REGIONS)],
         factors=[SubtaskFactor(
             name="pile_in_zone",
             description="push the blocks of the {objects} into the {zone}",
@@ -173,10 +171,8 @@ _ROPE_TEMPLATES = [
     SubtaskTemplate(
         name="lay_rope_along",
         description="Lay the {rope} straight along the {line}.",
-        slots=[TemplateSlot(name="rope", description="the rope", kinds=["rope"],
-                            movable=True),
-               TemplateSlot(name="line", description="the line (or region) to lie along",
-                            kinds=REGIONS)],  # type: ignore[arg-type]
+        slots=[slot("rope", "the rope", ["rope"], movable=True),
+               slot("line", "the line (or region) to lie along", REGIONS)],
         factors=[SubtaskFactor(
             name="rope_along", description="lay the {rope} straight along the {line}",
             goal=RopeAlong(objects=["rope"], along="line", tolerances=ROPE_TOLERANCE),
@@ -286,9 +282,9 @@ def push_piles_into_letter() -> TaskGraph:
 _CONNECT_WITH_ROPE = SubtaskTemplate(
     name="connect_with_rope",
     description="Lay the {rope} straight from the {start} to the {end}.",
-    slots=[TemplateSlot(name="rope", description="the rope", kinds=["rope"], movable=True),
-           TemplateSlot(name="start", description="the anchor at the rope's one end"),
-           TemplateSlot(name="end", description="the anchor at the rope's other end")],
+    slots=[slot("rope", "the rope", ["rope"], movable=True),
+           slot("start", "the anchor at the rope's one end"),
+           slot("end", "the anchor at the rope's other end")],
     factors=[SubtaskFactor(
         name="rope_along", description="lay the {rope} from the {start} to the {end}",
         goal=RopeAlong(objects=["rope"], start="start", end="end", tolerances=ROPE_TOLERANCE),

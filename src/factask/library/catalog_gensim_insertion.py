@@ -32,8 +32,8 @@ from factask.library.conventions import (
     THREE,
     TUBE,
 )
-from factask.library.templates import match_pairs
-from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
+from factask.library.templates import match_pairs, slot
+from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.model.world import WORKSPACE_Y
 from factask.relations import Aligned
 
@@ -326,10 +326,8 @@ HOLED_BOX = (0.08, 0.08, LOG[2] + 0.01)
 _ALIGN_WITH_HOLE = SubtaskTemplate(
     name="align_with_hole",
     description="Line the {objects} up with the hole in the {box}.",
-    slots=[TemplateSlot(name="objects", description="the log to line up", kinds=["log"],
-                        many=True, movable=True),
-           TemplateSlot(name="box", description="the box whose side has the hole",
-                        kinds=["holed_box"])],
+    slots=[slot("objects", "the log to line up", ["log"], many=True, movable=True),
+           slot("box", "the box whose side has the hole", ["holed_box"])],
     factors=[SubtaskFactor(
         name="align", description="line the {objects} up with the hole in the {box}",
         goal=Aligned(objects=["objects"], reference="box", mode="hole"))],

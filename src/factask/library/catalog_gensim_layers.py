@@ -13,7 +13,8 @@ import math
 
 from factask.library.builders import assemble, register, use, var
 from factask.library.conventions import BLOCK
-from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
+from factask.library.templates import slot
+from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.relations import AtPose, TargetPose
 
 #: A pallet a row of five blocks fits along (GenSim's bridge pallet).
@@ -127,11 +128,9 @@ _TRIANGLE_LAYERS = SubtaskTemplate(
     name="triangle_layers",
     description="Lay the {lower} in a triangle on the {pallet}, then the {upper} on them "
                 "in a triangle turned 60 degrees.",
-    slots=[TemplateSlot(name="lower", description="three blocks", kinds=["block"],
-                        many=True, movable=True),
-           TemplateSlot(name="upper", description="three blocks", kinds=["block"],
-                        many=True, movable=True),
-           TemplateSlot(name="pallet", description="the pallet", kinds=["pallet"])],
+    slots=[slot("lower", "three blocks", ["block"], many=True, movable=True),
+           slot("upper", "three blocks", ["block"], many=True, movable=True),
+           slot("pallet", "the pallet", ["pallet"])],
     factors=[
         SubtaskFactor(name="lower", description="lay the {lower} in a triangle on the "
                       "{pallet}", goal=AtPose(objects=["lower"], frame="pallet",

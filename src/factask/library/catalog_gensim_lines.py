@@ -19,8 +19,8 @@ from factask.library.builders import (
     var,
 )
 from factask.library.conventions import BALL, BLOCK, CORNER, CYLINDER, FIVE, FOUR, LINE, NEAR
-from factask.library.templates import match_pairs
-from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph, TemplateSlot
+from factask.library.templates import match_pairs, slot
+from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.relations import AtPose, TargetPose
 from factask.scene.objects import corner_arm_width
 
@@ -241,11 +241,9 @@ _CORNER_JUNCTION = SubtaskTemplate(
     name="corner_junction",
     description="Put the {base} along the two arms of the {corner} and the {top} on both "
                 "of them where the arms meet.",
-    slots=[TemplateSlot(name="base", description="two blocks, one per arm", kinds=["block"],
-                        many=True, movable=True),
-           TemplateSlot(name="top", description="the block bridging them", kinds=["block"],
-                        movable=True),
-           TemplateSlot(name="corner", description="the corner marker", kinds=["corner"])],
+    slots=[slot("base", "two blocks, one per arm", ["block"], many=True, movable=True),
+           slot("top", "the block bridging them", ["block"], movable=True),
+           slot("corner", "the corner marker", ["corner"])],
     factors=[
         SubtaskFactor(
             name="base", description="put the {base} along the two arms of the {corner}",

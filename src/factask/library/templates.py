@@ -54,27 +54,28 @@ SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "
 BRIDGE_PILLAR_SPACING = 0.08
 
 
-def _slot(name: str, description: str, kinds: list[str] | None = None, *,
-          many: bool = False, movable: bool | None = None) -> TemplateSlot:
+def slot(name: str, description: str, kinds: list[str] | None = None, *,
+         many: bool = False, movable: bool | None = None) -> TemplateSlot:
+    """A template slot (the catalogs' task-local templates use it too)."""
     return TemplateSlot(name=name, description=description, kinds=kinds,  # type: ignore[arg-type]
                         many=many, movable=movable)
 
 
 def _objects(description: str = "the objects to move", kinds: list[str] | None = None,
              name: str = "objects") -> TemplateSlot:
-    return _slot(name, description, kinds or PICKABLE, many=True, movable=True)
+    return slot(name, description, kinds or PICKABLE, many=True, movable=True)
 
 
 #: The layer a pyramid or wall layer rests on: a row made of one variable's instances,
 #: or of several variables (a layer of mixed colours).
-_BELOW = _slot("below", "the layer underneath, a row: one variable or several (mixed "
+_BELOW = slot("below", "the layer underneath, a row: one variable or several (mixed "
                "colours)", STACKABLE, many=True)
 
 _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="place_in_zone",
         description="Place the {objects} inside the {zone}.",
-        slots=[_objects(), _slot("zone", "the target region", REGIONS)],
+        slots=[_objects(), slot("zone", "the target region", REGIONS)],
         factors=[SubtaskFactor(
             name="in_zone",
             description="place the {objects} inside the {zone}",
@@ -84,7 +85,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="put_in_container",
         description="Put the {objects} into the {container}.",
-        slots=[_objects(), _slot("container", "the receptacle", RECEPTACLES)],
+        slots=[_objects(), slot("container", "the receptacle", RECEPTACLES)],
         factors=[SubtaskFactor(
             name="put_in",
             description="put the {objects} into the {container}",
@@ -105,7 +106,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="stack_on_base",
         description="Stack the {layers} into one column on the {base}, first at the bottom.",
         slots=[_objects("the column's layers, bottom first", [*STACKABLE, "ell"], "layers"),
-               _slot("base", "what the column stands on", BASES)],
+               slot("base", "what the column stands on", BASES)],
         factors=[SubtaskFactor(
             name="stack_on",
             description="stack the {layers} on the {base}, bottom to top",
@@ -125,7 +126,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="place_on_top",
         description="Put the {objects} on top of the {support}.",
-        slots=[_objects(), _slot("support", "what the objects rest on", SUPPORTS)],
+        slots=[_objects(), slot("support", "what the objects rest on", SUPPORTS)],
         factors=[SubtaskFactor(
             name="on_top",
             description="put the {objects} on top of the {support}",
@@ -135,9 +136,9 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
     SubtaskTemplate(
         name="bridge",
         description="Build a bridge: two {pillars} apart, the {deck} resting across both.",
-        slots=[_slot("pillars", "one variable with two instances: the bridge's pillars",
+        slots=[slot("pillars", "one variable with two instances: the bridge's pillars",
                      STACKABLE, movable=True),
-               _slot("deck", "the bar or log laid across the pillars (>= 12 cm long)",
+               slot("deck", "the bar or log laid across the pillars (>= 12 cm long)",
                      ["box", "block", "log"], movable=True)],
         factors=[
             SubtaskFactor(
@@ -181,7 +182,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="insert_into_fixture",
         description="Insert the {objects} into the {fixture}, matching its position and yaw.",
         slots=[_objects("the piece to insert", ["ell", "block", "box", "cylinder", "log"]),
-               _slot("fixture", "the fixture whose hollow matches the piece", ["fixture"])],
+               slot("fixture", "the fixture whose hollow matches the piece", ["fixture"])],
         factors=[SubtaskFactor(
             name="insert",
             description="insert the {objects} into the {fixture}",
@@ -193,7 +194,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         description="Align a corner of the {objects} with the {corner} marker.",
         slots=[_objects("the object to align",
                         ["box", "block", "cylinder", "ball", *MOVABLE_RECEPTACLES]),
-               _slot("corner", "the L-shaped corner marker", ["corner"])],
+               slot("corner", "the L-shaped corner marker", ["corner"])],
         factors=[SubtaskFactor(
             name="corner",
             description="align a corner of the {objects} with the {corner}",
@@ -204,7 +205,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="palletize_layer",
         description="Set the {objects} side by side on the {pallet}.",
         slots=[_objects("the objects of the layer", STACKABLE),
-               _slot("pallet", "the pallet", ["pallet"])],
+               slot("pallet", "the pallet", ["pallet"])],
         factors=[SubtaskFactor(
             name="palletize",
             description="set the {objects} side by side on the {pallet}",
@@ -225,7 +226,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="arrange_circle_around",
         description="Arrange the {objects} evenly on a circle around the {center}.",
         slots=[_objects(),
-               _slot("center", "what the circle goes around",
+               slot("center", "what the circle goes around",
                      ["zone", "pallet", "kit", "stand", "bowl", "container", "block", "box",
                       "cylinder"])],
         factors=[SubtaskFactor(
@@ -238,7 +239,7 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
         name="align_along_line",
         description="Line up the {objects} in a row lying on the {line}.",
         slots=[_objects("the row's objects, in order"),
-               _slot("line", "the line, zone, stand, pallet or container the row lies on; a "
+               slot("line", "the line, zone, stand, pallet or container the row lies on; a "
                      "corner marker (along its arm, from the vertex); or two variables the "
                      "row runs between (from the first)",
                      ["line", "zone", "stand", "pallet", "container", "corner"], many=True)],
@@ -262,7 +263,7 @@ _TEMPLATE_LIST += [
         name="to_line_end",
         description="Move the {objects} to the far end of the {line}.",
         slots=[_objects("the object to move along the line"),
-               _slot("line", "the line whose end is the goal (30 cm long)", ["line"])],
+               slot("line", "the line whose end is the goal (30 cm long)", ["line"])],
         factors=[SubtaskFactor(
             name="line_end",
             description="move the {objects} to the far end of the {line}",
@@ -275,7 +276,7 @@ _TEMPLATE_LIST += [
         description="Place the {objects} on the four corners of a square centred on the "
                     "{center}: first top left, then top right, bottom left, bottom right.",
         slots=[_objects("four objects: top left, top right, bottom left, bottom right"),
-               _slot("center", "what the square is centred on (it rests on it if it is "
+               slot("center", "what the square is centred on (it rests on it if it is "
                      "a support, e.g. a pallet)",
                      ["pallet", "zone", "kit", "stand", "block", "box", "cylinder"])],
         factors=[SubtaskFactor(
