@@ -414,16 +414,20 @@ class SuctionRobot(ABC):
         tip_z = float(self.data.site_xpos[self.tip_site, 2])
         hang = 0.0 if bottom is None else max(0.0, tip_z - bottom)
         need = top + hang + CLEARANCE
+        # The table (its top at z = 0) lies under the whole line: a held object taller
+        # than MIN_TRAVEL_HEIGHT - CLEARANCE would drag on it (an arm carrying a 6 cm
+        # cylinder 5 cm up pressed it into the table and tipped it over).
+        floor = max(MIN_TRAVEL_HEIGHT, hang + CLEARANCE)
         z0, z1 = float(start[2]), float(goal[2])
-        high = max(float(need.max(initial=0.0)), MIN_TRAVEL_HEIGHT, z1)
+        high = max(float(need.max(initial=0.0)), floor, z1)
         # The line's height is linear along it: checking both ends of each shadow suffices.
         t = np.concatenate([t_lo, t_hi])
         n2 = np.concatenate([need, need])
         rise = t < 1.0 - 1e-9   # line ends at `high` above the goal: the start end may be low
-        low_start = max(MIN_TRAVEL_HEIGHT, z0, float(((n2 - high * t)[rise] / (1.0 - t[rise]))
+        low_start = max(floor, z0, float(((n2 - high * t)[rise] / (1.0 - t[rise]))
                                                      .max(initial=0.0)))
         fall = t > 1e-9         # line starts at `high` above the start: the goal end may be low
-        low_goal = max(MIN_TRAVEL_HEIGHT, z1, float(((n2 - high * (1.0 - t))[fall] / t[fall])
+        low_goal = max(floor, z1, float(((n2 - high * (1.0 - t))[fall] / t[fall])
                                                     .max(initial=0.0)))
         low_start, low_goal = min(low_start, high), min(low_goal, high)
         climb_rising = max(0.0, low_start - z0) + (high - z1)
