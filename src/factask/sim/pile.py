@@ -22,11 +22,10 @@ import numpy as np
 from factask.geometry import Pose
 from factask.model.variables import AtFixedPose, InRegion, StateVariable
 from factask.model.world import TABLE_Z
+from factask.relations.pile_in_zone import PILE_KIND
 from factask.scene.collision import WORKSPACE_CENTER, WORKSPACE_HALF, Occupancy, in_workspace
 from factask.scene.objects import SceneObject, resting_pose
 
-#: The kind whose variables are piles.
-PILE_KIND = "pile"
 #: Gap (m) between neighbouring blocks of a cluster, beyond a block's diagonal
 #: (any yaw fits its cell).
 PILE_GAP = 0.003
