@@ -308,3 +308,56 @@ def test_tall_object_is_carried_clear_of_the_table(kind):
     assert tilt_deg(quat) < 3.0
     assert np.linalg.norm(pos[:2] - goal) < 0.01
     assert lowest and min(lowest) > 0.01
+
+
+def test_arm_lift_stays_on_its_vertical_line():
+    """A vertical move (a lift off a pick, a descent onto a place) is planned straight
+    within 1 mm: a joint-space bulge pushes what it lifts into its neighbours."""
+    model, data, robot = build_scene("arm")
+    low = np.array([0.454, -0.149, 0.04])
+    high = low + np.array([0.0, 0.0, 0.17])
+    robot._follow(robot._path([(low, robot._cmd_yaw)]))
+    robot._settle()
+    drift = 0.0
+    for row in robot._path([(high, robot._cmd_yaw)]):
+        robot._apply(row)
+        mujoco.mj_step(model, data)
+        drift = max(drift, float(np.linalg.norm(data.site_xpos[robot.tip_site, :2] - low[:2])))
+    assert drift < 0.002, drift
+
+
+def test_arm_places_a_block_beside_a_tall_fixed_pillar():
+    """The wrist stays clear of a 15 cm pillar while a block is set down against it
+    (the wrist's last link hit the pillar's top and pushed the block 2-3 cm off)."""
+    spec = mujoco.MjSpec()
+    spec.option.timestep = TIMESTEP
+    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.6, 0.7, 0.02],
+                            pos=[0.5, 0, -0.02])
+    pillar_xy = np.array([0.5375, -0.1781])
+    pillar = spec.worldbody.add_body(name="pillar", pos=[*pillar_xy, 0.075])
+    pillar.add_geom(type=mujoco.mjtGeom.mjGEOM_CYLINDER, size=[0.025, 0.075, 0.0])
+    block = spec.worldbody.add_body(name="block0", pos=[0.3138, 0.3527, BLOCK / 2])
+    block.add_freejoint()
+    block.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[BLOCK / 2] * 3, mass=0.1)
+    attach_robot(spec, "arm")
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    robot = make_robot("arm", model, data)
+    pil = model.body("pillar").id
+    touched = set()
+
+    def watch() -> None:
+        for c in data.contact[: data.ncon]:
+            bodies = {int(model.body_rootid[model.geom_bodyid[g]]) for g in (c.geom1, c.geom2)}
+            if pil in bodies:
+                touched.update(bodies - {pil})
+
+    target = pillar_xy + 0.045 * np.array([math.cos(1.27), math.sin(1.27)])
+    result = robot.pick_and_place(Pose.from_xyz_yaw(0.3138, 0.3527, BLOCK, -1.54),
+                                  Pose.from_xyz_yaw(*target, BLOCK, -1.87), on_step=watch,
+                                  callback_every=1)
+    assert result.ok, result.reason
+    arm_bodies = {i for i in range(model.nbody) if i not in (0, pil, model.body("block0").id)}
+    assert not touched & arm_bodies
+    assert np.linalg.norm(block_pose(model, data).pos[:2] - target) < 0.005

@@ -50,6 +50,11 @@ SAG_TOL = 0.01
 #: ... or stray sideways from it by this much (m): obstacles are searched along the
 #: straight line, within the cup's clearance of it.
 DRIFT_TOL = 0.02
+#: ... but a vertical move (a lift off a pick or a release, a descent onto one) by at
+#: most this much (m): it starts or ends between neighbours, and a joint-space lift
+#: bulging 5 mm sideways pushed a picked block into one wedged against a pillar and
+#: flipped it (CLIPort probe blocks_around_fixed_cylinder).
+VERTICAL_DRIFT_TOL = 0.001
 #: Halvings of a move at most when placing via points (2**4 = 16 segments).
 VIA_DEPTH = 4
 #: Simulated seconds the arm takes at least to return home after an aborted primitive.
@@ -129,22 +134,27 @@ class ArmSuctionRobot(SuctionRobot):
         return q
 
     def _vias(self, qa: np.ndarray, qb: np.ndarray, pa: np.ndarray, pb: np.ndarray,
-              ya: float, yb: float, depth: int = VIA_DEPTH) -> list[np.ndarray]:
+              ya: float, yb: float, depth: int = VIA_DEPTH,
+              drift_tol: float | None = None) -> list[np.ndarray]:
         """Joint via points so that the joint-space move from qa to qb sags at most
         SAG_TOL below the straight tip line from pa to pb and strays at most
-        DRIFT_TOL from it sideways (obstacles are looked for along that line only:
-        a joint-space arc can swing the cup through a tower beside it)."""
+        ``drift_tol`` from it sideways (obstacles are looked for along that line only:
+        a joint-space arc can swing the cup through a tower beside it). Default:
+        VERTICAL_DRIFT_TOL for a vertical move, else DRIFT_TOL."""
+        if drift_tol is None:
+            vertical = float(np.linalg.norm(pb[:2] - pa[:2])) < 1e-4
+            drift_tol = VERTICAL_DRIFT_TOL if vertical else DRIFT_TOL
         sag = drift = 0.0
         for s in (0.25, 0.5, 0.75):
             tip, line = self.ik.fk(qa + s * (qb - qa)), pa + s * (pb - pa)
             sag = max(sag, float(line[2] - tip[2]))
             drift = max(drift, float(np.linalg.norm(tip[:2] - line[:2])))
-        if (sag <= SAG_TOL and drift <= DRIFT_TOL) or depth == 0:
+        if (sag <= SAG_TOL and drift <= drift_tol) or depth == 0:
             return []
         pm, ym = 0.5 * (pa + pb), 0.5 * (ya + yb)
         qm = self._solve(qa, pa, ya, pm, ym)
-        return [*self._vias(qa, qm, pa, pm, ya, ym, depth - 1), qm,
-                *self._vias(qm, qb, pm, pb, ym, yb, depth - 1)]
+        return [*self._vias(qa, qm, pa, pm, ya, ym, depth - 1, drift_tol), qm,
+                *self._vias(qm, qb, pm, pb, ym, yb, depth - 1, drift_tol)]
 
     def _targets(self, qs: np.ndarray) -> np.ndarray:
         """Servo targets of joint samples: angles plus the damping lead of their speed."""

@@ -16,7 +16,13 @@ import numpy as np
 
 from factask.geometry import quat_from_axis_angle
 from factask.sim.robots import DEFAULT_ARM, DHArm
-from factask.sim.suction import ROBOT_CONAFFINITY, ROBOT_CONTYPE, add_suction_weld, add_tool
+from factask.sim.suction import (
+    ROBOT_CONAFFINITY,
+    ROBOT_CONTYPE,
+    STEM_RADIUS,
+    add_suction_weld,
+    add_tool,
+)
 
 #: Joint names, base to wrist.
 JOINT_NAMES = (
@@ -45,6 +51,16 @@ BASE_QUAT = (0.0, 0.0, 0.0, 1.0)
 FLANGE_BODY = "flange"
 #: Body name of link i (1..6).
 LINK_BODY = "link{}"
+#: Name of the body (under the flange) that carries the suction tool.
+TOOL_BODY = "suction_tool"
+#: Length (m) of the tube between the flange and the suction tool. The wrist's last
+#: link is 8-9 cm wide around the tool axis: as a capsule right on the 10 cm tool its
+#: cap came down to 6 cm above the tip, and placing a block beside a 15 cm pillar drove
+#: it into the pillar's top, which pushed the block 2-3 cm off its target (CLIPort probe
+#: blocks_around_fixed_cylinder). Now the link ends flat at the flange, 12 cm above the
+#: tip: it clears bodies up to 12 cm above the tip within its radius of the tool axis.
+#: Longer costs reach: at 3 cm the UR5e no longer reaches the table's far corners 15 cm up.
+TOOL_EXTENSION = 0.02
 
 
 def build_arm(spec: mujoco.MjSpec, arm: DHArm = DEFAULT_ARM) -> mujoco.MjsBody:
@@ -56,7 +72,8 @@ def build_arm(spec: mujoco.MjSpec, arm: DHArm = DEFAULT_ARM) -> mujoco.MjsBody:
         arm: DH parameters of the arm.
 
     Returns:
-        The flange body (carrying the suction tool).
+        The flange body (its child TOOL_BODY, TOOL_EXTENSION below it, carries the
+        suction tool).
     """
     spec.compiler.degree = False
     # The DH base frame has the arm reaching along -x at q = 0; turning the base
@@ -88,8 +105,12 @@ def build_arm(spec: mujoco.MjSpec, arm: DHArm = DEFAULT_ARM) -> mujoco.MjsBody:
         end = np.array(child_pos)
         if np.linalg.norm(end - start) < 1e-6:
             end = start + np.array([0.0, 0.0, 0.02])
+        # The last link ends flat at the flange, as a real wrist does: a capsule's
+        # cap would reach its radius (4 cm) further down along the tool.
+        last = i == 5
         body.add_geom(
-            name=f"link{i + 1}_geom", type=mujoco.mjtGeom.mjGEOM_CAPSULE,
+            name=f"link{i + 1}_geom",
+            type=mujoco.mjtGeom.mjGEOM_CYLINDER if last else mujoco.mjtGeom.mjGEOM_CAPSULE,
             size=[arm.radii[i], 0.0, 0.0], fromto=[*start, *end], mass=LINK_MASS[i],
             rgba=[0.55, 0.6, 0.7, 1], contype=ROBOT_CONTYPE, conaffinity=ROBOT_CONAFFINITY,
         )
@@ -103,6 +124,14 @@ def build_arm(spec: mujoco.MjSpec, arm: DHArm = DEFAULT_ARM) -> mujoco.MjsBody:
         servo.set_to_position(kp=KP[i], kv=KV[i])
         parent = body
     flange = parent.add_body(name=FLANGE_BODY, pos=child_pos, quat=child_quat, gravcomp=1.0)
-    add_tool(flange, down=True)
-    add_suction_weld(spec, flange)
+    # The extension tube, then the tool at its end (a body without joints: fixed to it).
+    flange.add_geom(
+        name="tool_extension", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+        size=[STEM_RADIUS, TOOL_EXTENSION / 2, 0.0], pos=[0, 0, TOOL_EXTENSION / 2],
+        rgba=[0.3, 0.3, 0.3, 1], mass=0.03, contype=ROBOT_CONTYPE,
+        conaffinity=ROBOT_CONAFFINITY,
+    )
+    tool = flange.add_body(name=TOOL_BODY, pos=[0, 0, TOOL_EXTENSION], gravcomp=1.0)
+    add_tool(tool, down=True)
+    add_suction_weld(spec, tool)
     return flange
