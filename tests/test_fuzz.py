@@ -116,6 +116,15 @@ def test_mutating_a_built_graph_is_caught_where_it_enters(which: int, data: st.D
         pass
 
 
+def test_a_field_set_to_none_after_construction_is_caught_as_none() -> None:
+    """A count set to None was left out of the re-check (refilled with its default)
+    while the graph kept the None: the whole-graph check then raised a TypeError."""
+    graph = parse_graph(LIBRARY[0])
+    object.__setattr__(graph.variables[0], "count", None)
+    with pytest.raises(GraphValidationError, match="count"):
+        graph.ensure_valid()
+
+
 @pytest.mark.slow
 @settings(max_examples=12, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])

@@ -187,7 +187,9 @@ class TaskGraph(BaseModel):
         Raises:
             GraphValidationError: listing every problem found.
         """
-        data = self.model_dump(mode="python", exclude_none=True, warnings=False)
+        # None kept: a field set to None after construction must fail as None, not be
+        # left out and refilled with its default while the graph itself keeps the None.
+        data = self.model_dump(mode="python", warnings=False)
         try:
             TaskGraph.model_validate(data)
         except ValidationError as exc:
