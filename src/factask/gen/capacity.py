@@ -245,18 +245,13 @@ def fit_variant(branch: Schema, found: Sequence[Mention]) -> Schema | None:
         new[field] = kept[0] if len(kept) == 1 else {"anyOf": kept}
         base[field] = _value(new[field])[1]
     lengths = {f: n for f, schema in props.items() if (n := _length_field(schema)) is not None}
-    # Other choices (an aligned goal's mode): only the values whose layout fits (each
-    # with the others at their first value). Checking the first alone let an answer
-    # with another one through: an ell aligned by its corner to a line's end slid off.
-    for field, schema in props.items():
-        values = schema.get("enum")
-        if field in base and field not in RELATION_TYPES[relation].anchor_fields \
-                and field != "objects" and values and len(values) > 1:
-            kept_values = [v for v in values if fits({**base, field: v})]
-            if not kept_values:
+    # Other choices (an aligned goal's mode): the values whose layout fits, not the first.
+    anchors = RELATION_TYPES[relation].anchor_fields
+    for field in [f for f in base if f not in anchors and f not in ("type", "objects")]:
+        if len(values := props[field].get("enum", [])) > 1:
+            if not (ok := [v for v in values if fits({**base, field: v})]):
                 return None
-            new[field] = {**schema, "enum": kept_values}
-            base[field] = kept_values[0]
+            new[field], base[field] = {**props[field], "enum": ok}, ok[0]
     for field, number in lengths.items():
         values = [x for x in LENGTHS if _within(x, number) and fits({**base, field: x})]
         options = ([{"type": "number", "enum": values}] if values else []) + \
