@@ -360,3 +360,16 @@ def test_a_bowl_the_words_move_is_carried_and_one_they_do_not_stays_fixed() -> N
     still = mentions("drop the pink ball into the yellow bowl in the green zone")
     answer["factors"][1]["goal"]["objects"] = ["yellow_bowl"]
     assert schema_problems(answer, grounded.compact_graph_schema(still, "drop ... zone"))
+
+
+def test_capacity_pruning_skips_a_goal_the_whole_graph_check_refuses() -> None:
+    """A rope_along with neither `along` nor `start`/`end` is no goal: the layout
+    check must leave it (the syntax level's to report), not run its solver into an
+    assertion. Found with the proposal below (it raised AssertionError before)."""
+    proposal = "Lay the rope along the line on the table from one end to the other."
+    schema = grounded.compact_graph_schema(mentions(proposal), proposal)
+    assert schema is not None
+    goals = schema["properties"]["factors"]["prefixItems"][0]["properties"]["goal"]["anyOf"]
+    alongs = [g["properties"]["along"] for g in goals
+              if g["properties"]["type"] == {"const": "rope_along"}]
+    assert {"const": "line"} in alongs

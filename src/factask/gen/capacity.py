@@ -175,12 +175,12 @@ def _problem(keys: tuple[tuple[tuple[str, Any], ...], ...],
     variables = [m.as_variable() for m in found if m.name in used]
     try:
         factors = in_listed_order([SubtaskFactor.model_validate(
-            {"name": f"goal_{i}", "description": "goal", "goal": goal, "weight": 1.0})
+            {"name": f"goal_{i}", "description": "goal", "goal": goal, "weight": 1 / len(goals)})
             for i, goal in enumerate(goals)])
-        graph = TaskGraph.model_validate({
-            "name": "capacity", "description": "goals sharing an anchor",
-            "variables": variables,
-            "factors": [f.model_dump(mode="json", exclude_none=True) for f in factors]})
+        graph = TaskGraph.model_validate({  # + whole-graph checks: an unanchored rope_along
+            "name": "capacity", "description": "goals sharing an anchor", "variables": variables,
+            "factors": [f.model_dump(mode="json", exclude_none=True) for f in factors]}
+        ).ensure_valid()
     except (ValidationError, FactaskError, ValueError):
         return None
     rng = np.random.default_rng(0)
