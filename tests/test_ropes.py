@@ -273,3 +273,18 @@ def test_ropes_stay_stable_over_many_seeded_episodes() -> None:
             if terminated:
                 break
     assert math.isfinite(float(env.data.time))
+
+
+def test_a_rope_goal_with_no_run_is_a_layout_error_even_unvalidated() -> None:
+    """Validation refuses a rope_along with no along, start/end or points; a graph
+    built without it (model_validate alone) fails its reset with a typed error,
+    not an AssertionError inside the solver."""
+    from factask.scene.collision import LayoutError
+    from factask.sim.reset import reset_layout
+
+    graph = TaskGraph.model_validate({
+        "name": "t", "variables": [{"name": "rope", "kind": "rope", "count": 10,
+                                    "size": [0.014, 0.01, 0.01]}],
+        "factors": [{"name": "f", "goal": {"type": "rope_along", "objects": ["rope"]}}]})
+    with pytest.raises(LayoutError, match="needs 'along'"):
+        reset_layout(graph, np.random.default_rng(0))

@@ -120,7 +120,9 @@ class RopeAlong(RelationBase):
             host = ctx.inst(self.along)[0]
             hobj, hpose = ctx.objs[host], ctx.current[host]
             return _side_run(hpose.pos[:2], hpose.yaw, hobj.size, self.side)
-        assert self.start is not None and self.end is not None
+        if self.start is None or self.end is None:  # validation names it; solving alone too
+            raise Infeasible("a rope_along goal needs 'along', or both 'start' and 'end'",
+                             retry=False)
         first = ctx.inst(self.start)[0]
         a = ctx.current[first].pos[:2]
         b = ctx.current[ctx.inst(self.end)[0]].pos[:2]
