@@ -14,6 +14,7 @@ from factask.geometry import Pose
 from factask.model import parse_graph
 from factask.model.graph import TaskGraph
 from factask.relations.rope import rope_slot_order
+from factask.relations.solving import SolvedFactor
 from factask.scene.objects import SceneObject, objects_by_name, resting_pose
 from factask.sim.checks import check_task
 from factask.sim.reset import reset_layout
@@ -99,11 +100,16 @@ def test_solid_obstacles_are_tall_colliding_objects_other_than_ropes() -> None:
     assert [o.name for o, _ in solid_obstacles(objs, layout, rope, 0.01)] == ["block"]
 
 
-def test_a_segment_against_a_block_is_moved_by_its_neighbour() -> None:
+def _between_blocks_reset() -> tuple[TaskGraph, dict[str, Pose], dict[str, SolvedFactor],
+                                     dict[str, SceneObject], list[str]]:
+    """:func:`_between_blocks` reset at seed 0: graph, layout, solved, objects, segments."""
     graph = _between_blocks()
     layout, solved = reset_layout(graph, np.random.default_rng(0))
-    objs = objects_by_name(graph)
-    names = graph.variable("red_rope").instances
+    return graph, layout, solved, objects_by_name(graph), graph.variable("red_rope").instances
+
+
+def test_a_segment_against_a_block_is_moved_by_its_neighbour() -> None:
+    graph, layout, solved, objs, names = _between_blocks_reset()
     poses = dict(layout)
     poses.update(solved["lay"].targets(objs))
     # The first segment pushed against block a's corner, out of tolerance.
@@ -123,10 +129,7 @@ def test_a_segment_against_a_block_is_moved_by_its_neighbour() -> None:
 
 
 def test_a_rope_beyond_a_block_is_pulled_by_the_end_for_the_far_block_first() -> None:
-    graph = _between_blocks()
-    layout, solved = reset_layout(graph, np.random.default_rng(0))
-    objs = objects_by_name(graph)
-    names = graph.variable("red_rope").instances
+    graph, layout, solved, objs, names = _between_blocks_reset()
     poses = dict(layout)
     # Straight along the run's line, beyond block a (y < -BLOCK_Y - 0.02).
     for k, n in enumerate(names):
