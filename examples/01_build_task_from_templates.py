@@ -61,6 +61,22 @@ bridge = ft.compose(TEMPLATES["bridge"].instantiate(pillars=pillars, deck=log),
                                                    "blocks.").ensure_valid()
 print("log bridge:", [(f.name, f.goal.type) for f in bridge.factors])
 
+# %% A `holed_box` has a square hole in its +x side; `aligned` mode "hole" lays a log in
+# front of it, axis through the hole (the layout keeps that spot clear at reset). Any
+# other mode on a holed box is refused, naming the one to use.
+holed = ft.StateVariable(name="red_box", kind="holed_box", color="red", size=(0.08, 0.08, 0.05))
+line_up = ft.SubtaskFactor(name="line_up", description="line the log up with the red box's hole",
+                           goal=ft.Aligned(objects=["green_log"], reference="red_box",
+                                           mode="hole"))
+hole_task = ft.TaskGraph(name="log-to-hole", variables=[log, holed],
+                         factors=[line_up]).ensure_valid()
+print("log to hole:", [(f.name, f.goal.type, f.goal.mode) for f in hole_task.factors])
+centred = line_up.model_copy(update={"goal": line_up.goal.model_copy(update={"mode": "center"})})
+try:
+    hole_task.model_copy(update={"factors": [centred]}).ensure_valid()
+except ft.GraphValidationError as exc:
+    print(exc)
+
 # %% Validation reports every problem at once, each with a fix
 extra = ft.SubtaskFactor(name="also_zone", description="put the red block in a purple zone",
                          goal=ft.InZone(objects=["red_block"], zone="purple_zone"), weight=0.2)
