@@ -6,7 +6,7 @@ import json
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_gen_cover import proposals, sample
+from test_gen_cover import proposals, sample, schema_of
 
 from factask.gen import capacity, grounded
 from factask.gen.mentions import Mention, mentions
@@ -93,7 +93,7 @@ def test_every_pinned_goal_the_pruned_schema_allows_can_be_laid_out(proposal, da
     found = mentions(proposal)
     if not grounded.applies(found):
         return
-    schema = grounded.compact_graph_schema(found, proposal)
+    schema = schema_of(proposal)
     answer = sample(schema, data)
     assert schema_problems(answer, schema) == []
     factors = schema["properties"]["factors"]
@@ -223,7 +223,7 @@ def _sampled_goals(proposal: str, data: st.DataObject) -> tuple[list, list[dict]
     found = mentions(proposal)
     if not grounded.applies(found):
         return None
-    schema = grounded.compact_graph_schema(found, proposal)
+    schema = schema_of(proposal)
     factors = schema["properties"]["factors"]
     if "items" in factors and factors["items"] is not False:
         return None
