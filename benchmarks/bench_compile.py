@@ -11,9 +11,9 @@ written two ways:
 
 Both give ``n`` free bodies plus ``n`` goal markers plus the floating robot.
 For each ``n`` (up to 200) the best of a few repeats of
-:func:`~factask.sim.compile.compile_graph` on a validated graph
+:func:`~factask.sim.build.compile.compile_graph` on a validated graph
 (``validate=False``) is printed, split into building the ``MjSpec``
-(:func:`~factask.sim.compile.build_spec`) and MuJoCo's compiler
+(:func:`~factask.sim.build.compile.build_spec`) and MuJoCo's compiler
 (``spec.compile()``); beside it the graph's own validation
 (``graph.ensure_valid()``, which ``compile_graph`` runs first by default; the
 graph model's cost, not the compiler's) and, up to 100 objects, the export path
@@ -33,8 +33,8 @@ from pathlib import Path
 import mujoco
 
 import factask as ft
-from factask.sim.assets import XML_PRECISION
-from factask.sim.compile import build_mjcf, build_spec, compile_graph
+from factask.sim.build.compile import build_mjcf, build_spec, compile_graph
+from factask.sim.build.mjcf import XML_PRECISION
 
 #: Object counts measured by default and with ``--quick``.
 SIZES = (1, 2, 5, 10, 20, 50, 98, 150, 200)

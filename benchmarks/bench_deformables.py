@@ -20,8 +20,8 @@ import time
 import mujoco
 import numpy as np
 
-from factask.model import parse_graph
-from factask.model.graph import TaskGraph
+from factask.graph import parse_graph
+from factask.graph.taskgraph import TaskGraph
 from factask.sim.env import FactaskEnv
 
 ZONE = {"name": "green_zone", "kind": "zone", "color": "green"}

@@ -51,11 +51,11 @@ import physics_floor
 
 from factask.library import get_task
 from factask.sim.env import FactaskEnv
-from factask.sim.oracle import Oracle
+from factask.sim.oracle.scripted import Oracle
 
 #: Default task: six stacking pick-and-places of blocks.
 DEFAULT_TASK = "rainbow-stack"
-#: The fast robot and the default arm (two names of :data:`factask.sim.robots.ROBOTS`).
+#: The fast robot and the default arm (two names of :data:`factask.sim.robots.registry.ROBOTS`).
 ROBOTS = ("floating", "arm")
 
 

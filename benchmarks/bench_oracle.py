@@ -32,11 +32,11 @@ from pathlib import Path
 import physics_floor
 
 from factask.library import get_task, task_names
-from factask.model.errors import FactaskError
 from factask.sim.env import FactaskEnv
 from factask.sim.episode import EpisodeResult, run_episode
+from factask.vocabulary.errors import FactaskError
 
-#: The fast robot and the default arm (two names of :data:`factask.sim.robots.ROBOTS`).
+#: The fast robot and the default arm (two names of :data:`factask.sim.robots.registry.ROBOTS`).
 ROBOTS = ("floating", "arm")
 #: Tasks of ``--quick``: one placing, one stacking, one structure task.
 QUICK_TASKS = ("place-red-in-green", "rainbow-stack", "build-bridge")

@@ -15,9 +15,9 @@ import mujoco
 import numpy as np
 
 from factask.geometry import Pose
-from factask.sim.ik import TopDownIK, top_down_pose
-from factask.sim.robot import attach_robot, make_robot
-from factask.sim.robots import ROBOTS
+from factask.sim.robots.attach import attach_robot, make_robot
+from factask.sim.robots.ik import TopDownIK, top_down_pose
+from factask.sim.robots.registry import ROBOTS
 
 BLOCK = 0.04
 #: (pick xy, place xy) pairs spread over the workspace.

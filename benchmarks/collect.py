@@ -37,8 +37,8 @@ from pathlib import Path
 import factask.sim  # noqa: F401  (picks a headless GL backend before MuJoCo loads)
 from factask.datasets.shards import CollectConfig, collect
 from factask.library import get_task
-from factask.sim.cameras import CameraRig, ravens_cameras
 from factask.sim.env import FactaskEnv
+from factask.sim.render.cameras import CameraRig, ravens_cameras
 
 
 def folder_bytes(root: Path) -> int:
@@ -70,7 +70,7 @@ def throughput(task: str, episodes: int, workers: int, size: tuple[int, int] | N
 
 
 #: What a worker imports to record a shard (timed in a fresh interpreter).
-SHARD_IMPORTS = ("factask.datasets.shards, factask.registration, factask.sim.cameras, "
+SHARD_IMPORTS = ("factask.datasets.shards, factask.registration, factask.sim.render.cameras, "
                  "factask.sim.env")
 
 

@@ -26,7 +26,7 @@ import bench_env
 import bench_oracle
 import bench_robot
 
-from factask.sim.robots import ROBOTS
+from factask.sim.robots.registry import ROBOTS
 
 
 def _section(title: str) -> float:

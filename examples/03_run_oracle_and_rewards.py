@@ -20,10 +20,10 @@ import numpy as np
 import factask as ft
 from factask.geometry import Pose
 from factask.library import get_task
-from factask.sim.compile import set_object_pose
+from factask.sim.build.compile import set_object_pose
 from factask.sim.env import FactaskEnv
 from factask.sim.episode import evaluate_task, run_episode
-from factask.sim.oracle import Oracle
+from factask.sim.oracle.scripted import Oracle
 
 OUT = Path("out/examples")
 OUT.mkdir(parents=True, exist_ok=True)

@@ -20,7 +20,7 @@ import numpy as np
 from factask.library import get_task
 from factask.sim.env import FactaskEnv
 from factask.sim.episode import run_episode
-from factask.sim.render import BACKGROUND_ID, SceneRenderer, active_gl_backend
+from factask.sim.render.offscreen import BACKGROUND_ID, SceneRenderer, active_gl_backend
 
 OUT = Path("out/examples")
 OUT.mkdir(parents=True, exist_ok=True)

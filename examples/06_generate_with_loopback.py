@@ -19,11 +19,11 @@ os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # offline: bundle
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 from factask.gen import APPROACHES, Generator, LLMClient, LLMConfig, LoopbackServer, Verifier
-from factask.gen.bases import base_order
-from factask.gen.cover import colour_pins
 from factask.gen.demo import DEMO_PROPOSAL, demo_responder
-from factask.gen.grounded import movable
-from factask.gen.mentions import mentions
+from factask.gen.reading.bases import base_order
+from factask.gen.reading.cover import colour_pins
+from factask.gen.reading.grounded import movable
+from factask.gen.reading.mentions import mentions
 
 # %% [markdown]
 # ## The scripted server
@@ -80,12 +80,12 @@ print("wrote", out / "06_generated.json")
 # ## What a proposal's words fix before the model writes a token
 #
 # For the packaged local model the steps are grounded in the objects the proposal
-# names (`factask.gen.mentions`): a matching-colour phrase gives one object per
+# names (`factask.gen.reading.mentions`): a matching-colour phrase gives one object per
 # colour, a moving verb before a bowl makes it carried, and the one-shot grammar
 # pins each fixed object to the movable one of its colour (docs/generation.md,
 # "Grounded answers for the local model"); "horizontally" lays a cylinder down (a
 # log), and the words' bases come first in the order goals may build on one another
-# (`factask.gen.bases`: no answer can put two objects on each other).
+# (`factask.gen.reading.bases`: no answer can put two objects on each other).
 
 # %%
 for proposal in ("sort the red and blue blocks into the bowls of the same colour",

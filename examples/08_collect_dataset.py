@@ -30,7 +30,7 @@ from factask.datasets.replay import compare_states, resimulate
 from factask.datasets.shards import CollectConfig, collect
 from factask.datasets.states import read_states
 from factask.evaluation.policy import evaluate_policy
-from factask.sim.observations import decode_text
+from factask.sim.render.observations import decode_text
 
 OUT = Path("out/examples")
 OUT.mkdir(parents=True, exist_ok=True)

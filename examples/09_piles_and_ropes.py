@@ -19,7 +19,7 @@ from pathlib import Path
 import imageio.v3 as iio
 import numpy as np
 
-from factask.model import parse_graph
+from factask.graph import parse_graph
 from factask.sim.env import FactaskEnv
 from factask.sim.episode import run_episode
 

@@ -1,7 +1,7 @@
 """Write the MJCF of every asset kind (default size) and of the table to mjcf_assets/.
 
 The files are generated, never edited by hand; ``tests/test_assets.py`` fails when
-they differ from what the builders in :mod:`factask.sim.assets` produce now.
+they differ from what the builders in :mod:`factask.sim.build.mjcf` produce now.
 
 Usage:
     .venv/bin/python scripts/export_assets.py [OUT_DIR]
@@ -13,8 +13,8 @@ import sys
 from pathlib import Path
 
 import factask.sim  # noqa: F401  (picks the headless GL backend before MuJoCo loads)
-from factask.model.kinds import KIND_NAMES
-from factask.sim.assets import asset_xml, table_xml
+from factask.sim.build.mjcf import asset_xml, table_xml
+from factask.vocabulary.kinds import KIND_NAMES
 
 #: Where the files go, relative to the repository root.
 DEFAULT_OUT = Path(__file__).resolve().parent.parent / "mjcf_assets"

@@ -17,10 +17,10 @@ import numpy as np
 from matplotlib.figure import Figure  # no pyplot: no GUI backend is needed
 
 import factask.sim  # noqa: F401  (picks the headless GL backend before rendering)
-from factask.model.kinds import ASSET_KINDS, KIND_NAMES
-from factask.model.palette import COLOR_NAMES
-from factask.sim.assets import build_object, build_table, new_root
-from factask.sim.render import SceneRenderer
+from factask.sim.build.mjcf import build_object, build_table, new_root
+from factask.sim.render.offscreen import SceneRenderer
+from factask.vocabulary.kinds import ASSET_KINDS, KIND_NAMES
+from factask.vocabulary.palette import COLOR_NAMES
 
 DEFAULT_OUT = Path(__file__).resolve().parent.parent / "docs" / "img" / "assets.png"
 #: Tile size in pixels and grid layout.

@@ -12,7 +12,7 @@ import itertools
 
 from hypothesis import strategies as st
 
-from factask.model import (
+from factask.graph import (
     Aligned,
     AtPose,
     Circle,
@@ -26,7 +26,7 @@ from factask.model import (
     TargetPose,
     TaskGraph,
 )
-from factask.model.palette import COLOR_NAMES
+from factask.vocabulary.palette import COLOR_NAMES
 
 MOVABLE_KINDS = ["block", "box", "cylinder", "ball", "ell"]
 SUPPORT_MOVABLE = ["block", "box", "cylinder"]

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from factask.model import TaskGraph
+from factask.graph import TaskGraph
 from factask.scene.objects import footprint_corners, obb_overlaps
 from factask.sim.env import FactaskEnv
 

@@ -11,8 +11,7 @@ import pytest
 
 import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
 from factask.geometry import tilt_deg
-from factask.model.kinds import ASSET_KINDS, KIND_NAMES
-from factask.sim.assets import (
+from factask.sim.build.mjcf import (
     FIXTURE_CLEARANCE,
     MARKER_GROUP,
     AssetError,
@@ -24,6 +23,7 @@ from factask.sim.assets import (
     new_root,
     parts_aabb,
 )
+from factask.vocabulary.kinds import ASSET_KINDS, KIND_NAMES
 
 ROOT = Path(__file__).resolve().parent.parent
 #: Sizes that differ on every axis (where the kind allows), so swapped axes show.
@@ -275,7 +275,7 @@ def test_committed_asset_files_are_fresh() -> None:
 
 
 def test_holed_box_has_an_open_square_hole_in_the_middle_of_its_x_side() -> None:
-    from factask.model.kinds import side_hole
+    from factask.vocabulary.kinds import side_hole
 
     size = ODD_SIZES["holed_box"]
     side, centre = side_hole(size)

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 import factask as ft
-from factask.sim.compile import compile_graph
-from factask.sim.parts import BALL_FRICTION, ROLLING_CONDIM
+from factask.sim.build.compile import compile_graph
+from factask.sim.build.parts import BALL_FRICTION, ROLLING_CONDIM
 
 BALL_RADIUS = 0.02
 
@@ -103,7 +103,7 @@ def test_a_rolled_log_reads_lying_flat_with_its_yaw() -> None:
     pose reads without the roll (tilt 0, the axis's yaw), so the checks and the oracle
     do not take a rolled log for one tipped over."""
     from factask.geometry import quat_from_axis_angle, quat_from_yaw, quat_mul, tilt_deg, yaw_of
-    from factask.sim.compile import get_object_pose
+    from factask.sim.build.compile import get_object_pose
 
     scene = _log_on_table()
     data = mujoco.MjData(scene.model)

@@ -20,15 +20,15 @@ from factask.batch.scene import BatchScene
 from factask.batch.status import check_task_batch
 from factask.batch.targets import BatchTargets
 from factask.geometry import Pose, quat_from_axis_angle, quat_mul
+from factask.graph import SubtaskFactor, TaskGraph
 from factask.library import get_task
-from factask.model import SubtaskFactor, TaskGraph
-from factask.model.errors import InvalidValueError
 from factask.relations import RELATION_TYPES
 from factask.relations.solving import SolvedFactor
 from factask.relations.status import CheckScene
 from factask.scene.objects import objects_by_name
-from factask.sim.checks import check_task
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
+from factask.vocabulary.errors import InvalidValueError
 
 KINDS = sorted(RELATION_TYPES)
 #: Library tasks that add what the relation examples lack: supports in a group

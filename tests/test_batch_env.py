@@ -28,12 +28,12 @@ from factask.batch.device import load_backend
 from factask.batch.env import BatchEnv
 from factask.batch.oracle import run_oracle
 from factask.batch.vector import BatchVectorEnv
+from factask.graph import TaskGraph
 from factask.library import get_task
-from factask.model import TaskGraph
-from factask.model.errors import InvalidValueError
 from factask.sim.env import FactaskEnv, ResetNeededError
 from factask.sim.episode import run_episode
-from factask.sim.observations import decode_text
+from factask.sim.render.observations import decode_text
+from factask.vocabulary.errors import InvalidValueError
 
 pytestmark = pytest.mark.xdist_group("warp")
 if importlib.util.find_spec("mujoco_warp") is None or importlib.util.find_spec("warp") is None:

@@ -1,4 +1,4 @@
-"""Goal checks (factask.sim.checks): progress, satisfaction, tolerances, matches."""
+"""Goal checks (factask.sim.layout.checks): progress, satisfaction, tolerances, matches."""
 
 from __future__ import annotations
 
@@ -11,10 +11,10 @@ from hypothesis import strategies as st
 from test_layout import GRAPHS, at_targets, make_graph
 
 from factask.geometry import Pose, quat_from_yaw, quat_mul
-from factask.model import TaskGraph
+from factask.graph import TaskGraph
 from factask.relations.solving import SolvedFactor
-from factask.sim.checks import CheckError, check_factor, check_task
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import CheckError, check_factor, check_task
+from factask.sim.layout.reset import reset_layout
 
 
 def _setup(graph: TaskGraph, seed: int = 0

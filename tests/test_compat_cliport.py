@@ -28,7 +28,7 @@ from factask.compat.cliport.batch import run_batch, run_one
 from factask.compat.cliport.errors import TaskTimeout
 from factask.compat.cliport.loader import ALIAS_NAMES
 from factask.compat.cliport.urdf_map import URDF_TABLE, asset_key, resolve_asset
-from factask.model import AtFixedPose, AtPose, InZone, OnTable, StartOn, parse_graph
+from factask.graph import AtFixedPose, AtPose, InZone, OnTable, StartOn, parse_graph
 
 TASKS = Path(__file__).parent / "cliport_tasks"
 BAD = TASKS / "bad"
@@ -702,7 +702,7 @@ def test_a_zone_goal_with_a_placement_per_object_keeps_the_authors_spots():
     assert f.goal.type == "in_zone" and f.goal.poses is not None
     assert [round(p.x, 3) for p in f.goal.poses] == [0.525, 0.575]
     from factask.sim.episode import run_episode
-    from factask.sim.reset import reset_layout
+    from factask.sim.layout.reset import reset_layout
 
     _, solved = reset_layout(r.graph, np.random.default_rng(0))
     xs = sorted(round(float(s.pos[0]), 3) for s in solved[f.name].slots)
@@ -711,7 +711,7 @@ def test_a_zone_goal_with_a_placement_per_object_keeps_the_authors_spots():
 
 
 def test_in_zone_poses_must_match_the_object_count():
-    from factask.model import GraphValidationError, TaskGraph
+    from factask.graph import GraphValidationError, TaskGraph
 
     data = {"name": "t", "variables": [{"name": "blocks", "kind": "block", "count": 2},
                                        {"name": "zone", "kind": "zone"}],

@@ -14,9 +14,9 @@ from hypothesis import strategies as st
 from factask.compat.cliport import import_cliport
 from factask.compat.cliport import utils as cutils
 from factask.compat.cliport.errors import Unsupported
-from factask.model import GraphValidationError, StartOn, StateVariable, TaskGraph
-from factask.model.kinds import WALL_THICKNESS
+from factask.graph import GraphValidationError, StartOn, StateVariable, TaskGraph
 from factask.sim.env import FactaskEnv
+from factask.vocabulary.kinds import WALL_THICKNESS
 
 TASKS = Path(__file__).parent / "cliport_tasks"
 

@@ -11,9 +11,8 @@ import pytest
 
 import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
 from factask.geometry import Pose
-from factask.model import GraphValidationError, TaskGraph
-from factask.sim.assets import MARKER_GROUP
-from factask.sim.compile import (
+from factask.graph import GraphValidationError, TaskGraph
+from factask.sim.build.compile import (
     CompileError,
     compile_graph,
     fixture_hollows,
@@ -21,6 +20,7 @@ from factask.sim.compile import (
     set_marker,
     set_object_pose,
 )
+from factask.sim.build.mjcf import MARKER_GROUP
 
 
 def _graph(**overrides: Any) -> TaskGraph:
@@ -186,8 +186,8 @@ def test_fixture_hollow_follows_what_goes_in() -> None:
     assert len(scene.objects["frame_b"].geom_ids) == 4
 
 
-@pytest.mark.skipif(importlib.util.find_spec("factask.sim.robot") is None,
-                    reason="factask.sim.robot not written yet")
+@pytest.mark.skipif(importlib.util.find_spec("factask.sim.robots.attach") is None,
+                    reason="factask.sim.robots.attach not written yet")
 @pytest.mark.parametrize("robot", ["floating", "arm"])
 def test_compiles_with_robot(robot: str) -> None:
     scene = compile_graph(_graph(), robot=robot)
@@ -200,8 +200,8 @@ def test_mjspec_and_mjcf_export_build_the_same_model(task: str) -> None:
     """The compile path (MjSpec) and the export path (dm_control MJCF) agree on every
     body, geom and site: counts, types, sizes, placements, masses, contact settings."""
     from factask.library import get_task, task_names
-    from factask.sim.assets import XML_PRECISION
-    from factask.sim.compile import build_mjcf
+    from factask.sim.build.compile import build_mjcf
+    from factask.sim.build.mjcf import XML_PRECISION
 
     graphs = [_graph()] if task == "blocks-in-bowl" else [get_task(n) for n in task_names()]
     for graph in graphs:

@@ -17,12 +17,12 @@ import pytest
 from helpers import free_spot
 
 from factask.geometry import Pose
+from factask.graph import TaskGraph
 from factask.library import get_task
-from factask.model import TaskGraph
-from factask.sim.compile import get_object_pose, set_object_pose
+from factask.sim.build.compile import get_object_pose, set_object_pose
 from factask.sim.env import ActionError, FactaskEnv
 from factask.sim.episode import run_episode
-from factask.sim.oracle import Oracle
+from factask.sim.oracle.scripted import Oracle
 
 
 def make_graph(variables: list[dict[str, Any]], factors: list[dict[str, Any]],

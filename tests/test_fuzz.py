@@ -19,9 +19,9 @@ from graph_strategies import task_graphs
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from factask.graph import GraphValidationError, TaskGraph, parse_graph
 from factask.library import get_task
-from factask.model import GraphValidationError, TaskGraph, parse_graph
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 #: Longest message a validation report may have, characters.
 MAX_MESSAGE = 20_000
@@ -131,8 +131,8 @@ def test_a_field_set_to_none_after_construction_is_caught_as_none() -> None:
 @given(task_graphs(max_factors=3), st.integers(0, 2**16))
 def test_every_accepted_graph_compiles_and_resets_or_fails_typed(graph: TaskGraph,
                                                                 seed: int) -> None:
-    from factask.sim.compile import compile_graph
-    from factask.sim.reset import reset_layout
+    from factask.sim.build.compile import compile_graph
+    from factask.sim.layout.reset import reset_layout
 
     if not graph.factors:
         return

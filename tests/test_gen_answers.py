@@ -10,8 +10,7 @@ import pytest
 
 import factask.evaluation
 import factask.gen
-from factask.gen.demo import demo_graph
-from factask.gen.schemas import (
+from factask.gen.answers.schemas import (
     AnswerError,
     GoalAnswer,
     SubtaskDesign,
@@ -19,6 +18,7 @@ from factask.gen.schemas import (
     extract_json,
     parse_answer,
 )
+from factask.gen.demo import demo_graph
 from factask.gen.verify import graph_syntax
 
 GRAPH = demo_graph()
@@ -154,14 +154,14 @@ def test_several_objects_are_mentioned_in_the_feedback() -> None:
 
 
 def test_oversized_plans_get_feedback_asking_to_merge_steps() -> None:
-    from factask.gen.schemas import (
+    from factask.gen.answers.schemas import (
         MAX_FACTORS,
         MAX_SUBTASKS,
         SubtaskOutline,
         SubtaskPlan,
         check_graph_size,
     )
-    from factask.model import parse_graph
+    from factask.graph import parse_graph
 
     many = [{"name": f"s{i}", "description": "d"} for i in range(MAX_SUBTASKS + 1)]
     with pytest.raises(AnswerError, match="merge steps"):

@@ -1,4 +1,4 @@
-"""Goals whose layout fits, by construction (factask.gen.capacity)."""
+"""Goals whose layout fits, by construction (factask.gen.reading.capacity)."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_gen_cover import proposals, sample, schema_of
 
-from factask.gen import capacity, grounded
-from factask.gen.mentions import Mention, mentions
-from factask.gen.step_schemas import schema_problems
-from factask.model.palette import COLOR_NAMES
+from factask.gen.answers.step_schemas import schema_problems
+from factask.gen.reading import capacity, grounded
+from factask.gen.reading.mentions import Mention, mentions
+from factask.vocabulary.palette import COLOR_NAMES
 
 
 def goals_of(schema: dict) -> list[dict]:
@@ -168,7 +168,7 @@ def shapes_of(schema: dict) -> list[list[list[dict]]]:
 
 def names(variant: dict) -> set[str]:
     """The names a goal variant's anchor fields allow."""
-    from factask.gen.cover import names_of
+    from factask.gen.reading.cover import names_of
     from factask.relations import RELATION_TYPES
     props = variant["properties"]
     return {n for f in RELATION_TYPES[props["type"]["const"]].anchor_fields if f in props
@@ -292,7 +292,7 @@ def test_an_answer_never_anchors_its_goals_in_a_circle(proposal, data) -> None:
 
 
 def test_the_words_bases_come_first() -> None:
-    from factask.gen.bases import base_order
+    from factask.gen.reading.bases import base_order
 
     def order(proposal: str) -> list[str]:
         return base_order(mentions(proposal), proposal)
@@ -313,7 +313,7 @@ def test_the_words_bases_come_first() -> None:
     ["red", "blue", "block", "box", "on", "into", "the", "top", "of", "bowl", "zone", "and",
      "put", "green", "blocks", "x", ",", "onto", "three"]), max_size=24))
 def test_base_order_names_every_mention_once(words: list[str]) -> None:
-    from factask.gen.bases import base_order
+    from factask.gen.reading.bases import base_order
 
     proposal = " ".join(words)
     found = mentions(proposal)

@@ -9,7 +9,7 @@ from typer.testing import CliRunner
 from factask.cli import app
 from factask.gen.demo import DEMO_PROPOSAL, demo_responder
 from factask.gen.loopback import LoopbackServer, ScriptedResponder
-from factask.model import parse_graph
+from factask.graph import parse_graph
 
 runner = CliRunner()
 

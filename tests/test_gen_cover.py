@@ -1,4 +1,4 @@
-"""Goal lists that use every named object by construction (factask.gen.cover)."""
+"""Goal lists that use every named object by construction (factask.gen.reading.cover)."""
 
 from __future__ import annotations
 
@@ -10,11 +10,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from factask.gen import cover, grounded
-from factask.gen.mentions import mentions
-from factask.gen.step_schemas import schema_problems
-from factask.model.graph import TaskGraph
-from factask.model.palette import COLOR_NAMES
+from factask.gen.answers.step_schemas import schema_problems
+from factask.gen.reading import cover, grounded
+from factask.gen.reading.mentions import mentions
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.palette import COLOR_NAMES
 
 MOVABLE = ["block", "cylinder", "ball", "box", "ell"]
 FIXED = ["zone", "bowl", "pallet", "container", "line", "stand"]

@@ -1,4 +1,4 @@
-"""Step schemas grounded in the objects a proposal names (factask.gen.grounded)."""
+"""Step schemas grounded in the objects a proposal names (factask.gen.reading.grounded)."""
 
 from __future__ import annotations
 
@@ -9,11 +9,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from factask.gen import grounded
-from factask.gen.mentions import mentions
-from factask.gen.step_schemas import schema_problems
-from factask.model.graph import TaskGraph
-from factask.model.palette import COLOR_NAMES
+from factask.gen.answers.step_schemas import schema_problems
+from factask.gen.reading import grounded
+from factask.gen.reading.mentions import mentions
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.palette import COLOR_NAMES
 
 PROPOSAL = "put the yellow cylinder in the blue zone"
 
@@ -91,7 +91,7 @@ def test_grounding_needs_a_goal_over_the_named_objects() -> None:
     assert [m.name for m in found] == ["block"] and not grounded.applies(found)
     with pytest.raises(ValueError):
         grounded.compact_graph_schema(found)
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
     lone = grounded.goal_answer([StateVariable(name="block", kind="block")], "in the hole")
     assert lone["properties"]["goal"].get("anyOf")  # the ungrounded goal (coordinates)
@@ -105,8 +105,8 @@ def test_grounded_schemas_turn_into_a_llama_cpp_grammar(pairs) -> None:
     llama_grammar = pytest.importorskip("llama_cpp.llama_grammar")
     proposal = " and ".join(f"the {c} {k}" for c, k in pairs)
     found = mentions(proposal)
-    from factask.gen.step_schemas import empty_choices
-    from factask.model.variables import StateVariable
+    from factask.gen.answers.step_schemas import empty_choices
+    from factask.vocabulary.variables import StateVariable
 
     goal = grounded.goal_answer([StateVariable(name=m.name, kind=m.kind, count=m.count)
                                  for m in found], proposal)
@@ -291,7 +291,7 @@ def test_a_warm_request_to_llama_cpp_samples_from_every_grammar_valid_token() ->
 
 
 def test_a_grounded_subtask_goal_follows_the_words_and_has_no_coordinates() -> None:
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
     planned = [StateVariable(name="yellow_cylinder", kind="cylinder", color="yellow"),
                StateVariable(name="blue_zone", kind="zone", color="blue")]
@@ -306,11 +306,11 @@ def test_a_grounded_subtask_goal_follows_the_words_and_has_no_coordinates() -> N
 
 
 def test_a_step_whose_schema_admits_no_answer_makes_no_call() -> None:
-    from factask.gen import step_schemas as ss
+    from factask.gen.answers import step_schemas as ss
+    from factask.gen.answers.schemas import SubtaskPlan
     from factask.gen.fragments import plan_problems
-    from factask.gen.schemas import SubtaskPlan
     from factask.gen.steps import StepRunner
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
     only_a_zone = ss.goal_answer({"green_zone": "zone"})
     assert ss.empty_choices(only_a_zone) == ["$.properties.goal.anyOf"]

@@ -1,4 +1,4 @@
-"""The objects a proposal names (factask.gen.mentions): a parser of outside
+"""The objects a proposal names (factask.gen.reading.mentions): a parser of outside
 input, so property-based as well as by example."""
 
 from __future__ import annotations
@@ -9,10 +9,10 @@ import re
 from hypothesis import given
 from hypothesis import strategies as st
 
-from factask.gen.mentions import MAX_SPLIT_MENTIONS, mentions, mentions_text
-from factask.model.kinds import ASSET_KINDS
-from factask.model.names import NAME_PATTERN
-from factask.model.palette import COLOR_NAMES
+from factask.gen.reading.mentions import MAX_SPLIT_MENTIONS, mentions, mentions_text
+from factask.vocabulary.kinds import ASSET_KINDS
+from factask.vocabulary.names import NAME_PATTERN
+from factask.vocabulary.palette import COLOR_NAMES
 
 
 def _names(text: str) -> list[tuple[str, str, str | None, int]]:
@@ -53,8 +53,8 @@ def test_any_text_gives_valid_distinct_bounded_mentions(text: str) -> None:
 
 
 def test_a_coloured_object_of_the_proposal_must_be_a_variable() -> None:
-    from factask.gen.mentions import grounding_feedback, missing_mentions
-    from factask.model.variables import StateVariable
+    from factask.gen.reading.mentions import grounding_feedback, missing_mentions
+    from factask.vocabulary.variables import StateVariable
 
     proposal = "put the yellow cylinder in the blue zone, next to a bowl"
     copied = [StateVariable(name="blue_cylinder", kind="cylinder", color="blue"),
@@ -153,9 +153,9 @@ def test_a_leading_task_name_adds_no_object_the_description_does_not_name() -> N
 
 
 def test_an_everyday_word_accepts_every_kind_it_may_mean() -> None:
-    from factask.gen.mentions import ALSO_KINDS, KIND_WORDS, missing_mentions
-    from factask.model.kinds import KIND_NAMES
-    from factask.model.variables import StateVariable
+    from factask.gen.reading.mentions import ALSO_KINDS, KIND_WORDS, missing_mentions
+    from factask.vocabulary.kinds import KIND_NAMES
+    from factask.vocabulary.variables import StateVariable
 
     assert set(ALSO_KINDS) <= set(KIND_WORDS)
     assert {k for kinds in ALSO_KINDS.values() for k in kinds} <= set(KIND_NAMES)
@@ -224,7 +224,7 @@ def test_a_matching_colour_phrase_splits_groups_into_one_object_per_colour() -> 
 def test_without_a_matching_phrase_a_listed_group_stays_one_group() -> None:
     assert _names("put the balls of different colors (red, blue, green) in the zone") == [
         ("balls", "ball", None, 3), ("zone", "zone", None, 1)]
-    from factask.gen.mentions import colour_matched
+    from factask.gen.reading.mentions import colour_matched
 
     assert colour_matched("color-coordinated-ball-insertion")
     assert colour_matched("zones correspondingly colored")

@@ -9,6 +9,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from factask.gen.answers.schemas import AnswerError
+from factask.gen.answers.step_schemas import all_step_schemas, goal_answer, schema_problems
 from factask.gen.conversation import normalised_answer, sampling
 from factask.gen.llm import backoff_delays
 from factask.gen.llm_errors import (
@@ -22,8 +24,6 @@ from factask.gen.llm_errors import (
 )
 from factask.gen.local import parse_count_reply, parse_models_reply
 from factask.gen.prompts import schema_skeleton
-from factask.gen.schemas import AnswerError
-from factask.gen.step_schemas import all_step_schemas, goal_answer, schema_problems
 from factask.gen.steps import read_strict
 from factask.gen.strategies import normalise_weights
 
@@ -255,8 +255,8 @@ def test_a_text_field_ending_in_a_newline_is_refused() -> None:
 def test_the_grammar_name_pattern_bounds_the_parts_as_the_check_does(parts: list[str]) -> None:
     import re
 
+    from factask.gen.answers.step_schemas import NAME_REGEX
     from factask.gen.providers import for_llama_grammar
-    from factask.gen.step_schemas import NAME_REGEX
 
     name = "_".join(parts)
     loose = for_llama_grammar({"type": "string", "pattern": NAME_REGEX})["pattern"]
@@ -281,7 +281,7 @@ def test_distinct_names_are_distinct_and_keep_first_uses(names, taken) -> None:
 
 def test_a_repeated_variable_is_dropped_only_where_nothing_is_lost() -> None:
     from factask.gen.fragments import without_repeats
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
     red = StateVariable(name="blocks", kind="block", color="red", count=2)
     again = red.model_copy(update={"description": "the same, described again"})

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from factask.gen.answers.examples import Example, overlap, template_examples, top_k, words
 from factask.gen.demo import demo_graph
-from factask.gen.examples import Example, overlap, template_examples, top_k, words
 from factask.gen.memory import SubtaskMemory
 from factask.gen.prompts import (
     STEP_TEMPLATES,
@@ -15,7 +15,7 @@ from factask.gen.prompts import (
     render,
     vocabulary,
 )
-from factask.model import ASSET_KINDS, COLOR_NAMES, RELATION_TYPES, extract_fragment, parse_graph
+from factask.graph import ASSET_KINDS, COLOR_NAMES, RELATION_TYPES, extract_fragment, parse_graph
 
 
 def test_every_step_has_a_template_with_a_step_line_after_its_fixed_part() -> None:
@@ -98,7 +98,7 @@ def test_memory_saves_and_retrieves_verified_subtasks(tmp_path) -> None:
 
 def test_library_task_examples_are_valid_graphs_shown_in_the_one_shot_prompt() -> None:
     pytest.importorskip("factask.library")
-    from factask.gen.examples import library_task_examples, render_examples
+    from factask.gen.answers.examples import library_task_examples, render_examples
 
     found = library_task_examples("stack the blocks on the pallet", 2)
     assert len(found) == 2 and found[0].score >= found[1].score
@@ -110,7 +110,7 @@ def test_library_task_examples_are_valid_graphs_shown_in_the_one_shot_prompt() -
 
 
 def test_same_task_matches_normalised_names_and_near_duplicates() -> None:
-    from factask.gen.examples import same_task
+    from factask.gen.answers.examples import same_task
 
     assert same_task("build-bridge", "Build_Bridge")
     assert same_task("stack-blocks-in-tower", "stack-block-in-tower")  # plural folded
@@ -121,7 +121,7 @@ def test_same_task_matches_normalised_names_and_near_duplicates() -> None:
 
 def test_library_examples_never_show_the_task_itself() -> None:
     pytest.importorskip("factask.library")
-    from factask.gen.examples import library_task_examples, same_task
+    from factask.gen.answers.examples import library_task_examples, same_task
     from factask.library import task_names
 
     names = task_names()

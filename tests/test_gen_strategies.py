@@ -16,7 +16,7 @@ from factask.gen.memory import SubtaskMemory
 from factask.gen.results import APPROACHES, GenerationResult
 from factask.gen.strategies import Generator, UnknownApproachError, split_proposal
 from factask.gen.verify import Verifier
-from factask.model import parse_graph
+from factask.graph import parse_graph
 
 EPISODES = 1  # the multi-episode rule is tested with scripted episodes below
 
@@ -347,7 +347,7 @@ def test_prompts_never_show_the_task_itself(tmp_path) -> None:
 
 
 def _one_factor(graph, i):
-    from factask.model import extract_fragment
+    from factask.graph import extract_fragment
 
     return extract_fragment(graph, graph.factors[i].name)
 

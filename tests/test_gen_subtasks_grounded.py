@@ -10,12 +10,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_gen_cover import proposals, sample
 
-from factask.gen import cover, grounded
 from factask.gen import grounded_subtasks as gs
-from factask.gen.mentions import mentions
-from factask.gen.schemas import AnswerError
-from factask.gen.step_schemas import schema_problems
-from factask.model.palette import COLOR_NAMES
+from factask.gen.answers.schemas import AnswerError
+from factask.gen.answers.step_schemas import schema_problems
+from factask.gen.reading import cover, grounded
+from factask.gen.reading.mentions import mentions
+from factask.vocabulary.palette import COLOR_NAMES
 
 PROPOSAL = "put the yellow cylinder and the red block in the blue zone"
 FOUR = "put the red block, the green block, the blue block and the yellow block on the pallet"
@@ -194,7 +194,7 @@ def test_designs_leave_the_later_subtasks_able_to_use_every_named_object() -> No
 
 
 def test_a_named_object_no_goal_uses_fails_the_assembly() -> None:
-    from factask.model.graph import TaskGraph
+    from factask.graph.taskgraph import TaskGraph
 
     found = mentions(PROPOSAL)
     graph = TaskGraph.model_validate({
@@ -218,7 +218,7 @@ def test_a_proposal_naming_nothing_movable_takes_the_ungrounded_path() -> None:
                 min_size=1, max_size=5))
 def test_grounded_subtask_schemas_turn_into_a_llama_cpp_grammar(pairs) -> None:
     llama_grammar = pytest.importorskip("llama_cpp.llama_grammar")
-    from factask.gen import grounded
+    from factask.gen.reading import grounded
 
     proposal = " and ".join(f"the {c} {k}" for c, k in pairs) + " in a row"
     found = mentions(proposal)

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from helpers import make_graph
 
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.scene.collision import LayoutError
-from factask.sim.reset import reset_layout
-from factask.sim.sampling import sample_layout
+from factask.sim.layout.reset import reset_layout
+from factask.sim.layout.sampling import sample_layout
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 BLOCK = 0.04
 

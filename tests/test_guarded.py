@@ -10,7 +10,7 @@ from test_robot import BLOCK, build_scene
 
 from factask.geometry import Pose
 from factask.library import get_task
-from factask.sim.compile import set_object_pose
+from factask.sim.build.compile import set_object_pose
 from factask.sim.env import FactaskEnv
 
 

@@ -12,11 +12,11 @@ import time
 import numpy as np
 import pytest
 
-from factask.model import GraphValidationError, parse_graph
-from factask.model.errors import MAX_PROBLEMS_LISTED, Problem, quote
-from factask.model.limits import MAX_OBJECTS, MAX_TEXT, MAX_VARIABLES, MIN_LENGTH
+from factask.graph import GraphValidationError, parse_graph
 from factask.scene.collision import LayoutError
-from factask.sim.reset import reset_layout
+from factask.sim.layout.reset import reset_layout
+from factask.vocabulary.errors import MAX_PROBLEMS_LISTED, Problem, quote
+from factask.vocabulary.limits import MAX_OBJECTS, MAX_TEXT, MAX_VARIABLES, MIN_LENGTH
 
 BASE = {"name": "t",
         "variables": [{"name": "b", "kind": "block"}, {"name": "z", "kind": "zone"}],
@@ -104,7 +104,7 @@ def test_a_bom_in_a_str_is_accepted_like_in_bytes() -> None:
 
 
 def test_a_graph_changed_after_construction_is_caught_where_it_enters() -> None:
-    from factask.sim.compile import compile_graph
+    from factask.sim.build.compile import compile_graph
 
     graph = parse_graph(BASE)
     graph.variables[0].kind = "nonsense"  # type: ignore[assignment]

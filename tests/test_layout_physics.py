@@ -20,14 +20,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from factask.geometry import Pose
+from factask.graph import TaskGraph
 from factask.library import get_task, task_names
-from factask.model import TaskGraph
 from factask.scene.collision import LayoutError
 from factask.scene.objects import objects_by_name
-from factask.sim.checks import check_task
-from factask.sim.compile import CompiledScene, compile_graph, get_object_pose, set_object_pose
-from factask.sim.reset import reset_layout
-from factask.sim.sampling import sample_layout
+from factask.sim.build.compile import CompiledScene, compile_graph, get_object_pose, set_object_pose
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
+from factask.sim.layout.sampling import sample_layout
 
 #: Deepest allowed penetration between two geoms (MuJoCo contact.dist, metres).
 #: Resting contacts (an object on another, on its floor, on the table) have dist ~ 0.

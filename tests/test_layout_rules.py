@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 
 from factask.geometry import Pose
+from factask.graph import Row, Stack, StateVariable, SubtaskFactor, TaskGraph
 from factask.library import get_task
-from factask.model import Row, Stack, StateVariable, SubtaskFactor, TaskGraph
 from factask.scene.collision import LayoutError
 from factask.scene.objects import objects_by_name
-from factask.sim.checks import CheckError, check_task
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import CheckError, check_task
+from factask.sim.layout.reset import reset_layout
 
 
 def _at_targets(graph: TaskGraph, seed: int = 0):

@@ -25,8 +25,8 @@ from factask.datasets.replay import compare_states, render_states, resimulate
 from factask.datasets.shards import CollectConfig, CollectError, collect
 from factask.datasets.splits import MAX_VAL_EPISODES, TEST_START, split_of_seed, split_seeds
 from factask.datasets.states import StatesFileError, read_states
-from factask.model.errors import InvalidValueError
-from factask.sim.cameras import ravens_cameras
+from factask.sim.render.cameras import ravens_cameras
+from factask.vocabulary.errors import InvalidValueError
 
 SIZE = (64, 48)
 TASKS = ("place-red-in-green", "align-box-corner")

@@ -12,6 +12,16 @@ from helpers import GENSIM_TASKS as GENSIM
 from typer.testing import CliRunner
 
 from factask.cli.app import app
+from factask.graph import (
+    CompositionError,
+    On,
+    StartInside,
+    StartOn,
+    TaskGraph,
+    compose,
+    kind_spec,
+    parse_graph,
+)
 from factask.library import (
     TASKS,
     TEMPLATES,
@@ -24,17 +34,7 @@ from factask.library import (
 )
 from factask.library.builders import var
 from factask.library.tags import matches_tags, reuse_stats, task_tags
-from factask.model import (
-    CompositionError,
-    On,
-    StartInside,
-    StartOn,
-    TaskGraph,
-    compose,
-    kind_spec,
-    parse_graph,
-)
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 REQUIRED = [
     "place-red-in-green", "stack-block-pyramid", "stack-block-pyramid-seq", "towers-of-hanoi",

@@ -15,13 +15,13 @@ from typing import Any
 import numpy as np
 import pytest
 
+from factask.graph import TaskGraph
 from factask.library import get_task, task_names
 from factask.library.tags import task_tags
-from factask.model import TaskGraph
-from factask.sim.checks import check_task
 from factask.sim.env import FactaskEnv
 from factask.sim.episode import run_episode
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
 
 
 def _params() -> list[Any]:

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from factask.model import (
+from factask.graph import (
     GraphValidationError,
     InZone,
     On,
@@ -22,7 +22,7 @@ from factask.model import (
     compose,
 )
 from factask.relations.status import FactorStatus
-from factask.sim.checks import latch_milestones
+from factask.sim.layout.checks import latch_milestones
 
 
 @st.composite
@@ -158,7 +158,7 @@ def test_the_library_towers_of_hanoi_has_seven_moves_four_milestones() -> None:
 @given(move_sequences(), st.data())
 def test_a_listed_plan_gets_the_order_and_milestones_its_listing_implies(
         graph: TaskGraph, data: st.DataObject) -> None:
-    from factask.model.order import in_listed_order
+    from factask.graph.order import in_listed_order
 
     # Forget the order and the milestones (what an LLM's plan gives): the listing
     # alone restores a valid graph whose order keeps the listing for each block.

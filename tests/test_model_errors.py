@@ -9,7 +9,7 @@ import pytest
 from typer.testing import CliRunner
 
 from factask.cli import app
-from factask.model import (
+from factask.graph import (
     COLOR_NAMES,
     CompositionError,
     GraphValidationError,
@@ -232,7 +232,7 @@ def test_every_public_error_class_of_the_package_is_a_factask_error() -> None:
     import pkgutil
 
     import factask
-    from factask.model.errors import FactaskError
+    from factask.vocabulary.errors import FactaskError
 
     stray = []
     for info in pkgutil.walk_packages(factask.__path__, "factask."):
@@ -245,8 +245,8 @@ def test_every_public_error_class_of_the_package_is_a_factask_error() -> None:
                     and not issubclass(obj, FactaskError)):
                 stray.append(f"{info.name}.{name}")
     assert not stray, f"not FactaskError subclasses: {stray}"
-    from factask.model.kinds import UnknownKindError
-    from factask.model.palette import UnknownColorError
+    from factask.vocabulary.kinds import UnknownKindError
+    from factask.vocabulary.palette import UnknownColorError
 
     assert issubclass(UnknownKindError, ValueError) and issubclass(UnknownColorError, ValueError)
 

@@ -1,4 +1,4 @@
-"""Names (factask.model.names): one way to make a name unique, property-tested."""
+"""Names (factask.vocabulary.names): one way to make a name unique, property-tested."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 @given(st.lists(st.from_regex(r"[a-z][a-z0-9_]{0,70}", fullmatch=True), max_size=12),
        st.integers(8, 64))
 def test_unique_name_never_repeats_and_stays_within_the_length(names, max_length) -> None:
-    from factask.model.names import unique_name
+    from factask.vocabulary.names import unique_name
 
     taken: set[str] = set()
     out = [unique_name(n[:max_length], taken, max_length) for n in names]

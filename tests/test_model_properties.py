@@ -11,7 +11,7 @@ from graph_strategies import task_graphs
 from hypothesis import given
 from hypothesis import strategies as st
 
-from factask.model import (
+from factask.graph import (
     GraphValidationError,
     TaskGraph,
     compose,

@@ -1,4 +1,4 @@
-"""Minimum-time motions (sim/motion.py): profiles, blends and curves through via points."""
+"""Minimum-time motions (sim/robots/motion.py): profiles, blends and curves through via points."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import itertools
 
 import numpy as np
 
-from factask.sim.motion import blend, curve_move, profile
+from factask.sim.robots.motion import blend, curve_move, profile
 
 DT = 0.002
 VMAX = np.array([2.0, 2.0, 3.0])
@@ -49,7 +49,7 @@ def test_curve_move_of_two_knots_is_the_straight_move() -> None:
 def test_natural_spline_matches_scipy() -> None:
     from scipy.interpolate import CubicSpline
 
-    from factask.sim.motion import _NaturalSpline
+    from factask.sim.robots.motion import _NaturalSpline
 
     u = np.array([0.0, 0.3, 0.55, 1.0])
     y = np.random.default_rng(0).normal(size=(4, 6))

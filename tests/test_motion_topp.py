@@ -1,4 +1,4 @@
-"""The time-optimal timing of a curve (sim/motion.py: CurveTiming, curve_move).
+"""The time-optimal timing of a curve (sim/robots/motion.py: CurveTiming, curve_move).
 
 Property: for random knots and limits, the joint samples a blend plays at the physics
 timestep stay within the velocity and acceleration limits (finite differences, with
@@ -16,7 +16,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from factask.sim.motion import (
+from factask.sim.robots.motion import (
     _CURVE_SAMPLES,
     CurveTiming,
     _NaturalSpline,

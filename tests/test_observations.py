@@ -12,11 +12,11 @@ from gymnasium.utils.env_checker import check_env
 import factask
 import factask.sim
 from factask.library import task_names
-from factask.model.errors import InvalidValueError
 from factask.registration import TaskSpecError, env_id
-from factask.sim.cameras import CameraError, CameraRig, points_from_depth, ravens_cameras
-from factask.sim.heightmaps import PIXEL_SIZE, HeightmapGrid
-from factask.sim.observations import MAX_TEXT_BYTES, decode_text, encode_text
+from factask.sim.render.cameras import CameraError, CameraRig, points_from_depth, ravens_cameras
+from factask.sim.render.heightmaps import PIXEL_SIZE, HeightmapGrid
+from factask.sim.render.observations import MAX_TEXT_BYTES, decode_text, encode_text
+from factask.vocabulary.errors import InvalidValueError
 
 TASK = "place-red-in-green"
 TINY = (32, 24)

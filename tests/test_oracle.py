@@ -1,4 +1,4 @@
-"""The scripted suction oracle (factask.sim.oracle) and the episode runner
+"""The scripted suction oracle (factask.sim.oracle.scripted) and the episode runner
 (factask.sim.episode): library sweeps, failure reasons, re-planning, and the
 research's success definitions.
 
@@ -13,10 +13,9 @@ import pytest
 from helpers import free_spot, make_graph
 
 from factask.geometry import Pose
+from factask.graph import GraphValidationError
 from factask.library import get_task, task_names
-from factask.model import GraphValidationError
-from factask.model.tolerances import COMPLETION_FRACTION, SUCCESS_REWARD
-from factask.sim.compile import set_object_pose
+from factask.sim.build.compile import set_object_pose
 from factask.sim.env import FactaskEnv
 from factask.sim.episode import (
     EpisodeResult,
@@ -25,7 +24,8 @@ from factask.sim.episode import (
     evaluate_task,
     run_episode,
 )
-from factask.sim.oracle import MAX_ATTEMPTS_PER_OBJECT, Oracle
+from factask.sim.oracle.scripted import MAX_ATTEMPTS_PER_OBJECT, Oracle
+from factask.vocabulary.tolerances import COMPLETION_FRACTION, SUCCESS_REWARD
 
 
 # ------------------------------------------------------------ library sweeps

@@ -12,7 +12,7 @@ import pytest
 
 from factask.library import get_task
 from factask.sim.env import FactaskEnv
-from factask.sim.oracle import Oracle
+from factask.sim.oracle.scripted import Oracle
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import physics_floor

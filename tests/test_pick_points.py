@@ -10,12 +10,17 @@ import pytest
 
 from factask.geometry import Pose
 from factask.library import get_task
-from factask.model.kinds import WALL_THICKNESS
 from factask.scene.collision import occupying, resting_on
 from factask.scene.objects import SceneObject
 from factask.sim.episode import run_episode
-from factask.sim.pick_points import CUP_GAP, grasp_offset, pick_and_place_points, takes_by_rim
-from factask.sim.suction import CUP_RADIUS
+from factask.sim.oracle.pick_points import (
+    CUP_GAP,
+    grasp_offset,
+    pick_and_place_points,
+    takes_by_rim,
+)
+from factask.sim.robots.suction import CUP_RADIUS
+from factask.vocabulary.kinds import WALL_THICKNESS
 
 
 def _obj(name: str, kind: str, size: tuple[float, float, float], fixed: bool = False,

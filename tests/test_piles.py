@@ -11,14 +11,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from factask.geometry import Pose, quat_from_yaw
-from factask.model import parse_graph
-from factask.model.graph import TaskGraph
+from factask.graph import parse_graph
+from factask.graph.taskgraph import TaskGraph
 from factask.relations.pile_in_zone import PileInZone, block_inside
 from factask.scene.objects import Area, objects_by_name
-from factask.sim.checks import check_task
-from factask.sim.pile import pile_half_extent
-from factask.sim.reset import reset_layout
-from factask.sim.sampling import sample_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.pile import pile_half_extent
+from factask.sim.layout.reset import reset_layout
+from factask.sim.layout.sampling import sample_layout
 
 
 def _sweep(count: int = 30, fraction: float = 0.9, extra: list | None = None) -> TaskGraph:
@@ -153,8 +153,8 @@ def test_the_relation_is_registered_with_its_default_threshold() -> None:
 def test_only_pushing_tasks_get_a_spatula() -> None:
     import mujoco
 
-    from factask.sim.compile import compile_graph
-    from factask.sim.push import BLADE_GEOM
+    from factask.sim.build.compile import compile_graph
+    from factask.sim.robots.spatula import BLADE_GEOM
 
     pushing = compile_graph(_sweep(4))
     assert mujoco.mj_name2id(pushing.model, mujoco.mjtObj.mjOBJ_GEOM, BLADE_GEOM) >= 0
@@ -168,7 +168,7 @@ def test_only_pushing_tasks_get_a_spatula() -> None:
 
 def test_a_push_moves_a_block_along_the_table_and_keeps_the_blade_low() -> None:
     from factask.sim.env import FactaskEnv
-    from factask.sim.push import BLADE_LIFT
+    from factask.sim.robots.spatula import BLADE_LIFT
 
     env = FactaskEnv(_sweep(1, fraction=1.0))
     env.reset(seed=0)
@@ -188,7 +188,7 @@ def test_a_push_moves_a_block_along_the_table_and_keeps_the_blade_low() -> None:
     d = after[:2] - before[:2]
     assert abs(float(u[0] * d[1] - u[1] * d[0])) < 0.02  # not off sideways
     assert after[2] == pytest.approx(before[2], abs=0.003)  # still on the table
-    from factask.sim.push import BLADE_DEPTH
+    from factask.sim.robots.spatula import BLADE_DEPTH
 
     assert min(lowest) == pytest.approx(BLADE_LIFT + BLADE_DEPTH, abs=0.003)
 
@@ -220,7 +220,7 @@ def test_a_lone_block_is_carried_the_whole_push(yaw: float) -> None:
     # blade rode over most such blocks after 5-25 cm.
     import mujoco
 
-    from factask.sim.compile import set_object_pose
+    from factask.sim.build.compile import set_object_pose
     from factask.sim.env import FactaskEnv
 
     env = FactaskEnv(_sweep(1, fraction=1.0))
@@ -265,7 +265,7 @@ def test_cliport_pile_classes_import_as_one_pile_pushed_into_a_zone(cls: str) ->
 
     from factask.compat.cliport import import_cliport
     from factask.compat.cliport.piles import RAVENS_PILE_FRACTION
-    from factask.sim.push import needs_spatula
+    from factask.sim.robots.spatula import needs_spatula
 
     path = CLIPORT_ORIGINALS / ("sweeping_piles.py" if cls == "SweepingPiles"
                                 else "separating_piles.py")
@@ -373,7 +373,7 @@ def _healthy(env) -> None:
 @pytest.mark.slow
 def test_piles_stay_stable_over_many_seeded_episodes() -> None:
     from factask.sim.env import FactaskEnv
-    from factask.sim.oracle import Oracle
+    from factask.sim.oracle.scripted import Oracle
 
     env = FactaskEnv(_sweep(50))
     for seed in range(STABILITY_EPISODES):

@@ -9,7 +9,7 @@ import pytest
 from factask.geometry import Pose
 from factask.library import get_task
 from factask.sim.env import FactaskEnv
-from factask.sim.primitive import CLEARANCE, MIN_TRAVEL_HEIGHT
+from factask.sim.robots.primitive import CLEARANCE, MIN_TRAVEL_HEIGHT
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +42,7 @@ def test_resting_objects_sleep_and_a_sleeping_block_is_still_picked(env: Factask
 
 
 def test_writing_a_pose_wakes_a_sleeping_object(env: FactaskEnv) -> None:
-    from factask.sim.compile import set_object_pose
+    from factask.sim.build.compile import set_object_pose
 
     env.reset(seed=0)
     for _ in range(20):

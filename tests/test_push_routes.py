@@ -1,4 +1,4 @@
-"""The push oracle keeps clear of other goals' regions (``factask.sim.push_oracle``)."""
+"""The push oracle keeps clear of other goals' regions (``factask.sim.oracle.push``)."""
 
 from __future__ import annotations
 
@@ -7,11 +7,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from factask.model import parse_graph
-from factask.model.graph import TaskGraph
+from factask.graph import parse_graph
+from factask.graph.taskgraph import TaskGraph
 from factask.scene.objects import Area
-from factask.sim.push import BLADE_WIDTH
-from factask.sim.push_oracle import (
+from factask.sim.oracle.push import (
     CLEARANCE,
     LEAD,
     crosses,
@@ -19,6 +18,7 @@ from factask.sim.push_oracle import (
     obstacle_regions,
     plan_route,
 )
+from factask.sim.robots.spatula import BLADE_WIDTH
 
 ZONE = Area(np.array([0.55, 0.3]), 0.0, np.array([0.075, 0.075]))
 BACK = 0.02
@@ -88,7 +88,7 @@ def test_every_first_leg_keeps_clear_of_the_grown_regions(bx: float, by: float, 
 def test_obstacles_are_other_piles_and_bodies_but_not_what_stands_in_the_own_zone() -> None:
     from factask.library import get_task
     from factask.scene.objects import objects_by_name
-    from factask.sim.reset import reset_layout
+    from factask.sim.layout.reset import reset_layout
 
     graph = get_task("color-coordinated-insertion-and-sweeping")
     poses, solved = reset_layout(graph, np.random.default_rng(0))
@@ -134,7 +134,7 @@ def crossing_piles() -> TaskGraph:
 @pytest.mark.parametrize("seed", [0, 1])
 def test_the_second_pile_is_swept_around_the_first_ones_zone(seed: int) -> None:
     from factask.sim.env import FactaskEnv
-    from factask.sim.oracle import Oracle
+    from factask.sim.oracle.scripted import Oracle
 
     env = FactaskEnv(crossing_piles())
     try:

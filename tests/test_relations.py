@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from factask.geometry import Pose
-from factask.model import SubtaskFactor, TaskGraph
+from factask.graph import SubtaskFactor, TaskGraph
 from factask.relations import ANCHOR_FIELDS, RELATION_TYPES, Relation, RelationBase
 from factask.scene.objects import objects_by_name
-from factask.sim.checks import check_task
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
 
 KINDS = sorted(RELATION_TYPES)
 SEEDS = (0, 1, 2)
@@ -108,9 +108,9 @@ def test_held_objects_never_count_as_placed(kind: str) -> None:
 
 
 def test_aligned_needs_an_instance_of_the_reference_per_object_before_any_reset() -> None:
-    from factask.model import GraphValidationError
-    from factask.model.variables import StateVariable
+    from factask.graph import GraphValidationError
     from factask.relations import Aligned
+    from factask.vocabulary.variables import StateVariable
 
     def graph(corners: int) -> TaskGraph:
         return TaskGraph(
@@ -133,7 +133,7 @@ def test_aligned_needs_an_instance_of_the_reference_per_object_before_any_reset(
 ])
 def test_a_first_goal_its_objects_meet_by_their_start_is_refused_before_any_reset(
         goal: dict, initial: dict) -> None:
-    from factask.model import GraphValidationError, parse_graph
+    from factask.graph import GraphValidationError, parse_graph
 
     def graph(start: dict | None, after: list[str]) -> dict:
         block = {"name": "b", "kind": "block", **({"initial": start} if start else {})}

@@ -15,12 +15,12 @@ from hypothesis import strategies as st
 from pydantic import TypeAdapter, ValidationError
 
 from factask.geometry import Pose
-from factask.model import Row, StateVariable, SubtaskFactor, TaskGraph
+from factask.graph import Row, StateVariable, SubtaskFactor, TaskGraph
 from factask.relations import Relation
 from factask.scene.collision import LayoutError
 from factask.scene.objects import corner_vertex, objects_by_name, yaw_rotation_2d
-from factask.sim.checks import check_task
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
 
 names = st.from_regex(r"[a-z][a-z0-9]{0,6}(_[a-z0-9]{1,4})?", fullmatch=True)
 BLOCK = (0.04, 0.04, 0.04)
@@ -98,7 +98,7 @@ def test_a_row_longer_than_the_corner_arm_is_infeasible() -> None:
 
 
 def _zones(gap_y: float) -> list[StateVariable]:
-    from factask.model import AtFixedPose
+    from factask.graph import AtFixedPose
 
     return [StateVariable(name=n, kind="zone", size=(0.12, 0.12, 0.001),
                           initial=AtFixedPose(x=0.55, y=y, yaw_deg=yaw))

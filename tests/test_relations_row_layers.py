@@ -14,12 +14,12 @@ from hypothesis import strategies as st
 from pydantic import TypeAdapter, ValidationError
 
 from factask.geometry import Pose
+from factask.graph import Row, StateVariable, SubtaskFactor, TaskGraph, rename
 from factask.library.templates import get_template
-from factask.model import Row, StateVariable, SubtaskFactor, TaskGraph, rename
 from factask.relations import Relation
 from factask.scene.objects import objects_by_name
-from factask.sim.checks import check_task
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
 
 names = st.from_regex(r"[a-z][a-z0-9]{0,6}(_[a-z0-9]{1,4})?", fullmatch=True)
 below_lists = st.lists(names, min_size=1, max_size=6, unique=True)

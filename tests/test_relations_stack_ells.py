@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from factask.geometry import Pose
-from factask.model import Stack, StateVariable, SubtaskFactor, TaskGraph
+from factask.graph import Stack, StateVariable, SubtaskFactor, TaskGraph
 from factask.scene.objects import objects_by_name
-from factask.sim.checks import check_task
-from factask.sim.reset import reset_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
 
 ELL = (0.08, 0.08, 0.04)
 

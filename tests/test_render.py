@@ -15,10 +15,10 @@ import pytest
 
 import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
 from factask.geometry import Pose
-from factask.model import TaskGraph
-from factask.sim.assets import FRONT_CAMERA, TOP_CAMERA, TOP_CAMERA_HEIGHT
-from factask.sim.compile import CompiledScene, compile_graph, set_object_pose
-from factask.sim.render import (
+from factask.graph import TaskGraph
+from factask.sim.build.compile import CompiledScene, compile_graph, set_object_pose
+from factask.sim.build.mjcf import FRONT_CAMERA, TOP_CAMERA, TOP_CAMERA_HEIGHT
+from factask.sim.render.offscreen import (
     BACKGROUND_ID,
     RenderError,
     SceneRenderer,
@@ -64,7 +64,7 @@ def test_backend_is_headless() -> None:
 _LATE_IMPORT = """
 import mujoco  # before factask.sim: MuJoCo picks GLFW, which needs a display
 import factask.sim
-from factask.sim.render import active_gl_backend, render_rgb
+from factask.sim.render.offscreen import active_gl_backend, render_rgb
 m = mujoco.MjModel.from_xml_string('<mujoco><worldbody><light pos="0 0 1"/>'
     '<geom type="sphere" size=".1" rgba="1 0 0 1"/></worldbody></mujoco>')
 d = mujoco.MjData(m); mujoco.mj_forward(m, d)
@@ -180,7 +180,7 @@ def test_video_rejects_bad_input(tmp_path: Path) -> None:
 def test_framed_views_show_the_robot_and_every_object_whole(robot: str) -> None:
     from factask.library import get_task
     from factask.sim.env import FactaskEnv
-    from factask.sim.render import VIEWS, framed_camera
+    from factask.sim.render.offscreen import VIEWS, framed_camera
 
     env = FactaskEnv(get_task("stack-block-pyramid"), robot=robot)
     try:
@@ -205,13 +205,14 @@ def test_framed_views_show_the_robot_and_every_object_whole(robot: str) -> None:
 
 
 def test_framed_camera_rejects_an_unknown_view(scene: CompiledScene) -> None:
-    from factask.sim.render import framed_camera
+    from factask.sim.render.offscreen import framed_camera
 
     with pytest.raises(RenderError, match="no view 'side'"):
         framed_camera(scene.model, scene.make_data(), "side")
 
 
-_SEG_COLOUR = "from factask.sim.render import segmentation_color as c; print(c('bowl'), c('b', 1))"
+_SEG_COLOUR = ("from factask.sim.render.offscreen import segmentation_color as c; "
+               "print(c('bowl'), c('b', 1))")
 
 
 def test_segmentation_colours_are_fixed_per_variable_across_runs_and_seeds(
@@ -220,7 +221,7 @@ def test_segmentation_colours_are_fixed_per_variable_across_runs_and_seeds(
 
     from factask.cli import app
     from factask.library import get_task
-    from factask.sim.render import colorize_segmentation, segmentation_color
+    from factask.sim.render.offscreen import colorize_segmentation, segmentation_color
 
     runs = {subprocess.run([sys.executable, "-c", _SEG_COLOUR], capture_output=True, text=True,
                            check=True, env={**os.environ, "PYTHONHASHSEED": str(k)}).stdout
@@ -247,7 +248,7 @@ def test_the_arm_stays_whole_in_every_view_while_it_works() -> None:
     from factask.library import get_task
     from factask.sim.env import FactaskEnv
     from factask.sim.episode import run_episode
-    from factask.sim.render import VIEWS, framed_camera
+    from factask.sim.render.offscreen import VIEWS, framed_camera
 
     task = get_task("put-block-in-bowl")
     env = FactaskEnv(task, robot="ur10e")

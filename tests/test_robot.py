@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from factask.geometry import Pose, tilt_deg, yaw_error_deg, yaw_of
-from factask.model.errors import FactaskError
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.sim.ik import TopDownIK, top_down_pose
-from factask.sim.robot import RobotError, attach_robot, make_robot
-from factask.sim.robots import ROBOT_NAMES, UR5E, UR10E
+from factask.sim.robots.attach import RobotError, attach_robot, make_robot
+from factask.sim.robots.ik import TopDownIK, top_down_pose
+from factask.sim.robots.registry import ROBOT_NAMES, UR5E, UR10E
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 BLOCK = 0.04  # full extent of the test block (m)
 TIMESTEP = 0.002

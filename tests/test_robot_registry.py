@@ -10,10 +10,10 @@ from helpers import make_graph
 from typer.testing import CliRunner
 
 from factask.cli import app
-from factask.model.errors import FactaskError
-from factask.sim.compile import CompileError, compile_graph
+from factask.sim.build.compile import CompileError, compile_graph
 from factask.sim.env import FactaskEnv
-from factask.sim.robots import ALIASES, ROBOT_NAMES, ROBOTS, RobotError, robot_entry
+from factask.sim.robots.registry import ALIASES, ROBOT_NAMES, ROBOTS, RobotError, robot_entry
+from factask.vocabulary.errors import FactaskError
 
 GRAPH = make_graph([{"name": "red_block", "kind": "block", "color": "red"},
                     {"name": "zone", "kind": "zone"}],

@@ -11,14 +11,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from factask.geometry import Pose
-from factask.model import parse_graph
-from factask.model.graph import TaskGraph
+from factask.graph import parse_graph
+from factask.graph.taskgraph import TaskGraph
 from factask.relations.rope import rope_slot_order
 from factask.relations.solving import SolvedFactor
 from factask.scene.objects import SceneObject, objects_by_name, resting_pose
-from factask.sim.checks import check_task
-from factask.sim.reset import reset_layout
-from factask.sim.rope_oracle import (
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
+from factask.sim.oracle.rope import (
     CLEARANCE,
     GRASP_CLEARANCE,
     detour,

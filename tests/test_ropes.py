@@ -11,13 +11,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from factask.geometry import Pose
-from factask.model import parse_graph
-from factask.model.graph import TaskGraph
+from factask.graph import parse_graph
+from factask.graph.taskgraph import TaskGraph
 from factask.relations.rope import SLOT_PITCH, rope_slot_order, segment_scores
 from factask.scene.objects import objects_by_name
-from factask.sim.checks import check_task
-from factask.sim.reset import reset_layout
-from factask.sim.sampling import sample_layout
+from factask.sim.layout.checks import check_task
+from factask.sim.layout.reset import reset_layout
+from factask.sim.layout.sampling import sample_layout
 
 TOL = 0.02
 
@@ -142,7 +142,7 @@ def test_after_the_ends_a_fold_near_its_slot_goes_before_the_farthest_segment() 
 
 
 def test_the_oracle_aims_taut_slots_drawn_together_towards_the_middle() -> None:
-    from factask.sim.rope_oracle import aim_points
+    from factask.sim.oracle.rope import aim_points
 
     taut = np.c_[np.arange(20) * 0.014, np.zeros(20)] + [0.4, 0.1]
     aims = aim_points(taut, 0.014)
@@ -253,7 +253,7 @@ STABILITY_EPISODES = int(os.environ.get("FACTASK_STABILITY_EPISODES", "100"))
 @pytest.mark.slow
 def test_ropes_stay_stable_over_many_seeded_episodes() -> None:
     from factask.sim.env import FactaskEnv
-    from factask.sim.oracle import Oracle
+    from factask.sim.oracle.scripted import Oracle
 
     graph = _rope(20)
     env = FactaskEnv(graph)
@@ -280,7 +280,7 @@ def test_a_rope_goal_with_no_run_is_a_layout_error_even_unvalidated() -> None:
     built without it (model_validate alone) fails its reset with a typed error,
     not an AssertionError inside the solver."""
     from factask.scene.collision import LayoutError
-    from factask.sim.reset import reset_layout
+    from factask.sim.layout.reset import reset_layout
 
     graph = TaskGraph.model_validate({
         "name": "t", "variables": [{"name": "rope", "kind": "rope", "count": 10,

@@ -7,9 +7,9 @@ from pathlib import Path
 
 from matplotlib.image import imread
 
+from factask.graph import InZone, SubtaskFactor, TaskGraph
 from factask.library import get_task
 from factask.library.builders import var
-from factask.model import InZone, SubtaskFactor, TaskGraph
 from factask.viz import draw_graph, graph_figure
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -105,7 +105,7 @@ def test_the_caption_names_the_first_unfinished_factor_and_its_progress() -> Non
 def test_episode_video_options_are_checked_before_any_work(tmp_path) -> None:
     import pytest
 
-    from factask.sim.render import RenderError
+    from factask.sim.render.offscreen import RenderError
     from factask.viz import EpisodeVideo
 
     for kwargs, says in (({"fps": 0}, "fps"), ({"size": (64, 30), "caption": True}, "caption"),

@@ -12,8 +12,8 @@ from collections.abc import Callable
 from types import ModuleType
 from typing import Any
 
-from factask.model import *  # noqa: F403
-from factask.model import __all__ as _model_all
+from factask.graph import *  # noqa: F403
+from factask.graph import __all__ as _model_all
 
 __version__ = "0.1.0"
 
@@ -38,7 +38,7 @@ def _viz() -> ModuleType:
 
 
 def _compile() -> ModuleType:
-    import factask.sim.compile as module
+    import factask.sim.build.compile as module
 
     return module
 
@@ -56,7 +56,7 @@ def _env() -> ModuleType:
 
 
 def _oracle() -> ModuleType:
-    import factask.sim.oracle as module
+    import factask.sim.oracle.scripted as module
 
     return module
 
@@ -68,7 +68,7 @@ def _episode() -> ModuleType:
 
 
 def _render() -> ModuleType:
-    import factask.sim.render as module
+    import factask.sim.render.offscreen as module
 
     return module
 

@@ -23,9 +23,9 @@ from typing import Any
 import gymnasium as gym
 from gymnasium.envs.registration import register, registry
 
+from factask.graph.taskgraph import TaskGraph, parse_graph
 from factask.library.tasks import get_task, task_names
-from factask.model.errors import FactaskError, GraphValidationError
-from factask.model.graph import TaskGraph, parse_graph
+from factask.vocabulary.errors import FactaskError, GraphValidationError
 
 #: The namespace of factask's gymnasium ids.
 NAMESPACE = "factask"
@@ -104,15 +104,15 @@ def make_env(task: str | Path | TaskGraph, robot: str = "floating", obs_mode: st
     Args:
         task: Library name or id, :class:`TaskGraph`, graph JSON or CLIPort file.
         robot: A name of the robot registry ("floating", "arm", ...).
-        obs_mode: "state", "rgbd" or "heightmap" (:mod:`factask.sim.observations`).
+        obs_mode: "state", "rgbd" or "heightmap" (:mod:`factask.sim.render.observations`).
         render_mode: None or "rgb_array".
         image_size: (width, height) of the default (Ravens) cameras.
-        cameras: A tuple of :class:`~factask.sim.cameras.CameraSpec` instead.
+        cameras: A tuple of :class:`~factask.sim.render.cameras.CameraSpec` instead.
         pixel_size: Height-map metres per pixel (default CLIPort's 3.125 mm).
         show_markers: Draw goal markers in camera images.
 
     Returns:
-        An :class:`~factask.sim.observations.ObservationWrapper` around a
+        An :class:`~factask.sim.render.observations.ObservationWrapper` around a
         :class:`~factask.sim.env.FactaskEnv`.
 
     Raises:
@@ -120,8 +120,12 @@ def make_env(task: str | Path | TaskGraph, robot: str = "floating", obs_mode: st
         InvalidValueError, CameraError, CompileError: bad options or graph.
     """
     from factask.sim.env import FactaskEnv
-    from factask.sim.heightmaps import PIXEL_SIZE
-    from factask.sim.observations import DEFAULT_IMAGE_SIZE, ObservationConfig, ObservationWrapper
+    from factask.sim.render.heightmaps import PIXEL_SIZE
+    from factask.sim.render.observations import (
+        DEFAULT_IMAGE_SIZE,
+        ObservationConfig,
+        ObservationWrapper,
+    )
 
     config = ObservationConfig(
         mode=obs_mode, cameras=tuple(cameras) if cameras is not None else None,
@@ -159,7 +163,7 @@ def make_vector_env(num_envs: int, task: str | Path | TaskGraph, robot: str = "f
         DeviceUnavailableError: a GPU asked for that is not there.
     """
     from factask.batch.vector import BatchVectorEnv
-    from factask.model.errors import InvalidValueError
+    from factask.vocabulary.errors import InvalidValueError
 
     if obs_mode != "state" or robot != "floating":
         raise InvalidValueError(

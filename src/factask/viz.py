@@ -21,7 +21,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from factask.model import GraphValidationError, TaskGraph, rgba
+from factask.graph import GraphValidationError, TaskGraph, rgba
 
 _X_VAR = 0.0
 _X_FAC = 1.0
@@ -179,7 +179,7 @@ def caption_text(graph: TaskGraph, status: Any) -> tuple[str, str, float]:
 
     Args:
         graph: The task.
-        status: Its :class:`~factask.sim.checks.TaskStatus` now.
+        status: Its :class:`~factask.sim.layout.checks.TaskStatus` now.
 
     Returns:
         (title "k/n name", the factor's language goal, its progress in [0, 1]);
@@ -263,7 +263,7 @@ class EpisodeVideo:
         finally:
             info = video.finish()
 
-    A framed view (:data:`factask.sim.render.VIEWS`) is aimed once, at the first
+    A framed view (:data:`factask.sim.render.offscreen.VIEWS`) is aimed once, at the first
     frame, from the scene's bounds (robot and objects whole); any other name is a
     camera of the model. Frames are taken every ``VIDEO_SPEED / fps`` simulated
     seconds while actions run, plus one of the final state. With a caption, the
@@ -278,12 +278,12 @@ class EpisodeVideo:
         caption: Draw the current factor, its language goal and its progress.
 
     Raises:
-        factask.sim.render.RenderError: a bad suffix, fps or size (before any work).
+        factask.sim.render.offscreen.RenderError: a bad suffix, fps or size (before any work).
     """
 
     def __init__(self, path: str | Path, fps: float = 20.0, size: tuple[int, int] = (320, 240),
                  camera: str = "front", caption: bool = False) -> None:
-        from factask.sim.render import RenderError, VideoRecorder
+        from factask.sim.render.offscreen import RenderError, VideoRecorder
 
         if not FPS_RANGE[0] <= fps <= FPS_RANGE[1]:
             raise RenderError(f"fps {fps:g} outside {FPS_RANGE[0]:g}..{FPS_RANGE[1]:g}")
@@ -311,10 +311,10 @@ class EpisodeVideo:
         before the episode runs.
 
         Raises:
-            factask.sim.render.RenderError: no GL context, or a size the model's
+            factask.sim.render.offscreen.RenderError: no GL context, or a size the model's
                 offscreen buffer cannot hold.
         """
-        from factask.sim.render import SceneRenderer
+        from factask.sim.render.offscreen import SceneRenderer
 
         if self._renderer is None:
             self._renderer = SceneRenderer(env.model, self.size[0], self._scene_h)
@@ -327,7 +327,7 @@ class EpisodeVideo:
             self._frame()
 
     def _frame(self) -> None:
-        from factask.sim.render import VIEWS, framed_camera
+        from factask.sim.render.offscreen import VIEWS, framed_camera
 
         env = self._env
         if self._view is None:  # aimed once, at the first frame: a steady picture

@@ -37,8 +37,6 @@ from factask.batch.geometry import (
 )
 from factask.batch.scene import BatchScene
 from factask.batch.targets import BatchTargets
-from factask.model.errors import InvalidValueError
-from factask.model.world import TABLE_Z
 from factask.relations.base import RelationBase
 from factask.relations.pile_in_zone import PileInZone, block_side
 from factask.relations.region import RegionRelation
@@ -50,6 +48,8 @@ from factask.scene.objects import (
     floor_thickness,
     inner_half_xy,
 )
+from factask.vocabulary.errors import InvalidValueError
+from factask.vocabulary.world import TABLE_Z
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import importlib
 from types import ModuleType
 
-from factask.model.errors import FactaskError, InvalidValueError
+from factask.vocabulary.errors import FactaskError, InvalidValueError
 
 #: The extra that installs the backend.
 GPU_EXTRA = "gpu"

@@ -35,10 +35,10 @@ import warp as wp
 from factask.batch.checks import BatchFactorStatus, assign_slots
 from factask.batch.geometry import yaws
 from factask.batch.targets import BatchTargets
-from factask.model.errors import InvalidValueError
 from factask.relations.base import RelationBase
 from factask.relations.status import MAX_TILT_DEG
 from factask.scene.objects import SPHERE_KINDS, SceneObject
+from factask.vocabulary.errors import InvalidValueError
 
 #: Relation kinds this module checks on the device.
 DEVICE_SLOT_KINDS = ("at_pose", "stack", "row", "circle", "aligned")

@@ -1,7 +1,7 @@
 """The batched env: one compiled task, many worlds, stepped together on MuJoCo Warp.
 
 :class:`BatchEnv` compiles a task graph once (the single env's
-:func:`~factask.sim.compile.compile_graph`), puts the model on a Warp device and
+:func:`~factask.sim.build.compile.compile_graph`), puts the model on a Warp device and
 keeps ``num_envs`` worlds of it (``mujoco_warp.put_data(..., nworld=num_envs)``).
 
 * **Reset** of chosen worlds: a world reset with seed *s* runs the single env's
@@ -38,11 +38,11 @@ from factask.batch.status import BatchTaskStatus, check_task_batch
 from factask.batch.suction import WorldSuction, model_with_object_welds
 from factask.batch.targets import BatchTargets
 from factask.geometry import Pose
-from factask.model.errors import InvalidValueError
-from factask.model.graph import TaskGraph
+from factask.graph.taskgraph import TaskGraph
 from factask.relations.solving import SolvedFactor
 from factask.sim.env import FactaskEnv, ResetNeededError
-from factask.sim.floating_cup import FloatingSuctionRobot
+from factask.sim.robots.floating_cup import FloatingSuctionRobot
+from factask.vocabulary.errors import InvalidValueError
 
 #: The MuJoCo state a reset copies into a world: everything that integrates but the
 #: equalities' switches (the batch's model has more welds; reset turns them all off).

@@ -23,8 +23,8 @@ import numpy as np
 import warp as wp
 
 if TYPE_CHECKING:
-    from factask.batch.env import BatchEnv
     from factask.batch.status import BatchStatus
+    from factask.batch.worlds import LockstepWorlds
 
 
 @wp.kernel
@@ -101,7 +101,7 @@ class DeviceObservations:
         held_tree: (W,) Warp ints: each world's held object's sleep tree, -1 for none.
     """
 
-    def __init__(self, batch: BatchEnv, free: list[tuple[int, int]],
+    def __init__(self, batch: LockstepWorlds, free: list[tuple[int, int]],
                  fixed: list[tuple[int, int]], tip_site: int, held_tree: Any) -> None:
         self.batch, self.tip_site, self.held_tree = batch, int(tip_site), held_tree
         n, worlds = len(batch.object_names), batch.num_envs

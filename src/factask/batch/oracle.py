@@ -1,6 +1,6 @@
 """The oracle in lockstep: one plan per world, executed together.
 
-Each world gets the single env's scripted oracle (:class:`factask.sim.oracle.Oracle`,
+Each world gets the single env's scripted oracle (:class:`factask.sim.oracle.scripted.Oracle`,
 unchanged), which reads a :class:`WorldView` — that world's objects, solved
 targets, poses, held object and scalar status, as the oracle reads an env — and
 plans its next action. The batch then runs every world's pick-and-place at once
@@ -21,9 +21,9 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 
 from factask.geometry import Pose
-from factask.model.tolerances import SUCCESS_REWARD
-from factask.sim.checks import TaskStatus, check_task
-from factask.sim.oracle import Oracle, OracleAction
+from factask.sim.layout.checks import TaskStatus, check_task
+from factask.sim.oracle.scripted import Oracle, OracleAction
+from factask.vocabulary.tolerances import SUCCESS_REWARD
 
 if TYPE_CHECKING:
     from factask.batch.env import BatchEnv

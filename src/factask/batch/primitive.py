@@ -2,7 +2,7 @@
 together (the floating cup).
 
 The batched twin, in outline, of the single env's primitive
-(:mod:`factask.sim.primitive`): the same action — the tip's (x, y, z, yaw) at the
+(:mod:`factask.sim.robots.primitive`): the same action — the tip's (x, y, z, yaw) at the
 grasp and at the release — and the same phases: up to a height that clears every
 object, over the pick, down to just above it, a guarded descent until the cup
 touches, suction on, up (clearing the held object too), over the place, a guarded
@@ -19,13 +19,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from factask.batch.geometry import box_z_range
-from factask.model.errors import InvalidValueError
-from factask.sim.primitive import (
+from factask.batch.worlds import LockstepWorlds
+from factask.sim.robots.primitive import (
     APPROACH_HEIGHT,
     CLEARANCE,
     GUARDED_SPEED,
@@ -36,9 +35,7 @@ from factask.sim.primitive import (
     TOOL_SPEED,
     YAW_RATE,
 )
-
-if TYPE_CHECKING:  # the env imports nothing from here; only annotations need it
-    from factask.batch.env import BatchEnv
+from factask.vocabulary.errors import InvalidValueError
 
 #: Physics steps between two contact reads during a guarded move.
 GUARD_EVERY = 2
@@ -61,7 +58,7 @@ class BatchActionResult:
     sim_steps: int
 
 
-def _move(batch: BatchEnv, end: np.ndarray, active: np.ndarray, speed: float) -> int:
+def _move(batch: LockstepWorlds, end: np.ndarray, active: np.ndarray, speed: float) -> int:
     """Straight lines from every active world's command to ``end`` at ``speed``; the
     others hold. Returns the physics steps taken."""
     start = batch.command.copy()
@@ -75,7 +72,7 @@ def _move(batch: BatchEnv, end: np.ndarray, active: np.ndarray, speed: float) ->
     return n
 
 
-def _guarded(batch: BatchEnv, bottom: np.ndarray, active: np.ndarray, touching: str) -> int:
+def _guarded(batch: LockstepWorlds, bottom: np.ndarray, active: np.ndarray, touching: str) -> int:
     """Down at the guarded speed in every active world until ``touching`` (a
     :class:`~factask.batch.suction.WorldSuction` method) says so or its ``bottom``
     height is reached. Returns the physics steps taken."""
@@ -93,9 +90,9 @@ def _guarded(batch: BatchEnv, bottom: np.ndarray, active: np.ndarray, touching: 
     return steps
 
 
-def travel_heights(batch: BatchEnv) -> np.ndarray:
+def travel_heights(batch: LockstepWorlds) -> np.ndarray:
     """Per world, the tool height that clears every object not held by
-    :data:`~factask.sim.primitive.CLEARANCE` (at least ``MIN_TRAVEL_HEIGHT``), plus
+    :data:`~factask.sim.robots.primitive.CLEARANCE` (at least ``MIN_TRAVEL_HEIGHT``), plus
     the held object's height hanging below the cup."""
     scene = batch.scene()
     tops = np.stack([box_z_range(scene.objects[n], scene.pos[:, k], scene.quat[:, k])[1]
@@ -107,7 +104,7 @@ def travel_heights(batch: BatchEnv) -> np.ndarray:
     return np.maximum(tops.max(axis=1) + CLEARANCE, MIN_TRAVEL_HEIGHT) + hanging
 
 
-def _transfer(batch: BatchEnv, target: np.ndarray, active: np.ndarray) -> int:
+def _transfer(batch: LockstepWorlds, target: np.ndarray, active: np.ndarray) -> int:
     """Up to the travel height, over ``target`` (turning to its yaw), down to
     ``APPROACH_HEIGHT`` above it, in every active world. Returns the physics steps."""
     up = np.maximum(travel_heights(batch), batch.command[:, 2])
@@ -122,7 +119,7 @@ def _transfer(batch: BatchEnv, target: np.ndarray, active: np.ndarray) -> int:
     return steps
 
 
-def pick_and_place(batch: BatchEnv, pick: np.ndarray, place: np.ndarray,
+def pick_and_place(batch: LockstepWorlds, pick: np.ndarray, place: np.ndarray,
                    worlds: np.ndarray | None = None) -> BatchActionResult:
     """One top-down suction pick-and-place in chosen worlds, all in lockstep.
 

@@ -15,9 +15,9 @@ import numpy as np
 
 from factask.batch.geometry import normalize_quat
 from factask.geometry import Pose
-from factask.model.errors import InvalidValueError
 from factask.relations.status import CheckError
 from factask.scene.objects import SceneObject
+from factask.vocabulary.errors import InvalidValueError
 
 
 @dataclass(frozen=True)

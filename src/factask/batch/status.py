@@ -1,8 +1,8 @@
 """A whole task's status in every world: factor progress, reward, success, milestones.
 
-The batched twin of :func:`factask.sim.checks.check_task`: every factor is
+The batched twin of :func:`factask.sim.layout.checks.check_task`: every factor is
 re-checked in every world from the current poses (:mod:`factask.batch.checks`),
-milestones latch per world exactly as :func:`~factask.sim.checks.latch_milestones`
+milestones latch per world exactly as :func:`~factask.sim.layout.checks.latch_milestones`
 latches them, reward = sum of weight x progress (clipped to [0, 1]), success =
 every final factor satisfied and every milestone reached. A world whose poses
 are not finite (the simulation failed there) gets reward 0 and no success, as the
@@ -19,8 +19,8 @@ import numpy as np
 from factask.batch.checks import BatchFactorStatus, check_factor_batch
 from factask.batch.scene import BatchScene
 from factask.batch.targets import BatchTargets
-from factask.model.graph import TaskGraph
-from factask.model.order import topological_order
+from factask.graph.order import topological_order
+from factask.graph.taskgraph import TaskGraph
 from factask.relations.status import CheckError
 
 
@@ -53,7 +53,7 @@ def latch_milestones_batch(graph: TaskGraph, progress: np.ndarray, satisfied: np
                            reached: np.ndarray) -> np.ndarray:
     """Latch milestones in order in every world, rewriting ``progress`` and
     ``satisfied`` (W, F) in place (the rules of
-    :func:`~factask.sim.checks.latch_milestones`).
+    :func:`~factask.sim.layout.checks.latch_milestones`).
 
     Args:
         graph: The task graph (valid: its order is acyclic).

@@ -1,7 +1,7 @@
 """The suction grasp per world: one inactive weld per free object, switched per world.
 
 The single env has ONE ``suction`` weld and rewrites ``model.eq_obj2id`` to the
-object it grasps (:mod:`factask.sim.suction`). A batch shares one model between
+object it grasps (:mod:`factask.sim.robots.suction`). A batch shares one model between
 its worlds, and MuJoCo Warp cannot give ``eq_obj2id`` a value per world; it can
 give ``eq_data`` (the weld's relative pose) and ``eq_active`` one. So the batch's
 model is the scene's spec with one more weld per free object — cup body to that
@@ -11,7 +11,7 @@ switches that world's weld on (:class:`WorldSuction`). Inactive welds add no
 constraint rows: the physics of a world that grasps nothing is the single env's.
 
 The grasp rule is the single env's: the closest free object whose geom touches
-the cup geom within :data:`~factask.sim.suction.TOUCH_DISTANCE` (contacts of the
+the cup geom within :data:`~factask.sim.robots.suction.TOUCH_DISTANCE` (contacts of the
 last physics step). Contacts are read on the host, world by world (NumPy over the
 contact list); a device kernel is for later.
 """
@@ -24,9 +24,9 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from factask.model.errors import InvalidValueError
-from factask.sim.compile import CompiledScene
-from factask.sim.suction import CUP_GEOM, SUCTION_WELD, TOUCH_DISTANCE
+from factask.sim.build.compile import CompiledScene
+from factask.sim.robots.suction import CUP_GEOM, SUCTION_WELD, TOUCH_DISTANCE
+from factask.vocabulary.errors import InvalidValueError
 
 #: Name prefix of the per-object welds (``suction__<instance>``).
 WELD_PREFIX = "suction__"

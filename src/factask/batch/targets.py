@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from factask.model.errors import InvalidValueError
 from factask.relations.solving import SolvedFactor
 from factask.scene.objects import SceneObject
+from factask.vocabulary.errors import InvalidValueError
 
 
 @dataclass(frozen=True)

@@ -27,9 +27,9 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from factask.batch.env import BatchEnv, make_batch
-from factask.model.errors import InvalidValueError
-from factask.model.graph import TaskGraph
-from factask.sim.observations import ObservationWrapper, encode_text
+from factask.graph.taskgraph import TaskGraph
+from factask.sim.render.observations import ObservationWrapper, encode_text
+from factask.vocabulary.errors import InvalidValueError
 
 
 class BatchVectorEnv(VectorEnv):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 from rich.console import Console
 
-from factask.sim.robots import ROBOT_NAMES, describe_robots
+from factask.sim.robots.registry import ROBOT_NAMES, describe_robots
 
 app = typer.Typer(
     name="factask",
@@ -49,7 +49,7 @@ MAX_EPISODES = 100_000
 #: File types ``--video`` can write.
 VIDEO_SUFFIXES = (".gif", ".mp4")
 #: Help text of every ``--camera`` option (the names are
-#: :data:`factask.sim.render.VIEWS`; kept here so ``--help`` needs no MuJoCo).
+#: :data:`factask.sim.render.offscreen.VIEWS`; kept here so ``--help`` needs no MuJoCo).
 CAMERA_HELP = ("Camera: a view framed so the robot and every object are whole (front, top, "
                "left, right, back), or the name of a camera of the scene.")
 #: Help text of every ``--json`` option of a command that reports results.
@@ -70,7 +70,7 @@ def parse_size(text: str, largest: tuple[int, int]) -> tuple[int, int]:
     Args:
         text: What the user gave to ``--size``.
         largest: The largest (width, height) allowed (the scenes' offscreen buffer,
-            ``factask.sim.assets.OFFSCREEN_SIZE``).
+            ``factask.sim.build.mjcf.OFFSCREEN_SIZE``).
 
     Raises:
         typer.Exit: code 2, with the expected form, on anything else.
@@ -85,7 +85,7 @@ def parse_size(text: str, largest: tuple[int, int]) -> tuple[int, int]:
 
 def check_camera(camera: str, model: object) -> None:
     """Exit with status 2 unless ``camera`` is a framed view or a camera of ``model``."""
-    from factask.sim.render import VIEWS
+    from factask.sim.render.offscreen import VIEWS
 
     names = [model.camera(i).name for i in range(model.ncam)]  # type: ignore[attr-defined]
     if camera not in VIEWS and camera not in names:

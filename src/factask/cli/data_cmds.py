@@ -11,7 +11,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
 from factask.cli.app import MAX_EPISODES, ROBOT_HELP, app, check_robot
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -141,8 +141,8 @@ def replay(
     written = None
     if video is not None:
         from factask.datasets.control_frames import default_control_fps
-        from factask.sim.cameras import ravens_cameras
-        from factask.sim.render import VideoRecorder
+        from factask.sim.render.cameras import ravens_cameras
+        from factask.sim.render.offscreen import VideoRecorder
 
         # A control-frame episode holds a state per command sample: its video at that rate.
         control = len(states.control_qpos) > 0

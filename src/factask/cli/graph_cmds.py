@@ -9,8 +9,8 @@ import typer
 from rich.console import Console
 
 from factask.cli.app import app
-from factask.model import GraphValidationError, TaskGraph, parse_graph
-from factask.model.errors import Problem, problem_lines
+from factask.graph import GraphValidationError, TaskGraph, parse_graph
+from factask.vocabulary.errors import Problem, problem_lines
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)

@@ -15,10 +15,10 @@ from rich.markup import escape
 from rich.table import Table
 
 from factask.cli.app import app
+from factask.graph import SubtaskFactor, TaskGraph
 from factask.library import UnknownTaskError, get_task, list_tasks, task_names
 from factask.library.tags import matches_tags, reuse_stats
-from factask.model import SubtaskFactor, TaskGraph
-from factask.model.errors import quote
+from factask.vocabulary.errors import quote
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)

@@ -11,7 +11,7 @@ from rich.console import Console
 from rich.table import Table
 
 from factask.cli.app import MAX_EPISODES, ROBOT_HELP, app, check_robot
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)

@@ -25,7 +25,7 @@ from factask.cli.app import (
     fail,
     parse_size,
 )
-from factask.model import FactaskError, GraphValidationError, TaskGraph, parse_graph
+from factask.graph import FactaskError, GraphValidationError, TaskGraph, parse_graph
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -117,7 +117,7 @@ def _episode_lines(result: Any, ravens: list[Any]) -> None:
 
 def _attach(recording: Any, env: Any) -> None:
     """Attach a recording to ``env``; exit 2 if this machine cannot render."""
-    from factask.sim.render import RenderError
+    from factask.sim.render.offscreen import RenderError
 
     try:
         recording.attach(env)
@@ -128,7 +128,7 @@ def _attach(recording: Any, env: Any) -> None:
 
 def _frame_size(text: str) -> tuple[int, int]:
     """``--size`` of a picture or video, within the scenes' offscreen buffer."""
-    from factask.sim.assets import OFFSCREEN_SIZE
+    from factask.sim.build.mjcf import OFFSCREEN_SIZE
 
     return parse_size(text, OFFSCREEN_SIZE)
 
@@ -146,7 +146,7 @@ def _compile(graph: TaskGraph, robot: str, **kwargs: Any) -> Any:
 def _recording(video: Path, fps: float, size: tuple[int, int], camera: str,
                caption: bool) -> Any:
     """An :class:`~factask.viz.EpisodeVideo`; exit 2 if its options cannot be met."""
-    from factask.sim.render import RenderError
+    from factask.sim.render.offscreen import RenderError
     from factask.viz import EpisodeVideo
 
     try:
@@ -407,7 +407,7 @@ def render(
 ) -> None:
     """Draw a still of a task's scene: at reset, or solved by the oracle."""
     from factask.sim.episode import run_episode
-    from factask.sim.render import (
+    from factask.sim.render.offscreen import (
         VIEWS,
         RenderError,
         SceneRenderer,

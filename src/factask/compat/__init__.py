@@ -2,5 +2,5 @@
 
 :mod:`factask.compat.cliport` runs GenSim/CLIPort ``Task`` classes (PyBullet code)
 against a recording environment and turns what they set up into a factask
-:class:`~factask.model.graph.TaskGraph`.
+:class:`~factask.graph.taskgraph.TaskGraph`.
 """

@@ -2,7 +2,7 @@
 
 ``factask collect --frames control`` records an episode as the stream of low-level
 commands the robot's controller receives, sampled every
-:data:`~factask.sim.primitive.DEFAULT_CALLBACK_EVERY` physics steps while actions run
+:data:`~factask.sim.robots.primitive.DEFAULT_CALLBACK_EVERY` physics steps while actions run
 (50 Hz at the 2 ms timestep), the layout LeRobot's own robot datasets use (one frame
 per control period, ``action`` the command for the next period). Frame k holds:
 
@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 #: The frame modes of a collection: one frame per decision, or per control sample.
 FRAME_MODES = ("decision", "control")
@@ -56,7 +56,7 @@ def control_fps(timestep: float) -> int:
         FrameModeError: the rate is not a whole number of frames per second (LeRobot's
             ``fps`` is an integer and timestamps are frame_index / fps).
     """
-    from factask.sim.primitive import DEFAULT_CALLBACK_EVERY
+    from factask.sim.robots.primitive import DEFAULT_CALLBACK_EVERY
 
     rate = 1.0 / (timestep * DEFAULT_CALLBACK_EVERY)
     if abs(rate - round(rate)) > 1e-6:
@@ -67,7 +67,7 @@ def control_fps(timestep: float) -> int:
 
 def default_control_fps() -> int:
     """The command rate of scenes compiled at the default timestep (50)."""
-    from factask.sim.compile import DEFAULT_TIMESTEP
+    from factask.sim.build.compile import DEFAULT_TIMESTEP
 
     return control_fps(DEFAULT_TIMESTEP)
 
@@ -78,8 +78,8 @@ def command_names(robot: str) -> list[str]:
     Raises:
         RobotError: no robot of that name.
     """
-    from factask.sim.robot_arm import JOINT_NAMES
-    from factask.sim.robots import robot_entry
+    from factask.sim.robots.arm import JOINT_NAMES
+    from factask.sim.robots.registry import robot_entry
 
     if robot_entry(robot).arm is None:
         return list(FLOATING_COMMAND_NAMES)

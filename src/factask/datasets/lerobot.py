@@ -48,8 +48,8 @@ from factask.datasets.layout import (
 )
 from factask.datasets.lerobot_files import RollingParquet, RollingVideo, RunningStats
 from factask.datasets.recording import ACTION_NAMES, STATE_NAMES, EpisodeRecord
-from factask.model.errors import FactaskError
-from factask.model.tolerances import SUCCESS_REWARD
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.tolerances import SUCCESS_REWARD
 
 #: Images per step of the running image statistics.
 STATS_FRAMES = 16

@@ -13,7 +13,7 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from multiprocessing import get_context
 from typing import Any
 
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 
 class ParallelError(FactaskError, ValueError):

@@ -24,10 +24,10 @@ from factask.datasets.control_frames import (
     control_fps,
 )
 from factask.datasets.states import EpisodeStates, snapshot
-from factask.model.errors import FactaskError
-from factask.model.tolerances import SUCCESS_REWARD
-from factask.sim.cameras import CameraRig
 from factask.sim.env import FactaskEnv
+from factask.sim.render.cameras import CameraRig
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.tolerances import SUCCESS_REWARD
 
 #: Names of ``observation.state``: the suction tip's pose and whether it holds.
 STATE_NAMES = ["ee_x", "ee_y", "ee_z", "ee_qw", "ee_qx", "ee_qy", "ee_qz", "suction"]
@@ -72,7 +72,7 @@ class EpisodeRecord:
 
 def oracle_policy(env: FactaskEnv, seed: int) -> Callable[[], dict[str, np.ndarray] | None]:
     """The scripted oracle, seeded like :func:`~factask.sim.episode.run_episode`."""
-    from factask.sim.oracle import Oracle
+    from factask.sim.oracle.scripted import Oracle
 
     return Oracle(env, seed=seed).act
 

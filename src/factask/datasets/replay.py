@@ -15,8 +15,8 @@ import mujoco
 import numpy as np
 
 from factask.datasets.states import EpisodeStates, snapshot
-from factask.model.graph import parse_graph
-from factask.sim.cameras import CameraRig, CameraSpec
+from factask.graph.taskgraph import parse_graph
+from factask.sim.render.cameras import CameraRig, CameraSpec
 
 
 def resimulate(states: EpisodeStates) -> EpisodeStates:

@@ -32,7 +32,7 @@ from factask.datasets.parallel import run_jobs
 from factask.datasets.recording import EpisodeRecord
 from factask.datasets.splits import split_seeds
 from factask.datasets.states import write_states
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 #: Folder of shard files inside the output folder.
 SHARD_DIR = ".shards"
@@ -134,8 +134,8 @@ def run_shard(shard: Shard, config: CollectConfig, shard_dir: str) -> str:
     """
     from factask.datasets.recording import record_episodes
     from factask.registration import resolve_task
-    from factask.sim.cameras import CameraRig, ravens_cameras
     from factask.sim.env import FactaskEnv
+    from factask.sim.render.cameras import CameraRig, ravens_cameras
 
     env = FactaskEnv(resolve_task(shard.task), robot=config.robot)
     rig = None
@@ -257,7 +257,7 @@ def merge_shards(config: CollectConfig, root: Path, shards: Sequence[Shard]) -> 
     except BaseException:
         writer.abort()
         raise
-    from factask.sim.cameras import ravens_cameras
+    from factask.sim.render.cameras import ravens_cameras
 
     extra: dict[str, Any] = {"collect": asdict(config), "states_path":
                              "states/episode_{episode_index:06d}.npz"}

@@ -14,7 +14,7 @@ stops below 10 000 where test starts, so val never meets test.
 
 from __future__ import annotations
 
-from factask.model.errors import InvalidValueError
+from factask.vocabulary.errors import InvalidValueError
 
 #: The splits.
 SPLITS = ("train", "val", "test")

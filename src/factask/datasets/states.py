@@ -27,7 +27,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 #: Version of the states file layout.
 STATES_VERSION = 1

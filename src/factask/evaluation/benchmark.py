@@ -31,7 +31,7 @@ from factask.gen.memory import SubtaskMemory
 from factask.gen.results import APPROACHES
 from factask.gen.strategies import Generator
 from factask.gen.verify import LEVELS, at_least
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 #: The research's rates in percent (syntax, runtime, completion), GPT-4, 55 tasks.
 RESEARCH_RATES: dict[str, tuple[float, float, float]] = {

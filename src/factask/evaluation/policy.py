@@ -26,7 +26,7 @@ import numpy as np
 
 from factask.datasets.parallel import run_jobs
 from factask.datasets.splits import split_seeds
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 #: The reference policies.
 REFERENCE_POLICIES = ("oracle", "random")
@@ -112,7 +112,7 @@ class _Oracle:
         self.oracle: Any = None
 
     def reset(self, seed: int) -> None:
-        from factask.sim.oracle import Oracle
+        from factask.sim.oracle.scripted import Oracle
 
         self.oracle = Oracle(self.env.unwrapped, seed=seed)
 

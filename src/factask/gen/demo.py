@@ -19,7 +19,7 @@ from factask.gen.loopback import ScriptedResponder
 DEMO_PROPOSAL = ("stack-blue-on-red-in-zone: put the red block in the green zone, then "
                  "put the blue block on top of the red block")
 
-# Every field is given: the step schemas (factask.gen.step_schemas) require them all.
+# Every field is given: the step schemas (factask.gen.answers.step_schemas) require them all.
 _TABLE = {"type": "table"}
 RED = {"name": "red_block", "description": "block that goes into the zone", "kind": "block",
        "size": [0.04, 0.04, 0.04], "color": "red", "count": 1, "initial": _TABLE}

@@ -1,7 +1,7 @@
 """Pieces the strategies build from answers: subtask fragments, scopes, merges.
 
 Each function checks what a schema cannot (scopes, conflicts between subtasks,
-the fragment valid as a graph) and raises :class:`~factask.gen.schemas.AnswerError`
+the fragment valid as a graph) and raises :class:`~factask.gen.answers.schemas.AnswerError`
 with a message for the model.
 """
 
@@ -13,8 +13,8 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from factask.gen import step_schemas as ss
-from factask.gen.schemas import (
+from factask.gen.answers import step_schemas as ss
+from factask.gen.answers.schemas import (
     AnswerError,
     GoalAnswer,
     SubtaskDesign,
@@ -22,11 +22,11 @@ from factask.gen.schemas import (
     format_problems,
 )
 from factask.gen.steps import Abort, Evaluation, PromptBuilder, StepRunner
-from factask.model.errors import GraphValidationError, Problem
-from factask.model.factors import SubtaskFactor
-from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
-from factask.model.names import unique_name
-from factask.model.variables import StateVariable
+from factask.graph.factors import SubtaskFactor
+from factask.graph.taskgraph import TaskGraph, graph_problems, problems_from_pydantic
+from factask.vocabulary.errors import GraphValidationError, Problem
+from factask.vocabulary.names import unique_name
+from factask.vocabulary.variables import StateVariable
 
 
 def vars_json(variables: list[StateVariable]) -> str:
@@ -140,7 +140,7 @@ def merge_problems(design: SubtaskDesign,
     """Conflicts of a new subtask with the earlier ones: a shared name defined
     differently. (An object that an earlier subtask moved may be moved again: the
     outline's order sequences the two, the earlier one a milestone --
-    :func:`factask.model.order.in_listed_order`.)"""
+    :func:`factask.graph.order.in_listed_order`.)"""
     problems = []
     for v in design.variables:
         if v.name in defined and defined[v.name][0] != v:

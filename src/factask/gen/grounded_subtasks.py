@@ -3,7 +3,7 @@
 The ungrounded approach asks a tiny model for a free outline (names it repeats,
 lists it writes until the token cap) and then for each subtask's whole design
 (variables and goal under the full schema). When the proposal names a movable
-object (:func:`factask.gen.grounded.applies`) the two steps ask only for what is
+object (:func:`factask.gen.reading.grounded.applies`) the two steps ask only for what is
 left to decide, as the grounded one-shot does:
 
 * **outline**: at most one subtask per movable named object, each an
@@ -18,7 +18,7 @@ left to decide, as the grounded one-shot does:
   proposal's words (:func:`named_variables`: kind, colour, count, size ``null``,
   on the table) and never re-declared; the model writes only the goal over them
   (the relation among those the proposal's words name,
-  :func:`factask.gen.grounded.goal_answer`), the subtask's own object first in
+  :func:`factask.gen.reading.grounded.goal_answer`), the subtask's own object first in
   every list the grammar offers. The goal must use that object (moved, or as the
   anchor): :func:`design_problems`.
 
@@ -33,10 +33,15 @@ from collections.abc import Sequence
 from itertools import permutations
 from typing import Any
 
-from factask.gen import grounded
-from factask.gen import step_schemas as ss
+from factask.gen.answers import step_schemas as ss
+from factask.gen.answers.schemas import (
+    AnswerError,
+    GoalAnswer,
+    OutlinedSubtask,
+    SubtaskOutline,
+    validate_answer,
+)
 from factask.gen.conversation import PromptLevel
-from factask.gen.cover import must_use, used_names
 from factask.gen.fragments import (
     ask_design,
     checked_fragment,
@@ -44,19 +49,14 @@ from factask.gen.fragments import (
     earlier_text,
     make_factor,
 )
-from factask.gen.mentions import Mention, mentions_text
 from factask.gen.prompts import render, schema_skeleton
-from factask.gen.schemas import (
-    AnswerError,
-    GoalAnswer,
-    OutlinedSubtask,
-    SubtaskOutline,
-    validate_answer,
-)
+from factask.gen.reading import grounded
+from factask.gen.reading.cover import must_use, used_names
+from factask.gen.reading.mentions import Mention, mentions_text
 from factask.gen.steps import Abort, Evaluation, StepRunner, read_strict
-from factask.model.graph import TaskGraph
-from factask.model.names import slugify
-from factask.model.variables import StateVariable
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.names import slugify
+from factask.vocabulary.variables import StateVariable
 
 Schema = ss.Schema
 
@@ -73,7 +73,7 @@ def subtask_name(obj: str) -> str:
 
 def movers(found: Sequence[Mention]) -> list[str]:
     """The names of the movable named objects, in the proposal's order (at most
-    :data:`~factask.gen.step_schemas.STEP_MAX_SUBTASKS`)."""
+    :data:`~factask.gen.answers.step_schemas.STEP_MAX_SUBTASKS`)."""
     return [m.name for m in grounded.movable(found)][:ss.STEP_MAX_SUBTASKS]
 
 
@@ -154,7 +154,7 @@ def outline_objects(outline: SubtaskOutline, found: Sequence[Mention]) -> dict[s
 
 def named_variables(found: Sequence[Mention]) -> list[StateVariable]:
     """The named objects as variables, declared from the proposal's words
-    (:meth:`~factask.gen.mentions.Mention.as_variable`), on the table."""
+    (:meth:`~factask.gen.reading.mentions.Mention.as_variable`), on the table."""
     return [StateVariable.model_validate(m.as_variable()) for m in found]
 
 
@@ -171,11 +171,11 @@ def design_schema(variables: Sequence[StateVariable], obj: str, proposal: str,
             subtask's own object).
         remaining: Subtasks left, this one included.
         narrow: Whether the goal must leave the later subtasks able to use every
-            named object (:func:`factask.gen.cover.must_use`; the prompt shows
+            named object (:func:`factask.gen.reading.cover.must_use`; the prompt shows
             the plain schema).
 
     Returns:
-        The goal over the named objects (:func:`factask.gen.grounded.goal_answer`),
+        The goal over the named objects (:func:`factask.gen.reading.grounded.goal_answer`),
         narrowed where the subtasks left have no slack.
     """
     ordered = sorted(variables, key=lambda v: v.name != obj)

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import re
 
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 
 class LLMError(FactaskError):

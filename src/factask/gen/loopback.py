@@ -22,7 +22,7 @@ from collections.abc import Callable, Mapping, Sequence
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
-from factask.model.errors import FactaskError
+from factask.vocabulary.errors import FactaskError
 
 #: A responder maps the request body (``model``, ``messages``, ...) to reply text.
 Responder = Callable[[dict[str, Any]], str]

@@ -14,9 +14,9 @@ import os
 from pathlib import Path
 from typing import Any
 
-from factask.gen.examples import Example, same_task, top_k
-from factask.model.errors import FactaskError
-from factask.model.graph import TaskGraph, parse_graph
+from factask.gen.answers.examples import Example, same_task, top_k
+from factask.graph.taskgraph import TaskGraph, parse_graph
+from factask.vocabulary.errors import FactaskError
 
 
 class SubtaskMemoryError(FactaskError):
@@ -90,7 +90,7 @@ class SubtaskMemory:
             query: Retrieval text.
             k: How many.
             exclude_task: The task being generated: entries verified in that task
-                (or a near-duplicate of it, :func:`~factask.gen.examples.same_task`)
+                (or a near-duplicate of it, :func:`~factask.gen.answers.examples.same_task`)
                 are left out, so a task never sees its own earlier answers.
         """
         candidates = [

@@ -4,8 +4,8 @@ are filled with.
 One template file per step; placeholders are ``{{name}}`` (so JSON braces in a
 template need no escaping). Every list the model sees — asset kinds, colours,
 relation types with their parameters, initial placements — is rendered from the
-code's own definitions (:data:`factask.model.kinds.ASSET_KINDS`,
-:data:`factask.model.palette.COLOR_NAMES`,
+code's own definitions (:data:`factask.vocabulary.kinds.ASSET_KINDS`,
+:data:`factask.vocabulary.palette.COLOR_NAMES`,
 :data:`factask.relations.RELATION_TYPES` with docstrings and JSON
 Schemas), so a prompt can never advertise something the library lacks.
 
@@ -27,12 +27,12 @@ from typing import Any
 
 from pydantic import BaseModel
 
-from factask.model.errors import FactaskError
-from factask.model.kinds import ASSET_KINDS
-from factask.model.palette import COLOR_NAMES
-from factask.model.variables import AtFixedPose, InRegion, OnTable, StartInside, StartOn
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.relations import RELATION_TYPES
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.kinds import ASSET_KINDS
+from factask.vocabulary.palette import COLOR_NAMES
+from factask.vocabulary.variables import AtFixedPose, InRegion, OnTable, StartInside, StartOn
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 _PLACEHOLDER_RE = re.compile(r"\{\{\s*([a-z_][a-z0-9_]*)\s*\}\}")
 
@@ -246,7 +246,7 @@ def schema_skeleton(schema: Mapping[str, Any], limit: int = 6) -> str:
     values (``a|b|c``, at most ``limit`` shown), alternatives joined by ``OR``.
 
     Args:
-        schema: A strict step schema (:mod:`factask.gen.step_schemas`).
+        schema: A strict step schema (:mod:`factask.gen.answers.step_schemas`).
         limit: Enum values shown before ``...``.
 
     Returns:

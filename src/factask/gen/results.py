@@ -12,7 +12,7 @@ from typing import Any, Literal
 
 from factask.gen.llm import Usage
 from factask.gen.verify import Level, at_least
-from factask.model.graph import TaskGraph
+from factask.graph.taskgraph import TaskGraph
 
 Approach = Literal["one-shot", "variables-first", "subtasks-first"]
 #: The three strategies: the baseline and the research's approaches 1 and 2.

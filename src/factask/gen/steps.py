@@ -16,6 +16,14 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
 
+from factask.gen.answers.examples import (
+    Example,
+    library_task_examples,
+    render_examples,
+    template_examples,
+)
+from factask.gen.answers.schemas import AnswerError, read_json, several_objects_note
+from factask.gen.answers.step_schemas import empty_choices, schema_problems
 from factask.gen.conversation import (
     RETRY_TEMPERATURES,
     Budget,
@@ -25,21 +33,13 @@ from factask.gen.conversation import (
     normalised_answer,
     sampling,
 )
-from factask.gen.examples import (
-    Example,
-    library_task_examples,
-    render_examples,
-    template_examples,
-)
 from factask.gen.llm import LLMClient, LLMError, LLMRequestError, Usage
 from factask.gen.memory import SubtaskMemory, SubtaskMemoryError
 from factask.gen.prompts import render, schema_skeleton, schema_text
 from factask.gen.results import AttemptRecord, GenerationResult
-from factask.gen.schemas import AnswerError, read_json, several_objects_note
-from factask.gen.step_schemas import empty_choices, schema_problems
 from factask.gen.verify import Level, Verifier, at_least, level_index
-from factask.model.errors import FactaskError, InvalidValueError
-from factask.model.graph import TaskGraph
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.errors import FactaskError, InvalidValueError
 
 T = TypeVar("T")
 
@@ -71,7 +71,7 @@ def read_strict(text: str, schema: Mapping[str, Any],
 
     Args:
         text: The model's answer.
-        schema: The step's schema (:mod:`factask.gen.step_schemas`).
+        schema: The step's schema (:mod:`factask.gen.answers.step_schemas`).
         overrides: Top-level values that are ours, not the model's (the task's
             name), set before the check.
 

@@ -12,7 +12,7 @@ structured failure.
   conflicts reported back) -> assembly, verified as a whole.
 
 Each step sends the strict JSON Schema of exactly its answer
-(:mod:`factask.gen.step_schemas`: the variables declared so far are enums where
+(:mod:`factask.gen.answers.step_schemas`: the variables declared so far are enums where
 the step refers to them) and runs as a conversation (:class:`~factask.gen.steps.StepRunner`).
 """
 
@@ -24,9 +24,19 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from factask.gen import grounded
 from factask.gen import grounded_subtasks as gs
-from factask.gen import step_schemas as ss
+from factask.gen.answers import step_schemas as ss
+from factask.gen.answers.schemas import (
+    AnswerError,
+    GoalAnswer,
+    SubtaskDesign,
+    SubtaskOutline,
+    SubtaskPlan,
+    VariablesAnswer,
+    check_graph_size,
+    format_problems,
+    validate_answer,
+)
 from factask.gen.conversation import PromptLevel
 from factask.gen.fragments import (
     ask_design,
@@ -44,29 +54,19 @@ from factask.gen.fragments import (
 )
 from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
 from factask.gen.memory import SubtaskMemory
-from factask.gen.mentions import grounding_feedback, mentions, mentions_text
 from factask.gen.prompts import render, schema_skeleton
+from factask.gen.reading import grounded
+from factask.gen.reading.mentions import grounding_feedback, mentions, mentions_text
 from factask.gen.results import APPROACHES, GenerationResult
-from factask.gen.schemas import (
-    AnswerError,
-    GoalAnswer,
-    SubtaskDesign,
-    SubtaskOutline,
-    SubtaskPlan,
-    VariablesAnswer,
-    check_graph_size,
-    format_problems,
-    validate_answer,
-)
 from factask.gen.steps import Abort, Evaluation, StepCallback, StepRunner, read_strict
 from factask.gen.verify import Level, Verifier, at_least, level_index
-from factask.model.errors import CompositionError, FactaskError
-from factask.model.factors import SubtaskFactor
-from factask.model.graph import TaskGraph, graph_problems, problems_from_pydantic
-from factask.model.names import slugify
-from factask.model.order import in_listed_order
-from factask.model.templates import compose, extract_fragment
-from factask.model.variables import StateVariable
+from factask.graph.factors import SubtaskFactor
+from factask.graph.order import in_listed_order
+from factask.graph.taskgraph import TaskGraph, graph_problems, problems_from_pydantic
+from factask.graph.templates import compose, extract_fragment
+from factask.vocabulary.errors import CompositionError, FactaskError
+from factask.vocabulary.names import slugify
+from factask.vocabulary.variables import StateVariable
 
 
 class UnknownApproachError(FactaskError):
@@ -75,7 +75,7 @@ class UnknownApproachError(FactaskError):
 
 _PROPOSAL_RE = re.compile(r"^\s*([a-z0-9][a-z0-9_-]{1,99})\s*[:]\s+(.+)$", re.DOTALL)
 
-#: Longest task name (:data:`factask.model.names.TASK_NAME_PATTERN`).
+#: Longest task name (:data:`factask.vocabulary.names.TASK_NAME_PATTERN`).
 MAX_TASK_NAME = 100
 
 
@@ -125,7 +125,7 @@ class Generator(StepRunner):
         on_step: Called with every :class:`AttemptRecord` as it happens.
         n_examples: In-context examples per prompt (per source).
         grounded: Fix the objects the proposal names in the step schemas and ask
-            one-shot for a compact answer (:mod:`factask.gen.grounded`); None:
+            one-shot for a compact answer (:mod:`factask.gen.reading.grounded`); None:
             for the packaged local models only (a tiny model on a CPU), whose
             ``config.is_local`` is true.
     """
@@ -255,12 +255,12 @@ class Generator(StepRunner):
         query = f"{task} {desc}"
         found = mentions(f"{desc} {task}")
         # The objects the proposal names come from its words; the model writes the
-        # decisions (factask.gen.grounded).
+        # decisions (factask.gen.reading.grounded).
         compact = self.grounded and grounded.applies(found)
         schema = grounded.compact_graph_schema(found, desc) if compact else \
             ss.graph_schema(task)
         # The prompt shows the plain goal list's outline: the grammar's shapes
-        # (factask.gen.cover) would only lengthen it.
+        # (factask.gen.reading.cover) would only lengthen it.
         outline = schema_skeleton(grounded.compact_graph_schema(found, desc, cover=False)) \
             if compact else ""
 

@@ -17,11 +17,16 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from factask.gen.schemas import AnswerError, format_problems, read_json, several_objects_note
-from factask.model.errors import FactaskError, GraphValidationError, InvalidValueError
-from factask.model.graph import TaskGraph, parse_graph
+from factask.gen.answers.schemas import (
+    AnswerError,
+    format_problems,
+    read_json,
+    several_objects_note,
+)
+from factask.graph.taskgraph import TaskGraph, parse_graph
 from factask.sim.episode import check_runtime, run_episode
-from factask.sim.robots import robot_entry
+from factask.sim.robots.registry import robot_entry
+from factask.vocabulary.errors import FactaskError, GraphValidationError, InvalidValueError
 
 Level = Literal["none", "syntax", "runtime", "completion"]
 #: The ladder, lowest first.
@@ -99,7 +104,7 @@ class Verifier:
 
     Args:
         episodes: Oracle episodes of the completion check.
-        robot: Robot of the episodes, a name of :data:`factask.sim.robots.ROBOTS`
+        robot: Robot of the episodes, a name of :data:`factask.sim.robots.registry.ROBOTS`
             (``floating`` is the fast one).
         base_seed: Seeds derive from it (:func:`completion_seeds`).
         success_fraction: Fraction of episodes that must succeed (research: half).

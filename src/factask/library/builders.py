@@ -12,10 +12,10 @@ import math
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
+from factask.graph import AtFixedPose, InRegion, StartInside, StartOn, StateVariable, TaskGraph
+from factask.graph import compose as _compose
 from factask.library.templates import get_template
-from factask.model import AtFixedPose, InRegion, StartInside, StartOn, StateVariable, TaskGraph
-from factask.model import compose as _compose
-from factask.model.errors import InvalidValueError
+from factask.vocabulary.errors import InvalidValueError
 
 #: Task name -> builder (filled by :func:`register`, read by ``factask.library.tasks``).
 BUILDERS: dict[str, Callable[[], TaskGraph]] = {}

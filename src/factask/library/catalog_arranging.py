@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+from factask.graph import TaskGraph
 from factask.library.builders import assemble, register, use, var
-from factask.model import TaskGraph
 
 BLOCK = (0.04, 0.04, 0.04)
 LINE = (0.30, 0.01, 0.001)

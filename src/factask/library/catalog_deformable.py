@@ -3,7 +3,7 @@
 Each pile is one ``pile`` variable (its ``count`` small blocks start as one
 cluster); ``push_pile_into_zone`` puts a pile's blocks into a region by pushes
 (``pile_in_zone``: progress is the share of the blocks inside). A task with
-such a goal gets the spatula and the push action (:mod:`factask.sim.push`).
+such a goal gets the spatula and the push action (:mod:`factask.sim.robots.spatula`).
 Piles here are smaller than Ravens' 50 blocks where a task has several, so the
 scene stays within the graph model's object limit.
 
@@ -19,19 +19,19 @@ from __future__ import annotations
 
 from typing import Any
 
-from factask.library.builders import assemble, at, region, register, use, var
-from factask.library.templates import REGIONS, TEMPLATES, slot
-from factask.model import (
+from factask.graph import (
     AtFixedPose,
     StateVariable,
     SubtaskFactor,
     SubtaskTemplate,
     TaskGraph,
 )
-from factask.model.tolerances import Tolerances
-from factask.model.world import WORKSPACE_Y
+from factask.library.builders import assemble, at, region, register, use, var
+from factask.library.templates import REGIONS, TEMPLATES, slot
 from factask.relations import PileInZone, RopeAlong
 from factask.relations.rope import ANCHOR_GAP, SLOT_PITCH
+from factask.vocabulary.tolerances import Tolerances
+from factask.vocabulary.world import WORKSPACE_Y
 
 #: A Ravens small block: a 1 cm cube.
 SMALL_BLOCK = (0.01, 0.01, 0.01)

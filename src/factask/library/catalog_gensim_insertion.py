@@ -7,6 +7,7 @@ so "put the shape in its silhouette" is the same insertion subtask.
 
 from __future__ import annotations
 
+from factask.graph import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.library.builders import (
     assemble,
     at,
@@ -33,9 +34,8 @@ from factask.library.conventions import (
     TUBE,
 )
 from factask.library.templates import match_pairs, slot
-from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
-from factask.model.world import WORKSPACE_Y
 from factask.relations import Aligned
+from factask.vocabulary.world import WORKSPACE_Y
 
 
 def _row(n: int, x: float = 0.64, span: float = 0.7) -> list[tuple[float, float]]:

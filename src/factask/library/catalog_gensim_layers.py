@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import math
 
+from factask.graph import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.library.builders import assemble, register, use, var
 from factask.library.conventions import BLOCK
 from factask.library.templates import slot
-from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.relations import AtPose, TargetPose
 
 #: A pallet a row of five blocks fits along (GenSim's bridge pallet).

@@ -8,6 +8,7 @@ the other.
 
 from __future__ import annotations
 
+from factask.graph import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.library.builders import (
     assemble,
     at,
@@ -20,7 +21,6 @@ from factask.library.builders import (
 )
 from factask.library.conventions import BALL, BLOCK, CORNER, CYLINDER, FIVE, FOUR, LINE, NEAR
 from factask.library.templates import match_pairs, slot
-from factask.model import StateVariable, SubtaskFactor, SubtaskTemplate, TaskGraph
 from factask.relations import AtPose, TargetPose
 from factask.scene.objects import corner_arm_width
 

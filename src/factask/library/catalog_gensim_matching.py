@@ -8,6 +8,7 @@ Each task pairs objects with targets through
 
 from __future__ import annotations
 
+from factask.graph import StateVariable, TaskGraph
 from factask.library.builders import (
     assemble,
     at,
@@ -22,7 +23,6 @@ from factask.library.builders import (
 )
 from factask.library.conventions import BALL, BLOCK, CORNER, CYLINDER, FOUR, NEAR, THREE, ZONE
 from factask.library.templates import match_pairs
-from factask.model import StateVariable, TaskGraph
 
 #: A squat cylinder wide enough to carry a block on its top.
 PEDESTAL = (0.05, 0.05, 0.04)

@@ -5,6 +5,7 @@ maze), plus the sequenced Ravens variants (towers of Hanoi step by step).
 
 from __future__ import annotations
 
+from factask.graph import StateVariable, TaskGraph
 from factask.library.builders import (
     assemble,
     at,
@@ -18,7 +19,6 @@ from factask.library.builders import (
 from factask.library.catalog_stacking import towers_of_hanoi
 from factask.library.conventions import BALL, BLOCK, BOWL
 from factask.library.templates import match_pairs
-from factask.model import StateVariable, TaskGraph
 
 BROWN_BOX = (0.22, 0.22, 0.06)
 

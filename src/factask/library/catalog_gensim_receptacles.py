@@ -2,7 +2,7 @@
 start nested in one another or on a pallet, or that must end in a row.
 
 A free (``fixed: false``) bowl or container is carried by its rim
-(:mod:`factask.sim.pick_points`). "Initially stacked" bowls and containers are
+(:mod:`factask.sim.oracle.pick_points`). "Initially stacked" bowls and containers are
 nested: each starts inside the next larger one (factask's receptacles have
 straight walls, so equal ones cannot nest, and a rim is no support to rest one
 on). Unstacking them is a row of the receptacles side by side on the table, and
@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from factask.graph import StateVariable, TaskGraph
 from factask.library.builders import (
     assemble,
     colored,
@@ -25,7 +26,6 @@ from factask.library.builders import (
 )
 from factask.library.conventions import BLOCK, BOWL, CORNER, FOUR
 from factask.library.templates import match_pairs
-from factask.model import StateVariable, TaskGraph
 
 #: Outer size of the larger and the smaller receptacle of a nested pair: the smaller
 #: one (8.5 cm inside: a 4 cm block fits turned any way) leaves 1.25 cm of play each

@@ -8,6 +8,7 @@ GenSim's "box" receptacles (open boxes with a slot) are factask containers.
 
 from __future__ import annotations
 
+from factask.graph import StateVariable, TaskGraph
 from factask.library.builders import (
     assemble,
     at,
@@ -21,7 +22,6 @@ from factask.library.builders import (
 )
 from factask.library.conventions import BALL, BLOCK, BOWL, CYLINDER, ELL, FOUR, NEAR, THREE
 from factask.library.templates import match_pairs
-from factask.model import StateVariable, TaskGraph
 
 #: A bowl an ell fits in (its 8 cm bounding box needs more than a 12 cm bowl's inside).
 WIDE_BOWL = (0.16, 0.16, 0.05)

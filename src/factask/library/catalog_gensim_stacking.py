@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from factask.graph import StateVariable, TaskGraph
 from factask.library.builders import (
     assemble,
     at,
@@ -22,7 +23,6 @@ from factask.library.builders import (
 )
 from factask.library.conventions import BALL, BLOCK, CORNER, FIVE, FOUR
 from factask.library.templates import match_pairs
-from factask.model import StateVariable, TaskGraph
 
 PALLET = (0.30, 0.25, 0.0375)
 STAND = (0.15, 0.05, 0.005)

@@ -6,9 +6,9 @@ names follow GenSim's task list (``factask/data/gensim_tasks.json``).
 
 from __future__ import annotations
 
+from factask.graph import TaskGraph
 from factask.library.builders import assemble, at, region, register, use, var
 from factask.library.templates import match_pairs
-from factask.model import TaskGraph
 
 BOWL = (0.12, 0.12, 0.05)
 CONTAINER = (0.16, 0.16, 0.05)

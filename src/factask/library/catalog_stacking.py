@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+from factask.graph import TaskGraph
 from factask.library.builders import assemble, register, start_inside, start_on, use, var
-from factask.model import TaskGraph
 
 BLOCK = (0.04, 0.04, 0.04)
 #: A wide bowl: two 4 cm blocks fit side by side inside its round wall (a 12 cm

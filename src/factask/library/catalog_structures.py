@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
+from factask.graph import StateVariable, TaskGraph
 from factask.library.builders import assemble, register, use, var
 from factask.library.conventions import LOG
-from factask.model import StateVariable, TaskGraph
 
 BLOCK = (0.04, 0.04, 0.04)
 #: A deck bar long enough to span two pillars 8 cm apart (see BRIDGE_PILLAR_SPACING).

@@ -1,6 +1,6 @@
 """Sizes, colour sets and start regions that the GenSim catalogue modules share.
 
-One place for the asset conventions of :mod:`factask.model.kinds` as the library
+One place for the asset conventions of :mod:`factask.vocabulary.kinds` as the library
 uses them (a Ravens block is a 4 cm cube, a bowl 12 cm across, ...), so a task
 module states only what is particular to its tasks.
 """

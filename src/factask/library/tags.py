@@ -17,10 +17,10 @@ from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 
+from factask.graph import TaskGraph
 from factask.library.builders import EXTRA_TAGS, FAMILIES
 from factask.library.templates import TEMPLATES
-from factask.model import TaskGraph
-from factask.model.kinds import kind_spec
+from factask.vocabulary.kinds import kind_spec
 
 #: A structure whose top is at least this high above the table (m) counts as
 #: needing the arm's reach: an arm must lift over it and place at that height

@@ -12,6 +12,8 @@ import difflib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from factask.graph import FactaskError, TaskGraph
+
 # Importing the catalogue modules registers their builders.
 from factask.library import (  # noqa: F401
     catalog_arranging,
@@ -30,7 +32,6 @@ from factask.library import (  # noqa: F401
 )
 from factask.library.builders import BUILDERS
 from factask.library.tags import graph_tags, task_tags
-from factask.model import FactaskError, TaskGraph
 
 #: Task name -> builder returning a fresh, validated graph.
 TASKS: dict[str, Callable[[], TaskGraph]] = dict(sorted(BUILDERS.items()))

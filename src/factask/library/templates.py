@@ -3,7 +3,7 @@
 Each template is a small, checkable subtask over *slots* (placeholders for task
 variables). Top-level tasks bind the slots to their own variables with
 ``TEMPLATES[name].instantiate(...)`` and join the fragments with
-:func:`factask.model.compose`. Factor descriptions use ``{slot}`` placeholders,
+:func:`factask.graph.compose`. Factor descriptions use ``{slot}`` placeholders,
 so an instance reads as a language goal ("put the red block in the green bowl").
 
 Templates never compute target poses: every goal is a relation that the solver
@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from factask.model import (
+from factask.graph import (
     Aligned,
     AtPose,
     Circle,
@@ -33,7 +33,7 @@ from factask.model import (
 )
 
 # Kinds a suction gripper can pick and that stay where they are put; a free bowl or
-# container is taken by its rim (factask.sim.pick_points).
+# container is taken by its rim (factask.sim.oracle.pick_points).
 MOVABLE_RECEPTACLES = ["bowl", "container"]
 PICKABLE = ["block", "box", "cylinder", "ball", "log", "ell", *MOVABLE_RECEPTACLES]
 # Kinds that can carry something on their flat top (columns, layers, decks).
@@ -336,7 +336,7 @@ def match_pairs(
         sequential: Order the instances: each comes after the previous one.
 
     Returns:
-        One fragment per pair, ready for :func:`factask.model.compose`.
+        One fragment per pair, ready for :func:`factask.graph.compose`.
     """
     tpl = get_template(template) if isinstance(template, str) else template
     others = [s.name for s in tpl.slots if s.name != object_slot]

@@ -41,7 +41,7 @@ RELATION_TYPES: dict[str, type[RelationBase]] = {cls.kind(): cls for cls in _UNI
 Relation = Annotated[Union[_UNITS], Field(discriminator="type")]  # noqa: UP007
 
 #: Which anchor field of each relation must have which capability of its kind
-#: (see :class:`factask.model.kinds.KindSpec`), for the prompts.
+#: (see :class:`factask.vocabulary.kinds.KindSpec`), for the prompts.
 ANCHOR_CAPABILITY: dict[tuple[str, str], tuple[str, ...]] = {
     (kind, field): caps for kind, cls in RELATION_TYPES.items()
     for field, caps in cls.anchor_fields.items() if caps

@@ -8,11 +8,6 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
-from factask.model.errors import Problem
-from factask.model.kinds import side_hole
-from factask.model.names import Name
-from factask.model.variables import StateVariable
-from factask.model.world import TABLE_Z
 from factask.relations.base import RelationBase, Reserve
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import CheckScene, Verdict, check_slots
@@ -24,6 +19,11 @@ from factask.scene.objects import (
     resting_pose,
     yaw_rotation_2d,
 )
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.kinds import side_hole
+from factask.vocabulary.names import Name
+from factask.vocabulary.variables import StateVariable
+from factask.vocabulary.world import TABLE_Z
 
 #: Mode ``hole``: the gap (m) between the box's holed face and the object's end.
 HOLE_GAP = 0.005

@@ -11,9 +11,6 @@ from pydantic import BaseModel, ConfigDict, Field
 from scipy.optimize import linear_sum_assignment
 
 from factask.geometry import Pose
-from factask.model.errors import Problem
-from factask.model.names import Name
-from factask.model.world import TABLE_Z, WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 from factask.relations.base import RelationBase
 from factask.relations.solving import (
     Infeasible,
@@ -31,9 +28,12 @@ from factask.scene.objects import (
     resting_pose,
     yaw_rotation_2d,
 )
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.names import Name
+from factask.vocabulary.world import TABLE_Z, WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
 if TYPE_CHECKING:
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
 #: Target coordinates are bounded (metres): far beyond any table, never overflowing.
 COORDINATE_LIMIT = 10.0

@@ -28,16 +28,16 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from factask.model.errors import Problem
-from factask.model.kinds import kind_spec
-from factask.model.names import Name
-from factask.model.tolerances import Tolerances
 from factask.relations.solving import Plan, SolveContext, SolvedFactor
 from factask.relations.status import CheckScene, FactorStatus, Verdict, factor_status
 from factask.scene.objects import SceneObject
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.kinds import kind_spec
+from factask.vocabulary.names import Name
+from factask.vocabulary.tolerances import Tolerances
 
 if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
 
 def _or_kinds(kinds: Mapping[str, tuple[str, ...]], field: str) -> str:
@@ -51,7 +51,7 @@ class Reserve:
     """Table an anchor keeps clear of other objects' starts: a rectangle in the frame
     of each instance of variable ``anchor`` (centre ``x``, ``y``; full extents
     ``size``), which must also lie inside the workspace. The layout sampler keeps it
-    (:mod:`factask.sim.sampling`) where a goal's slot has one place only, fixed by
+    (:mod:`factask.sim.layout.sampling`) where a goal's slot has one place only, fixed by
     the anchor (in front of a box's hole), so random starts do not make it
     infeasible.
     """
@@ -68,7 +68,7 @@ class RelationBase(BaseModel, abc.ABC):
 
     model_config = ConfigDict(extra="forbid")
 
-    #: Anchor field -> the kind capabilities (:class:`~factask.model.kinds.KindSpec`
+    #: Anchor field -> the kind capabilities (:class:`~factask.vocabulary.kinds.KindSpec`
     #: flags) its variable needs, any one of them; ``()`` accepts every kind.
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {}
     #: Anchor field -> kinds it accepts besides those with its capabilities (a

@@ -9,14 +9,14 @@ from typing import Annotated, Any, ClassVar, Literal
 import numpy as np
 from pydantic import Field
 
-from factask.model.names import Name
-from factask.model.world import TABLE_Z, WORKSPACE_DEPTH
 from factask.relations.base import RelationBase
 from factask.relations.packing import clear_radius
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import CheckScene, Verdict, check_slots
 from factask.scene.collision import CLEARANCE, TABLE
 from factask.scene.objects import SceneObject, footprint_corners, rest_surface_z, resting_pose
+from factask.vocabulary.names import Name
+from factask.vocabulary.world import TABLE_Z, WORKSPACE_DEPTH
 
 #: Extra chord (m) between neighbours on a ring, over the clearance.
 RING_SLACK = 0.001

@@ -8,15 +8,15 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal
 import numpy as np
 from pydantic import Field
 
-from factask.model.errors import Problem
-from factask.model.names import Name
 from factask.relations.at_pose import TargetPose, solve_given_poses
 from factask.relations.region import RegionRelation
 from factask.relations.solving import Infeasible, Plan, SolveContext
 from factask.scene.objects import SceneObject
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.names import Name
 
 if TYPE_CHECKING:
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
 
 class InZone(RegionRelation):

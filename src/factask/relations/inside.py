@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any, ClassVar, Literal
 
-from factask.model.names import Name
 from factask.relations.region import RegionRelation
+from factask.vocabulary.names import Name
 
 
 class Inside(RegionRelation):

@@ -8,7 +8,6 @@ from typing import Any, ClassVar, Literal
 import numpy as np
 
 from factask.geometry import Pose
-from factask.model.names import Name
 from factask.relations.base import RelationBase
 from factask.relations.packing import pack_plan
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
@@ -26,6 +25,7 @@ from factask.scene.objects import (
     resting_pose,
     yaw_rotation_2d,
 )
+from factask.vocabulary.names import Name
 
 _CM = 100.0
 

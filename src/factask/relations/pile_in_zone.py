@@ -22,8 +22,6 @@ from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
 import numpy as np
 from pydantic import Field
 
-from factask.model.errors import Problem
-from factask.model.names import Name
 from factask.relations.base import RelationBase
 from factask.relations.solving import Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import (
@@ -43,9 +41,11 @@ from factask.scene.objects import (
     resting_pose,
     yaw_rotation_2d,
 )
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.names import Name
 
 if TYPE_CHECKING:
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
 #: The kind whose variables this relation moves.
 PILE_KIND = "pile"

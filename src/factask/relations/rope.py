@@ -25,19 +25,19 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal
 import numpy as np
 from pydantic import Field
 
-from factask.model.errors import Problem
-from factask.model.kinds import kind_spec
-from factask.model.names import Name
-from factask.model.world import TABLE_Z
 from factask.relations.at_pose import TargetPose
 from factask.relations.base import RelationBase
 from factask.relations.solving import Infeasible, Plan, SolveContext, SolvedFactor, make_plan
 from factask.relations.status import MAX_DETAIL_ITEMS, CheckScene, FactorStatus, Verdict
 from factask.scene.collision import TABLE
 from factask.scene.objects import SceneObject, resting_pose
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.kinds import kind_spec
+from factask.vocabulary.names import Name
+from factask.vocabulary.world import TABLE_Z
 
 if TYPE_CHECKING:
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
 #: The kind whose variables this relation moves.
 ROPE_KIND = "rope"

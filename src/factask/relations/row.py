@@ -10,9 +10,6 @@ import numpy as np
 from pydantic import Field
 
 from factask.geometry import Pose, wrap_angle
-from factask.model.errors import Problem
-from factask.model.names import Name
-from factask.model.world import TABLE_Z, WORKSPACE_DIAGONAL
 from factask.relations.base import RelationBase
 from factask.relations.solving import (
     Infeasible,
@@ -37,9 +34,12 @@ from factask.scene.objects import (
     resting_pose,
     yaw_rotation_2d,
 )
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.names import Name
+from factask.vocabulary.world import TABLE_Z, WORKSPACE_DIAGONAL
 
 if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
 #: Extra gap in a row with no explicit spacing: widest object + this (metres).
 ROW_GAP = 0.01

@@ -6,7 +6,7 @@ slot) from a :class:`SolveContext` (the graph, the scene objects, their current
 or already solved poses, the obstacles). :meth:`SolveContext.accept` holds every
 plan to the same rules — inside the workspace, under its height, above the table,
 free of obstacles and of the factor's other slots — and the solver driver
-(:func:`factask.sim.solving.solve_targets`) turns an accepted plan into a
+(:func:`factask.sim.layout.solving.solve_targets`) turns an accepted plan into a
 :class:`SolvedFactor`, which the checks, the oracle and the env read.
 """
 
@@ -14,14 +14,10 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from factask.geometry import Pose
-from factask.model.errors import FactaskError
-from factask.model.tolerances import Z_TOLERANCE
-from factask.model.world import TABLE_Z, WORKSPACE_Z
 from factask.scene.collision import (
     GIVEN_CLEARANCE,
     MAX_TRIES_PER_OBJECT,
@@ -42,15 +38,16 @@ from factask.scene.objects import (
     rest_surface_z,
     top_z,
 )
-
-if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
-    from factask.model.graph import TaskGraph
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.tolerances import Z_TOLERANCE
+from factask.vocabulary.variables import VariableSet
+from factask.vocabulary.world import TABLE_Z, WORKSPACE_Z
 
 
 class Infeasible(FactaskError):
     """One solving attempt failed; ``retry`` says whether other random choices may help.
 
-    The solver driver turns it into a :class:`~factask.model.errors.LayoutError`.
+    The solver driver turns it into a :class:`~factask.vocabulary.errors.LayoutError`.
     """
 
     def __init__(self, reason: str, retry: bool = True) -> None:
@@ -129,7 +126,7 @@ class SolveContext:
             ``current`` pose is that target, not their start).
     """
 
-    graph: TaskGraph
+    graph: VariableSet
     objs: dict[str, SceneObject]
     current: dict[str, Pose]
     occ: Occupancy

@@ -8,9 +8,6 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 
-from factask.model.errors import Problem
-from factask.model.names import Name
-from factask.model.world import TABLE_Z
 from factask.relations.base import RelationBase
 from factask.relations.solving import (
     Plan,
@@ -23,9 +20,12 @@ from factask.relations.solving import (
 from factask.relations.status import CheckScene, Verdict, check_slots
 from factask.scene.collision import MAX_TRIES_PER_OBJECT, TABLE
 from factask.scene.objects import GEOMETRY_EPS, SceneObject, resting_pose, yaw_rotation_2d
+from factask.vocabulary.errors import Problem
+from factask.vocabulary.names import Name
+from factask.vocabulary.world import TABLE_Z
 
 if TYPE_CHECKING:  # the graph model sits above the relations (it imports their schemas)
-    from factask.model.variables import StateVariable
+    from factask.vocabulary.variables import StateVariable
 
 #: A base marker a column may stand in, and the piece that carries only its like.
 CORNER_KIND, ELL_KIND = "corner", "ell"

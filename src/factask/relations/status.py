@@ -10,7 +10,7 @@ oracle, the CLI and the scoring all read that status; nobody re-derives it.
 
 Every check re-checks from the current poses (a stack that falls loses its
 progress); only milestone factors latch, and that is decided where the statuses
-are added up (:mod:`factask.sim.checks`), never inside a relation. Objects held
+are added up (:mod:`factask.sim.layout.checks`), never inside a relation. Objects held
 by the robot never count as placed. Tolerances come from each relation's
 ``tolerances``, never from literals.
 """
@@ -24,10 +24,10 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from factask.geometry import Pose, tilt_deg, without_roll, yaw_error_deg
-from factask.model.errors import FactaskError
-from factask.model.tolerances import Tolerances
 from factask.relations.solving import SolvedFactor
 from factask.scene.objects import SPHERE_KINDS, SceneObject
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.tolerances import Tolerances
 
 #: An object tilted more than this (degrees) from upright is not placed.
 MAX_TILT_DEG = 20.0

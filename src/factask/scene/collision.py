@@ -26,8 +26,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from factask.geometry import Pose
-from factask.model.errors import FactaskError
-from factask.model.world import TABLE_X, TABLE_Y, WORKSPACE_X, WORKSPACE_Y
 from factask.scene.objects import (
     Area,
     SceneObject,
@@ -44,6 +42,8 @@ from factask.scene.objects import (
     top_z,
     yaw_rotation_2d,
 )
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.world import TABLE_X, TABLE_Y, WORKSPACE_X, WORKSPACE_Y
 
 #: Gap kept between footprints (metres): objects never start or land touching.
 CLEARANCE = 0.01

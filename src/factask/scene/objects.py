@@ -15,7 +15,7 @@ collides. The helpers below give its geometry for a given :class:`Pose`:
 Conventions fixed here (shared with the MJCF asset builders):
 
 * Containers and bowls have walls **and a floor** of thickness
-  :data:`factask.model.kinds.WALL_THICKNESS`; a fixture is an open frame of walls
+  :data:`factask.vocabulary.kinds.WALL_THICKNESS`; a fixture is an open frame of walls
   with no floor (what goes in it rests on the table).
 * Corner marker: its pose is the centre of its bounding box (as for every kind);
   the L's two arms, each :func:`corner_arm_width` wide, lie along the box's
@@ -28,16 +28,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from factask.geometry import Pose, rotation_matrix
-from factask.model.kinds import WALL_THICKNESS, KindSpec, kind_spec
-from factask.model.world import TABLE_Z
-
-if TYPE_CHECKING:  # the graph model sits above this module (it imports the relations)
-    from factask.model.graph import TaskGraph
+from factask.vocabulary.kinds import WALL_THICKNESS, KindSpec, kind_spec
+from factask.vocabulary.variables import VariableSet
+from factask.vocabulary.world import TABLE_Z
 
 #: Small slack (metres) for "inside" tests so a point on a boundary counts as inside.
 GEOMETRY_EPS = 1e-9
@@ -111,7 +108,7 @@ class SceneObject:
         return self.spec.round
 
 
-def scene_objects(graph: TaskGraph) -> list[SceneObject]:
+def scene_objects(graph: VariableSet) -> list[SceneObject]:
     """Every object instance of ``graph``, in variable order then instance index.
 
     Args:
@@ -133,7 +130,7 @@ def scene_objects(graph: TaskGraph) -> list[SceneObject]:
     return out
 
 
-def objects_by_name(graph: TaskGraph) -> dict[str, SceneObject]:
+def objects_by_name(graph: VariableSet) -> dict[str, SceneObject]:
     """:func:`scene_objects` keyed by instance name (same order)."""
     return {o.name: o for o in scene_objects(graph)}
 

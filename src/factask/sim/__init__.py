@@ -1,15 +1,15 @@
 """The MuJoCo backend of factask: assets, compilation, robot, layout, checks, rendering.
 
-Imports only the graph model (:mod:`factask.model`) and :mod:`factask.geometry`;
+Imports only the graph model (:mod:`factask.graph`) and :mod:`factask.geometry`;
 never the generation side. Submodules are imported explicitly
-(``from factask.sim.compile import compile_graph``) so that importing this
+(``from factask.sim.build.compile import compile_graph``) so that importing this
 package stays cheap.
 
 Importing this package picks a headless OpenGL backend for MuJoCo when
 ``MUJOCO_GL`` is not set: MuJoCo (and dm_control, which ``dm_control.mjcf``
 imports) read ``MUJOCO_GL`` once, when they are first imported, and otherwise
 fall back to GLFW, which needs an X display. A value the user set is never
-changed. :mod:`factask.sim.render` repairs the choice if MuJoCo was imported
+changed. :mod:`factask.sim.render.offscreen` repairs the choice if MuJoCo was imported
 before this package.
 """
 

@@ -27,24 +27,24 @@ import numpy as np
 from gymnasium import spaces
 
 from factask.geometry import Pose
-from factask.model.errors import FactaskError, InvalidValueError
-from factask.model.graph import TaskGraph
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
+from factask.graph.taskgraph import TaskGraph
 from factask.relations.solving import SolvedFactor
 from factask.scene.objects import SceneObject, objects_by_name
-from factask.sim.checks import TaskStatus, check_task
-from factask.sim.compile import (
+from factask.sim.build.compile import (
     CompiledScene,
     compile_graph,
     get_object_pose,
     set_marker,
     set_object_pose,
 )
-from factask.sim.health import physics_problem
-from factask.sim.low_carry import low_pick_and_place
-from factask.sim.push import push
-from factask.sim.reset import reset_layout
-from factask.sim.robot import SuctionRobot, make_robot
+from factask.sim.layout.checks import TaskStatus, check_task
+from factask.sim.layout.reset import reset_layout
+from factask.sim.robots.attach import SuctionRobot, make_robot
+from factask.sim.robots.health import physics_problem
+from factask.sim.robots.low_carry import low_pick_and_place
+from factask.sim.robots.spatula import push
+from factask.vocabulary.errors import FactaskError, InvalidValueError
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
 #: Simulated seconds the scene settles after a reset at most (objects placed
 #: exactly resting may still shift by a fraction of a millimetre) ...
@@ -105,7 +105,7 @@ class FactaskEnv(gym.Env):
 
     Args:
         graph: The task (validated and compiled here).
-        robot: A name of the robot registry (:mod:`factask.sim.robots`): "floating"
+        robot: A name of the robot registry (:mod:`factask.sim.robots.registry`): "floating"
             (mocap suction cup, fast), "ur10e" (alias "arm") or "ur5e".
         render_mode: None or "rgb_array" (``render()`` returns an RGB image).
         render_size: (width, height) of rendered images.
@@ -120,8 +120,8 @@ class FactaskEnv(gym.Env):
     yaw; the object turns with the tool by ``place yaw - pick yaw``. A task that
     pushes (a ``pile_in_zone`` goal: the robot has a spatula) also takes
     ``start`` and ``end`` (x, y, z, yaw; only x, y are used): a push along the
-    table (:mod:`factask.sim.push`). A pick-and-place with ``lift`` (metres)
-    carries the object only that high (:mod:`factask.sim.low_carry`: a rope's
+    table (:mod:`factask.sim.robots.spatula`). A pick-and-place with ``lift`` (metres)
+    carries the object only that high (:mod:`factask.sim.robots.low_carry`: a rope's
     segment, Ravens' ``PickPlace(height=0.02)``).
 
     Raises:
@@ -317,10 +317,10 @@ class FactaskEnv(gym.Env):
         # changes made from outside between steps are not credited to the action.
         prev = self.status().reward  # the kept status when nothing moved since
         max_steps = int(self.graph.limits.max_sim_seconds_per_action / self.model.opt.timestep)
-        if pushing:  # a spatula's push (factask.sim.push)
+        if pushing:  # a spatula's push (factask.sim.robots.spatula)
             result = push(self.robot, pick, place, on_step=self.frame_callback,
                           max_steps=max_steps)
-        elif "lift" in action:  # a low carry (a rope's segment: factask.sim.low_carry)
+        elif "lift" in action:  # a low carry (a rope's segment: factask.sim.robots.low_carry)
             lift = float(np.asarray(action["lift"], dtype=float).reshape(-1)[0])
             if not np.isfinite(lift) or not 0.0 < lift <= WORKSPACE_Z[1]:
                 raise ActionError(f"lift must be in (0, {WORKSPACE_Z[1]}] m, got {lift}")
@@ -376,11 +376,11 @@ class FactaskEnv(gym.Env):
 
         Args:
             camera: Camera name, or a free camera such as
-                :func:`factask.sim.render.framed_camera` gives (default: the env's).
+                :func:`factask.sim.render.offscreen.framed_camera` gives (default: the env's).
             markers: Draw the translucent goal markers.
         """
         if self._renderer is None:
-            from factask.sim.render import SceneRenderer
+            from factask.sim.render.offscreen import SceneRenderer
 
             self._renderer = SceneRenderer(self.model, *self.render_size,
                                            geom_object=self.scene.geom_object)

@@ -1,9 +1,9 @@
 """Oracle episodes and the research's success definitions.
 
 * An **episode** succeeds when its total reward reaches
-  :data:`~factask.model.tolerances.SUCCESS_REWARD` (0.99).
+  :data:`~factask.vocabulary.tolerances.SUCCESS_REWARD` (0.99).
 * A **task** is completed when at least
-  :data:`~factask.model.tolerances.COMPLETION_FRACTION` (half) of its episodes succeed.
+  :data:`~factask.vocabulary.tolerances.COMPLETION_FRACTION` (half) of its episodes succeed.
 """
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-from factask.model.errors import FactaskError
-from factask.model.graph import TaskGraph
-from factask.model.tolerances import COMPLETION_FRACTION, SUCCESS_REWARD
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.tolerances import COMPLETION_FRACTION, SUCCESS_REWARD
 
 
 @dataclass
@@ -83,9 +83,9 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
     Args:
         graph: The task.
         seed: Reset seed.
-        robot: A name of the robot registry (:mod:`factask.sim.robots`).
+        robot: A name of the robot registry (:mod:`factask.sim.robots.registry`).
         video: Write a GIF/MP4 of the episode here (the front view, framed from the
-            scene's bounds after the reset: :func:`factask.sim.render.framed_camera`).
+            scene's bounds after the reset: :func:`factask.sim.render.offscreen.framed_camera`).
         on_action: Called after each action with (action index, planned action, info).
         env: Reuse this :class:`~factask.sim.env.FactaskEnv` (must be of ``graph``).
 
@@ -97,7 +97,7 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
             ``env`` is not given).
     """
     from factask.sim.env import FactaskEnv
-    from factask.sim.oracle import Oracle
+    from factask.sim.oracle.scripted import Oracle
 
     own_env = env is None
     if env is None:
@@ -109,7 +109,7 @@ def run_episode(graph: TaskGraph, seed: int, robot: str = "floating",
         except FactaskError as exc:
             return EpisodeResult(seed, 0.0, False, 0, failure=f"reset: {exc}")
         if video is not None:
-            from factask.sim.render import VideoRecorder, framed_camera
+            from factask.sim.render.offscreen import VideoRecorder, framed_camera
 
             # Framed once, after the reset: the robot (an arm's base too) and every
             # object stay whole, and the view holds still through the episode.
@@ -185,7 +185,7 @@ def check_runtime(graph: TaskGraph, seed: int = 0, robot: str = "floating") -> s
     picking at an empty spot).
     """
     from factask.sim.env import FactaskEnv
-    from factask.sim.oracle import Oracle
+    from factask.sim.oracle.scripted import Oracle
 
     try:
         env = FactaskEnv(graph, robot=robot)

@@ -4,7 +4,7 @@ A task file written against CLIPort's API (``from cliport.tasks.task import Task
 ``from cliport.utils import utils``, ``import pybullet as p``) is executed with
 factask's stand-ins for those modules; its ``reset(env)`` runs against a
 recording environment, and the objects and goals it set up become a
-:class:`~factask.model.graph.TaskGraph`. **Task files are code and are
+:class:`~factask.graph.taskgraph.TaskGraph`. **Task files are code and are
 executed**: import only files you trust (the batch command isolates each file in
 a child process with a time limit). See docs/compat.md.
 """

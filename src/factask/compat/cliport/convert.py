@@ -58,16 +58,16 @@ from factask.compat.cliport.starts import (
     settle,
 )
 from factask.compat.cliport.transforms import yaw_of_xyzw
-from factask.model.errors import GraphValidationError
-from factask.model.factors import SubtaskFactor
-from factask.model.graph import Limits, TaskGraph
-from factask.model.kinds import WALL_THICKNESS, kind_spec
-from factask.model.limits import MAX_OBJECTS
-from factask.model.names import slugify, unique_name
-from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
-from factask.model.variables import AtFixedPose, StateVariable
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
+from factask.graph.factors import SubtaskFactor
+from factask.graph.taskgraph import Limits, TaskGraph
 from factask.relations import AtPose, InZone, PileInZone, TargetPose
+from factask.vocabulary.errors import GraphValidationError
+from factask.vocabulary.kinds import WALL_THICKNESS, kind_spec
+from factask.vocabulary.limits import MAX_OBJECTS
+from factask.vocabulary.names import slugify, unique_name
+from factask.vocabulary.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG, Tolerances
+from factask.vocabulary.variables import AtFixedPose, StateVariable
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 #: Weights are rescaled silently when they sum to 1 within this; beyond it, with a warning.
 WEIGHT_WARN_TOLERANCE = 1e-3
@@ -263,7 +263,7 @@ def build_graph(task: Any, session: Session, class_name: str) -> tuple[TaskGraph
     if solid > MAX_OBJECTS:  # before any goal is read into poses: one clear line
         raise CliportImportError(
             f"the task adds {solid} objects (besides piles and ropes); a factask scene "
-            f"holds at most {MAX_OBJECTS} (factask.model.limits.MAX_OBJECTS): add fewer")
+            f"holds at most {MAX_OBJECTS} (factask.vocabulary.limits.MAX_OBJECTS): add fewer")
     if getattr(task, "ee", None) is Spatula and not piles:
         warn("the task asks for a spatula but has no pile to push; factask uses its "
              "suction cup")

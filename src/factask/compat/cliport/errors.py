@@ -6,7 +6,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 
-from factask.model.errors import FactaskError, InvalidValueError
+from factask.vocabulary.errors import FactaskError, InvalidValueError
 
 #: Messages of the Unsupported errors raised while a task file runs (user code may
 #: catch them: the import still reports them).

@@ -29,10 +29,10 @@ from factask.compat.cliport.transforms import (
     yaw_of_xyzw,
 )
 from factask.geometry import tilt_deg
-from factask.model.kinds import WALL_THICKNESS, kind_spec
-from factask.model.tolerances import Z_TOLERANCE
 from factask.relations import TargetPose
 from factask.scene.objects import floor_thickness
+from factask.vocabulary.kinds import WALL_THICKNESS, kind_spec
+from factask.vocabulary.tolerances import Z_TOLERANCE
 
 #: Footprints closer than this to merely touching do not support each other, metres.
 OVERLAP_SHRINK = 0.002

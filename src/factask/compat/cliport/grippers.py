@@ -26,7 +26,7 @@ class Suction(Gripper):
 
 
 class Spatula(Gripper):
-    """Spatula for pushing piles (factask's spatula, :mod:`factask.sim.push`)."""
+    """Spatula for pushing piles (factask's spatula, :mod:`factask.sim.robots.spatula`)."""
 
 
 def __getattr__(name: str) -> Any:

@@ -44,8 +44,8 @@ from factask.compat.cliport.legacy import legacy_names
 from factask.compat.cliport.recorder import FAKE_ASSETS_ROOT, RecordingEnv, Session, session_scope
 from factask.compat.cliport.scoring import RavensGoal
 from factask.compat.cliport.task import RAVENS_POS_EPS, RAVENS_ROT_EPS, Task
-from factask.model.errors import FactaskError, clip
-from factask.model.graph import TaskGraph
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.errors import FactaskError, clip
 
 #: Module names the alias context provides.
 ALIAS_NAMES = (

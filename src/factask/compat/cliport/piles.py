@@ -33,10 +33,10 @@ from factask.compat.cliport import primitives
 from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.grippers import Spatula
 from factask.compat.cliport.recorder import RecordedObject
-from factask.model.names import instance_names, unique_name
-from factask.model.variables import AtFixedPose, OnTable, StateVariable
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
-from factask.sim.pile import pile_half_extent
+from factask.sim.layout.pile import pile_half_extent
+from factask.vocabulary.names import instance_names, unique_name
+from factask.vocabulary.variables import AtFixedPose, OnTable, StateVariable
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 #: Ravens ends an episode when the zone metric is within 1 % of the goal's reward.
 RAVENS_PILE_FRACTION = 0.99

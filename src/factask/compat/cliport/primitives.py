@@ -29,7 +29,7 @@ class PickPlace:
 
 
 def push(*args: Any, **kwargs: Any) -> Any:
-    """Spatula push (run by factask's oracle, :mod:`factask.sim.push`, not by task code).
+    """Spatula push (run by factask's oracle, :mod:`factask.sim.robots.spatula`, not by task code).
 
     Raises:
         Unsupported: always.

@@ -25,9 +25,9 @@ import numpy as np
 from factask.compat.cliport.errors import Unsupported, UnsupportedAttribute
 from factask.compat.cliport.transforms import split_pose
 from factask.compat.cliport.urdf_map import asset_key, resolve_asset
-from factask.model.limits import MAX_OBJECTS
-from factask.model.palette import COLORS as PALETTE
-from factask.model.palette import nearest_color, normalize_color
+from factask.vocabulary.limits import MAX_OBJECTS
+from factask.vocabulary.palette import COLORS as PALETTE
+from factask.vocabulary.palette import nearest_color, normalize_color
 
 #: First id handed out; PyBullet's plane, workspace and robot take the ones below.
 FIRST_OBJECT_ID = 5
@@ -203,7 +203,7 @@ def color_name(color: Any, session: Session | None = None) -> str:
     """Palette name of a CLIPort colour: a name, or an RGB/RGBA sequence.
 
     Raises:
-        factask.model.palette.UnknownColorError: a name not in the palette.
+        factask.vocabulary.palette.UnknownColorError: a name not in the palette.
     """
     if isinstance(color, str):
         return normalize_color(color)

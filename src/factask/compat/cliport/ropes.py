@@ -31,10 +31,10 @@ from factask.compat.cliport.bodies import LINK_JOINTS, MULTIBODY
 from factask.compat.cliport.errors import Unsupported
 from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject, Session
-from factask.model.names import instance_names, unique_name
-from factask.model.variables import AtFixedPose, OnTable, StateVariable
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y
 from factask.relations import RopeAlong, TargetPose
+from factask.vocabulary.names import instance_names, unique_name
+from factask.vocabulary.variables import AtFixedPose, OnTable, StateVariable
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 #: Kinds of ``add_object`` bodies that may be a rope's beads when linked.
 BEAD_KINDS = ("block", "ball", "cylinder")

@@ -23,8 +23,8 @@ from scipy.spatial.transform import Rotation
 from factask.compat.cliport.errors import PoseError
 from factask.compat.cliport.transforms import rotation_wxyz, yaw_of_xyzw
 from factask.geometry import Pose
-from factask.model.graph import TaskGraph
-from factask.model.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.tolerances import XY_TOLERANCE, YAW_TOLERANCE_DEG
 
 #: A goal counts as done when its step reward is within this of its share (Ravens).
 GOAL_DONE_EPS = 0.01
@@ -222,7 +222,7 @@ def graph_goal_queue(graph: Any, solved: Mapping[str, Any], objects: Mapping[str
                      layout: Mapping[str, Pose]) -> list[RavensGoal]:
     """A factask task's goals as Ravens would queue them, for one reset.
 
-    Each factor, in :meth:`~factask.model.graph.TaskGraph.factor_order`, becomes one
+    Each factor, in :meth:`~factask.graph.taskgraph.TaskGraph.factor_order`, becomes one
     goal worth its weight: a region relation (``in_zone``, ``inside``) a zone goal
     over the region's footprint, any other a pose goal over its solved slots (XY
     and yaw modulo the object's symmetry; yaw ignored where the factor ignores it).
@@ -262,7 +262,7 @@ def scored_episode(result: Any, seed: int, robot: str = "floating", env: Any = N
 
     Args:
         result: An :class:`~factask.compat.cliport.loader.ImportResult` (its own
-            goal queue), or a :class:`~factask.model.graph.TaskGraph` (its factors
+            goal queue), or a :class:`~factask.graph.taskgraph.TaskGraph` (its factors
             in order as the queue: :func:`graph_goal_queue`).
         seed: Reset seed of the episode.
         robot: A robot of the registry.

@@ -18,8 +18,8 @@ from factask.compat.cliport.goals import RecordedGoal
 from factask.compat.cliport.recorder import RecordedObject
 from factask.compat.cliport.transforms import footprint_separation as _separation
 from factask.compat.cliport.transforms import yaw_of_xyzw
-from factask.model.kinds import kind_spec
-from factask.model.tolerances import Z_TOLERANCE
+from factask.vocabulary.kinds import kind_spec
+from factask.vocabulary.tolerances import Z_TOLERANCE
 
 #: Rounds of pairwise pushes :func:`separate_targets` makes before giving up.
 SEPARATE_ROUNDS = 20

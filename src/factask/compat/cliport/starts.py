@@ -24,10 +24,10 @@ from factask.compat.cliport.recorder import RecordedObject
 from factask.compat.cliport.sharing import SEPARATE_GAP, SEPARATE_ROUNDS
 from factask.compat.cliport.transforms import footprint_separation, xyzw_to_wxyz, yaw_of_xyzw
 from factask.geometry import Pose, tilt_deg
-from factask.model.kinds import WALL_THICKNESS, kind_spec
-from factask.model.variables import AtFixedPose, OnTable, StartInside, StartOn
 from factask.scene.collision import centre_in_workspace
 from factask.scene.objects import floor_thickness
+from factask.vocabulary.kinds import WALL_THICKNESS, kind_spec
+from factask.vocabulary.variables import AtFixedPose, OnTable, StartInside, StartOn
 
 #: An object whose bottom is this far above the table starts on something.
 START_ABOVE_TABLE = 0.01

@@ -28,9 +28,9 @@ from factask.compat.cliport.recorder import active_session
 from factask.compat.cliport.ropes import make_ropes
 from factask.compat.cliport.scoring import pose_match
 from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
-from factask.model.errors import InvalidValueError
-from factask.model.palette import rgba
-from factask.model.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
+from factask.vocabulary.errors import InvalidValueError
+from factask.vocabulary.palette import rgba
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
 #: Ravens' XY tolerance of a pose goal, metres, and yaw tolerance, radians.
 RAVENS_POS_EPS = 0.01

@@ -1,7 +1,7 @@
 """The one table that maps CLIPort/GenSim URDF assets to factask kinds and sizes.
 
 Every size here is a factask size: the **full extents** (x, y, z) in metres of
-the object's bounding box (:mod:`factask.model.kinds`). Sizes were read from the
+the object's bounding box (:mod:`factask.vocabulary.kinds`). Sizes were read from the
 URDFs and meshes in GenSim's ``cliport/environments/assets`` (mesh extents times
 the URDF's ``scale``). Where factask has no exact kind the closest primitive is
 used and the entry's ``note`` says what is lost; the import report repeats the
@@ -30,8 +30,8 @@ from typing import Any
 import numpy as np
 
 from factask.compat.cliport.errors import Unsupported
-from factask.model.kinds import kind_spec
-from factask.sim.parts import fixture_size_for
+from factask.sim.build.parts import fixture_size_for
+from factask.vocabulary.kinds import kind_spec
 
 Size = tuple[float, float, float]
 

@@ -1,6 +1,6 @@
 """Stand-in for ``cliport.utils.utils``: colours and pose helpers task code uses.
 
-Colours are factask's palette (:mod:`factask.model.palette`), which starts with
+Colours are factask's palette (:mod:`factask.vocabulary.palette`), which starts with
 the Ravens/Tableau values, as RGB lists (task code writes ``COLORS[name] + [1]``).
 Unlike GenSim, an unknown colour name is an error listing the valid names, not
 silently red. Names this module does not provide raise
@@ -18,7 +18,7 @@ from scipy.spatial.transform import Rotation
 from factask.compat.cliport import transforms
 from factask.compat.cliport.errors import UnknownColorNameError, Unsupported
 from factask.geometry import quat_mul
-from factask.model.palette import COLORS as PALETTE
+from factask.vocabulary.palette import COLORS as PALETTE
 
 #: The names GenSim's ``utils.COLORS`` holds, in its order: what task code iterating
 #: over the palette (``for c in utils.COLORS``, ``utils.COLORS_NAMES[:n]``) sees.

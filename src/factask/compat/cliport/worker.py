@@ -34,7 +34,7 @@ from factask.compat.cliport.batch import READY_LINE
 from factask.compat.cliport.errors import CliportImportError
 from factask.compat.cliport.loader import import_cliport
 from factask.compat.cliport.scoring import scored_episode
-from factask.sim.compile import compile_graph
+from factask.sim.build.compile import compile_graph
 from factask.sim.episode import run_episode
 
 #: Data memory (heap and private mappings) a task file's worker may use, MiB; a

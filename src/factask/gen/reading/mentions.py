@@ -1,0 +1,559 @@
+"""The objects a proposal names, read from its words: a hint for the model.
+
+"put the three red blocks in the green zone" names ``red_blocks`` (3 blocks,
+red) and ``green_zone`` (a green zone). The prompts of the steps that declare
+variables (``one_shot``, ``variables``, ``subtask_design``) list these mentions
+with the names to give them, so a model -- a small one above all, which tends to
+copy names from the examples instead -- starts from the objects the proposal
+asks for. It is a hint only: the schema and the verification ladder decide.
+
+Only the vocabulary is recognised (the colours of :mod:`factask.vocabulary.palette`,
+the asset kinds of :mod:`factask.vocabulary.kinds` and a few synonyms), so a mention
+is always something the graph model can express.
+
+Why one file (past 500 lines): it is one reader of one word list -- the scan,
+the counts, the colour lists, the matching phrases and the moving verbs each
+look at the words around the same kind word, with the same tables.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Collection, Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+from factask.vocabulary.kinds import ASSET_KINDS, kind_spec
+from factask.vocabulary.palette import COLOR_NAMES
+
+#: Words that name a kind, singular (a plural ``s``/``es`` is also read).
+KIND_WORDS: dict[str, str] = {
+    **{kind: kind for kind in ASSET_KINDS},
+    "cube": "block", "brick": "block", "sphere": "ball", "marble": "ball",
+    "cup": "bowl", "bin": "container", "tray": "container", "area": "zone",
+    "region": "zone", "target": "zone", "pillar": "cylinder", "can": "cylinder",
+    "basket": "container", "bucket": "container", "crate": "box", "carton": "box",
+    "package": "box", "parcel": "box", "disk": "cylinder", "disc": "cylinder",
+    "puck": "cylinder", "peg": "cylinder", "rod": "cylinder", "dish": "bowl",
+    "pot": "bowl", "orb": "ball", "pad": "zone", "mat": "zone", "platform": "pallet",
+    "plate": "stand", "hole": "fixture", "slot": "fixture", "socket": "fixture",
+    "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
+    "heap": "pile", "board": "kit", "silhouette": "fixture",
+    # A box with a hole in its side (one word: see HOLED_BOXES).
+    "holedbox": "holed_box",
+    # Objects of no stated shape are blocks: "pack the objects into the container".
+    "object": "block", "item": "block", "piece": "block", "shape": "block",
+}
+#: Other kinds an everyday word may as well mean: a graph whose coloured object is
+#: one of these is still the proposal's ("the red basket" may be a red bowl). The
+#: grounded answers use the word's kind in :data:`KIND_WORDS`.
+ALSO_KINDS: dict[str, tuple[str, ...]] = {
+    "cube": ("box",), "brick": ("box",), "crate": ("container",), "carton": ("container",),
+    "package": ("block",), "parcel": ("block",), "basket": ("bowl",), "bucket": ("bowl",),
+    "bin": ("bowl",), "tray": ("bowl", "kit"), "dish": ("container",), "pot": ("container",),
+    "cup": ("container",), "platform": ("stand",), "plate": ("pallet", "zone", "kit"),
+    "board": ("pallet",), "peg": ("block",), "rod": ("block",),
+    "object": ("box", "cylinder", "ball", "ell"), "item": ("box", "cylinder", "ball", "ell"),
+    "piece": ("box", "cylinder", "ball", "ell"), "shape": ("box", "cylinder", "ball", "ell"),
+    "hole": ("kit", "container"), "slot": ("kit",), "silhouette": ("kit",), "area": ("pallet",),
+}
+#: A proposal that starts with a task name: ``kebab-case-name: description``.
+TASK_NAME = re.compile(r"^\s*([a-z0-9]+(?:-[a-z0-9]+)+)\s*:\s*(.*)$", re.DOTALL)
+#: A proposal that ends with a task name, as the generator reads one: ``description name``.
+TRAILING_NAME = re.compile(r"^(.*\S)\s+([a-z0-9]+(?:-[a-z0-9]+)+)\s*$", re.DOTALL)
+#: Phrases read as one kind word before the words are split: an L-shaped piece is an
+#: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
+#: pile, not objects of their own).
+PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
+    # "an L shape hole" is a hole (the words say its shape); any other L shape (with
+    # or without a noun: block, piece, ...) is an ell.
+    (re.compile(r"\b(?:l|ell)\s*shaped?\s+"
+                r"(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"), ""),
+    (re.compile(r"\b(?:l|ell)\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|"
+                r"bar))?(s?)\b"), r"ell\1"),
+    # A cylinder on its side is a log: "a horizontal cylinder", "the cylinder lying on
+    # its side", "balance the cylinder horizontally on the blocks".
+    (re.compile(rf"\b(?:horizontal|lying|fallen)\s+((?:{'|'.join(COLOR_NAMES)})\s+)?"
+                r"cylinder(s?)\b"), r"\1log\2"),
+    (re.compile(r"\bcylinder(s?)\s+(?:(?:lying|laid|placed|put)\s+)?(?:on\s+(?:its|their)\s+"
+                r"sides?|horizontally|(?:lying|laid)\s+(?:down|flat))\b"), r"log\1"),
+    # "cylindrical blocks", "spherical objects": the adjective says the kind.
+    (re.compile(r"\bcylindrical\s+(?:block|object|piece|item|shape)(s?)\b"), r"cylinder\1"),
+    (re.compile(r"\bspherical\s+(?:block|object|piece|item|shape)(s?)\b"), r"ball\1"),
+    # "ell blocks", "ell pieces": the ell is the shape, the noun the object.
+    (re.compile(r"\bell\s+(?:block|piece|object|part|shape|brick|cube|bar)(s?)\b"),
+     r"ell\1"),
+    (re.compile(r"\b(?:pile|heap)\s+of\s+(?:(?:small|tiny|little)\s+)?"
+                rf"(?:({'|'.join(COLOR_NAMES)})\s+)?(?:(?:small|tiny|little)\s+)?[a-z]+"),
+     r"\1 pile"),
+)
+#: Count words (a digit string is read too).
+NUMBER_WORDS: dict[str, int] = {
+    "a": 1, "an": 1, "one": 1, "single": 1, "two": 2, "pair": 2, "three": 3, "four": 4,
+    "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10, "eleven": 11,
+    "twelve": 12, "dozen": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15,
+    "sixteen": 16,
+}
+#: Words that may stand between a count and its kind word without changing what is
+#: counted: "four differently colored blocks", "three small matching cubes".
+MODIFIERS = frozenset({
+    "different", "differently", "colored", "coloured", "color", "colour", "matching",
+    "corresponding", "identical", "distinct", "various", "similar", "same", "other",
+    "small", "smaller", "little", "tiny", "large", "larger", "big", "bigger", "tall",
+    "short", "wooden", "plastic", "solid", "empty", "separate", "individual", "more",
+    "random", "randomly", "placed", "scattered", "multicolored", "multicoloured",
+})
+#: Words that may stand between a plural kind word and the list of its colours that
+#: counts it: "blocks (red, blue, green)", "cylinders of different colors: red, ...".
+COLOUR_LIST_LEAD = frozenset({"of", "in", "with", "different", "differently", "colors",
+                              "colours", "color", "colour", "colored", "coloured",
+                              "various", "distinct", "the", "following", "namely"})
+#: Words that never name what a count counts: "three of the blocks", "two in each
+#: bowl". Any other one word between a count and a kind word is a noun used as an
+#: adjective ("three insertion fixtures", "four kitting slots"), skipped like
+#: :data:`MODIFIERS`.
+FUNCTION_WORDS = frozenset({
+    "and", "or", "of", "in", "on", "onto", "into", "to", "at", "by", "for", "from", "with",
+    "the", "a", "an", "each", "every", "all", "per", "than", "then", "times", "more",
+    "less", "them", "it", "is", "are", "be", "as", "so", "its", "their", "other", "next",
+    "over", "under", "between", "near", "beside", "behind", "around", "inside", "top",
+})
+#: Verbs that move their object: "put the bowl in the zone" moves the bowl, which
+#: is fixed by default (:attr:`Mention.moved`).
+MOVE_VERBS = frozenset({
+    "put", "place", "move", "push", "slide", "carry", "stack", "insert", "drop",
+    "transfer", "bring", "set", "lift", "pick", "arrange", "position", "relocate",
+    "shift", "take", "lay", "deliver", "rearrange", "align", "pack", "load", "drag",
+    "swap", "nest", "raise", "stand", "line",
+})
+#: Words that may stand between a moving verb and its object: "pick up the two red
+#: bowls".
+OBJECT_LEAD = frozenset({"up", "the", "a", "an", "each", "every", "all", "both", "its",
+                         "their", "this", "that", "these", "those", "and", "or"})
+#: Kinds fixed by default that the robot can still carry (not flat markers).
+CARRIED_KINDS = frozenset(k for k, spec in ASSET_KINDS.items()
+                          if not spec.movable and spec.collides)
+#: Most mentions listed (a proposal is a sentence or two, not an inventory).
+MAX_MENTIONS = 8
+#: Most mentions after groups are split by colour (six balls into six zones of
+#: their colours: twelve; the graph schemas take twelve variables).
+MAX_SPLIT_MENTIONS = 12
+#: Words of colour, qualified by a matching word in a matching phrase.
+COLOUR_WORDS = frozenset({"color", "colour", "colors", "colours", "colored", "coloured"})
+#: Words before a colour word that pair by colour: "of the same colour", "matching
+#: colored", "its colour", "sort by colour".
+MATCH_BEFORE = frozenset({"same", "matching", "matched", "corresponding", "correspondingly",
+                          "its", "their", "own", "respective", "by", "identical",
+                          "similar", "similarly"})
+#: Words after a colour word that do: "colour-coordinated", "colour-matched", "color
+#: coded", "colored correspondingly".
+MATCH_AFTER = frozenset({"coordinated", "matched", "matching", "corresponding",
+                         "correspondingly", "coded"})
+#: How many words back a matching phrase looks for the kind it qualifies ("the
+#: containers of the matching color": 4).
+MATCH_REACH = 6
+#: Largest count read from a proposal (the graph model's count limit is larger).
+MAX_COUNT = 16
+
+_WORD = re.compile(r"[a-z0-9]+")
+
+
+@dataclass(frozen=True)
+class Mention:
+    """One object the proposal names.
+
+    Attributes:
+        name: The variable name to give it (``red_block``, ``red_blocks``, ``zone``).
+        kind: Its asset kind.
+        color: Its colour, or None when the proposal gives none.
+        count: How many (1 unless the proposal says).
+        also: Other kinds the proposal's word may mean (:data:`ALSO_KINDS`).
+        moved: The words move an object whose kind is fixed by default ("then put
+            the bowl in the green zone": the bowl is carried, :data:`MOVE_VERBS`).
+        listed: The colours listed right after an uncoloured group ("blocks of
+            different colors (red, blue, green)"), each with its count where the
+            list gives one ("(two red, two blue)"; 0: not given).
+    """
+
+    name: str
+    kind: str
+    color: str | None
+    count: int
+    also: tuple[str, ...] = ()
+    listed: tuple[tuple[str, int], ...] = ()
+    moved: bool = False
+
+    def describe(self) -> str:
+        """``red_blocks: kind block, colour red, count 3`` (``, moved`` for a bowl or
+        pallet the words move)."""
+        parts = [f"kind {self.kind}"]
+        if self.color:
+            parts.append(f"colour {self.color}")
+        parts.append(f"count {self.count}")
+        if self.moved:
+            parts.append("moved (not fixed)")
+        return f"{self.name}: {', '.join(parts)}"
+
+    def as_variable(self, initial: dict[str, Any] | None = None) -> dict[str, Any]:
+        """The object as a graph variable's data (size null: the kind's default;
+        ``fixed`` false where the words move a kind that is fixed by default)."""
+        out: dict[str, Any] = {"name": self.name, "description": self.describe(),
+                               "kind": self.kind, "size": None,
+                               "color": self.color or "gray", "count": self.count,
+                               "initial": initial or {"type": "table"}}
+        if self.moved:
+            out["fixed"] = False
+        return out
+
+    @property
+    def movable(self) -> bool:
+        """Whether the robot moves it: its kind moves, or the words move it."""
+        return self.moved or kind_spec(self.kind).movable
+
+
+def kind_of(word: str) -> tuple[str | None, bool, str]:
+    """(kind, plural, singular word) of a word, or (None, False, word)."""
+    if word in KIND_WORDS:
+        return KIND_WORDS[word], False, word
+    for suffix in ("es", "s"):
+        stem = word[: -len(suffix)]
+        if word.endswith(suffix) and stem in KIND_WORDS:
+            return KIND_WORDS[stem], True, stem
+    return None, False, word
+
+
+def _plural(stem: str) -> str:
+    """``red_block`` -> ``red_blocks``, ``box`` -> ``boxes``."""
+    return f"{stem}es" if stem.endswith(("s", "x", "z", "ch", "sh")) else f"{stem}s"
+
+
+def mentions(proposal: str) -> list[Mention]:
+    """The objects ``proposal`` names, in order, each once.
+
+    A mention is a kind word with the colour words and the count word just
+    before it: ``three red blocks``; ``red and green zones`` names a red zone and
+    a green zone; ``six red and blue blocks`` three of each. A plural without a
+    count counts 2 (per colour). Words of :data:`MODIFIERS` may stand between the
+    count and the kind ("four differently colored blocks": 4), and one other word
+    that is no function word ("three insertion fixtures": 3); a plural with no
+    count followed by a list of its colours is counted by the list ("blocks (red,
+    blue, green)": 3).
+
+    A later phrase naming a kind already named refers back, it names no new
+    object: an uncoloured one ("a blue sphere ... the sphere"), and a coloured one
+    after an uncoloured group of that kind ("six blocks ... a red block at the
+    bottom": one of the six). Read as new objects, these would be declared twice and
+    every grounded goal would have to use the copy. A task name (kebab-case, before
+    the description with a colon, or after it as the generator writes it) adds only
+    objects whose words the description does not use: in "block-insertion: put the
+    L shape block in the L shape hole" the block is the ell.
+
+    Args:
+        proposal: The task proposal (any text; only its words are read).
+
+    Returns:
+        At most :data:`MAX_MENTIONS` mentions, first occurrence first.
+    """
+    text = proposal.lower()[:4000]
+    leading, trailing = TASK_NAME.match(text), TRAILING_NAME.match(text)
+    if leading:
+        desc, name = leading.group(2), leading.group(1)
+    elif trailing:
+        desc, name = trailing.group(1), trailing.group(2)
+    else:
+        desc, name = text, ""
+    found: dict[str, Mention] = {}
+    words = words_of(desc)
+    _scan(words, found)
+    if name:
+        said = {kind_of(w)[2] for w in _WORD.findall(desc.replace("-", " "))}
+        _scan([w for w in words_of(name) if kind_of(w)[2] not in said], found)
+    matched = _matched_kinds(words)
+    if matched is not None or colour_matched(name):
+        return _split_by_colour(list(found.values()), matched or set())
+    return list(found.values())
+
+
+def colour_matched(text: str) -> bool:
+    """Whether ``text`` pairs objects by colour: "the bowl of the same colour",
+    "zones correspondingly colored", "colour-coordinated", "sort by colour"."""
+    return _matched_kinds(_WORD.findall(text.lower().replace("-", " ").replace("_", " "))) \
+        is not None
+
+
+def _matching_at(words: list[str], k: int) -> bool:
+    """Whether ``words[k]`` is a colour word that a matching word qualifies."""
+    if words[k] not in COLOUR_WORDS:
+        return False
+    before = words[k - 1] if k else ""
+    after = words[k + 1] if k + 1 < len(words) else ""
+    return before in MATCH_BEFORE or after in MATCH_AFTER
+
+
+def _matched_kinds(words: list[str]) -> set[str] | None:
+    """The kinds whose objects a matching phrase gives the colours of the others
+    ("containers of matching color": container), or None when no phrase pairs by
+    colour. The phrase qualifies the nearest kind word before it (at most
+    :data:`MATCH_REACH` words back), else the one right after it ("the matching
+    colored zone")."""
+    out: set[str] | None = None
+    for k in range(len(words)):
+        if not _matching_at(words, k):
+            continue
+        out = out if out is not None else set()
+        for j in [*range(k - 1, max(k - 1 - MATCH_REACH, -1), -1), k + 1, k + 2]:
+            if 0 <= j < len(words) and (kind := kind_of(words[j])[0]) is not None:
+                out.add(kind)
+                break
+    return out
+
+
+def _split_by_colour(found: list[Mention], matched: set[str]) -> list[Mention]:
+    """Under a matching phrase, groups become one object per colour: a group
+    whose colours the words list ("balls of different colors (red, blue)") by its
+    list, and an uncoloured group of a kind the phrase qualifies ("zones
+    correspondingly colored") by the colours named for the others (their
+    lists and coloured objects, in order). A group keeps its count spread over
+    its colours; one named with fewer objects than colours ("the bowl of the
+    same colour") gets one per colour. Nothing is split past
+    :data:`MAX_SPLIT_MENTIONS` mentions. An uncoloured object of a kind that
+    coloured ones also have is their group ("each ball ... a red ball, a green
+    ball"), not one more."""
+    palette: list[str] = []
+    for m in found:
+        for c in ([c for c, _ in m.listed] or ([m.color] if m.color else [])):
+            if c not in palette:
+                palette.append(c)
+    out: list[Mention] = []
+    names = {m.name for m in found}
+    for idx, m in enumerate(found):
+        parts = _colour_parts(m, palette, matched)
+        fresh = [p for p in parts if not _named(f"{p.color}_{p.kind}", names)]
+        rest = len(found) - idx - 1
+        if not parts or len(fresh) != len(parts) or \
+                len(out) + len(parts) + rest > MAX_SPLIT_MENTIONS:
+            out.append(m)
+            continue
+        out.extend(parts)
+        names.update(p.name for p in parts)
+    # "each ball ... a red ball, a green ball": the coloured ones are its members.
+    coloured = {m.kind for m in out if m.color}
+    return [m for m in out if m.color or m.kind not in coloured]
+
+
+def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Mention]:
+    """One mention per colour of ``m`` (see :func:`_split_by_colour`), or [] to keep it."""
+    if m.color is not None:
+        return []
+    if m.listed:
+        colours = [c for c, _ in m.listed]
+        counts = [n or max(m.count // len(colours), 1) for _, n in m.listed]
+    elif palette and (m.kind in matched or m.count == len(palette) > 1):
+        # A group the phrase qualifies, or one as large as the palette ("four
+        # spheres and four boxes of different colors (...)": the list is both's).
+        colours = palette
+        if m.count < len(colours):
+            counts = [1] * len(colours)
+        elif m.count % len(colours) == 0:
+            counts = [m.count // len(colours)] * len(colours)
+        else:
+            return []
+    else:
+        return []
+    out = []
+    for colour, count in zip(colours, counts, strict=True):
+        stem = f"{colour}_{m.kind}"
+        out.append(Mention(_plural(stem) if count > 1 else stem, m.kind, colour,
+                           min(count, MAX_COUNT), m.also, moved=m.moved))
+    return out
+
+
+#: "a box with a small hole on one side": that box is a ``holed_box``; "the boxes have a
+#: hole in their sides" (a sentence of its own, after the boxes were named): every box.
+HOLED_BOXES = re.compile(
+    r"\bbox(es)?\s+(?:(?:each|all)\s+)?(?:(with|having)|ha(?:s|ve)|that\s+ha(?:s|ve))\s+"
+    r"(?:a|an|one)\s+(?:(?:small|little|round|square|tiny)\s+)*(?:hole|opening)s?"
+    r"(?:\s+(?:on|in|at)\s+(?:one\s+of\s+)?(?:its|their|the|a|one)\s+(?:[a-z]+\s+)?sides?)?")
+#: "the hole in the red box": the box (its hole is no object of its own).
+HOLE_OF_BOX = re.compile(r"\b(?:the\s+)?holes?\s+(?:in|of|on)\s+(?=(?:the|each|its|their|a)\s)")
+
+
+def words_of(text: str) -> list[str]:
+    """The words of ``text``, with :data:`PHRASES` read as their kind words."""
+    text = text.replace("_", " ").replace("-", " ")
+    found = list(HOLED_BOXES.finditer(text))
+    if found:
+        every = any(m.group(2) is None for m in found)
+        text = HOLED_BOXES.sub(lambda m: f"holedbox{m.group(1) or ''}", text)
+        text = HOLE_OF_BOX.sub("", text)
+        if every:
+            text = re.sub(r"\bbox(es)?\b", r"holedbox\1", text)
+    for pattern, kind_word in PHRASES:
+        text = pattern.sub(kind_word, text)
+    return _WORD.findall(text)
+
+
+def _scan(words: list[str], found: dict[str, Mention]) -> None:
+    """Add the mentions of ``words`` to ``found`` (see :func:`mentions`)."""
+    for i, word in enumerate(words):
+        if len(found) >= MAX_MENTIONS:
+            return
+        kind, plural, singular = kind_of(word)
+        if kind is None:
+            continue
+        earlier = [m for m in found.values() if m.kind == kind]
+        colors: list[str] = []
+        own_counts: dict[str, int] = {}  # "three red, three blue and three green blocks"
+        j = i - 1
+        while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or") and colors)):
+            if words[j] in COLOR_NAMES:
+                colors.insert(0, words[j])
+                if j >= 2 and _count_of(words[j - 1]) and (
+                        words[j - 2] in ("and", "or") or words[j - 2] in COLOR_NAMES):
+                    own_counts[words[j]] = _count_of(words[j - 1])
+                    j -= 1
+            j -= 1
+        moved = kind in CARRIED_KINDS and _moved_at(words, j)
+        if earlier and (not colors or any(m.color is None and m.count > 1
+                                           for m in earlier)):
+            if moved:  # "... then put the bowl in the green zone"
+                for m in earlier:
+                    if not colors or m.color in colors:
+                        found[m.name] = replace(m, moved=True)
+            continue  # a reference to an object already named (see above)
+        while j >= 0 and words[j] in MODIFIERS:  # "four differently colored blocks"
+            j -= 1
+        before = words[j] if j >= 0 else ""
+        total = _count_of(before)
+        if not total and j >= 1 and _is_adjunct(words[j]) and _count_of(words[j - 1]):
+            total = _count_of(words[j - 1])  # "three insertion fixtures"
+        listed: tuple[tuple[str, int], ...] = ()
+        if plural and not colors:
+            listed = _listed_colours(words, i + 1)  # "blocks (red, blue, green)"
+            if not total and listed:
+                total = sum(n for _, n in listed) if all(n for _, n in listed) \
+                    else len(listed)
+        if own_counts and len(own_counts) == len(colors) - 1:
+            # The first colour's count is the one read before the list.
+            own_counts.update({c: total or 1 for c in colors if c not in own_counts})
+        for color in colors or [None]:
+            if color in own_counts and len(own_counts) == len(colors):
+                count = own_counts[color]
+            elif total and len(colors) > 1:
+                count = max(total // len(colors), 1)
+            elif len(colors) > 1:
+                count = 1  # "red and green zones": one of each
+            else:
+                count = total or (2 if plural else 1)
+            count = min(count, MAX_COUNT)
+            stem = f"{color}_{kind}" if color else kind
+            name = _plural(stem) if count > 1 else stem
+            if _named(stem, found):
+                again = stem if stem in found else _plural(stem)
+                if moved:
+                    found[again] = replace(found[again], moved=True)
+                continue
+            found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()),
+                                  listed, moved)
+            if len(found) >= MAX_MENTIONS:
+                return
+
+
+def _named(stem: str, names: Collection[str]) -> bool:
+    """Whether an object of this stem (``red_block``) is named already, one or many."""
+    return stem in names or _plural(stem) in names
+
+
+def _moved_at(words: list[str], j: int) -> bool:
+    """Whether a moving verb (:data:`MOVE_VERBS`) governs the object phrase that ends
+    at ``words[j]`` (its colour words already read): "put the ...", "pick up two ..."."""
+    k = j
+    while k >= 0 and j - k < 6 and (words[k] in OBJECT_LEAD or words[k] in MODIFIERS
+                                    or words[k] in COLOR_NAMES or _count_of(words[k])):
+        k -= 1
+    return k >= 0 and words[k] in MOVE_VERBS
+
+
+def _count_of(word: str) -> int:
+    """The count a word says (``3`` for ``three`` or ``3``), else 0."""
+    return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
+
+
+def _is_adjunct(word: str) -> bool:
+    """Whether ``word`` may be a noun used as an adjective before a kind word: not a
+    function word, count, colour or kind word itself."""
+    return (word not in FUNCTION_WORDS and not _count_of(word) and word not in COLOR_NAMES
+            and kind_of(word)[0] is None and word.isalpha())
+
+
+def _listed_colours(words: list[str], start: int) -> tuple[tuple[str, int], ...]:
+    """The colours the list right after a plural kind word names, each with the
+    count before it where the list gives one ("blocks of different colors (red,
+    blue, green, yellow)": four colours, counts 0; "blocks in two colours (three red
+    and three blue)": red 3, blue 3), or () when none follows or the colours are
+    another noun's ("blocks in the red and blue bowls")."""
+    k = start
+    while k < len(words) and k - start < 4 and (words[k] in COLOUR_LIST_LEAD
+                                                 or words[k] in NUMBER_WORDS
+                                                 or words[k].isdigit()):
+        if _count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
+            break  # "(three red and three blue)": the list starts at its first count
+        k += 1
+    listed: list[tuple[str, int]] = []
+    while k < len(words):
+        if words[k] in COLOR_NAMES:
+            listed.append((words[k], 0))
+        elif _count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
+            listed.append((words[k + 1], min(_count_of(words[k]), MAX_COUNT)))
+            k += 1
+        elif not (words[k] in ("and", "or") and listed):
+            break
+        k += 1
+    if len(listed) < 2 or (k < len(words) and kind_of(words[k])[0] is not None):
+        return ()
+    if len({c for c, _ in listed}) < len(listed):
+        return ()
+    return tuple(listed)
+
+
+def mentions_text(proposal: str) -> str:
+    """The prompt's list of mentions, one per line (``(none recognised)`` if none)."""
+    found = mentions(proposal)
+    if not found:
+        return "(none recognised: choose the objects yourself)"
+    return "\n".join(f"- {m.describe()}" for m in found)
+
+
+def missing_mentions(proposal: str, variables: Sequence[Any]) -> list[Mention]:
+    """The coloured objects the proposal names that no variable is.
+
+    Only mentions with a colour are checked ("the yellow cylinder" needs a
+    yellow cylinder; "the zone" may be any zone): a colour and a kind together
+    say which object is meant, and a task without it is another task.
+
+    Args:
+        proposal: The task proposal.
+        variables: The answer's variables (objects with ``kind`` and ``color``).
+
+    Returns:
+        The unmatched mentions (empty: every coloured object is there).
+    """
+    have = {(getattr(v, "kind", None), getattr(v, "color", None)) for v in variables}
+    return [m for m in mentions(proposal) if m.color
+            and not any((kind, m.color) in have for kind in (m.kind, *m.also))]
+
+
+def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
+    """Feedback naming the coloured objects of the proposal the answer lacks
+    (None: none lacking)."""
+    missing = missing_mentions(proposal, variables)
+    if not missing:
+        return None
+    lines = "\n".join(f"- {m.describe()}" for m in missing)
+    return ("The answer does not have every object the proposal names; add a variable "
+            f"for each (with this kind and colour):\n{lines}")
+
+
+__all__ = ["ALSO_KINDS", "KIND_WORDS", "MAX_MENTIONS", "MAX_SPLIT_MENTIONS", "Mention",
+           "colour_matched", "grounding_feedback", "mentions",
+           "mentions_text", "missing_mentions"]

@@ -1,0 +1,230 @@
+"""Asset kinds and the single size convention shared by every part of factask.
+
+Size convention (one for every kind): ``size = (sx, sy, sz)`` are the **full
+extents in metres of the object's axis-aligned bounding box in its own frame**
+(x, y horizontal, z up, object resting upright). A cylinder of diameter 4 cm and
+height 6 cm is ``(0.04, 0.04, 0.06)``; the same cylinder lying on its side (a
+``log``, its axis along x) is ``(0.06, 0.04, 0.04)``; a ball of diameter 4 cm is
+``(0.04, 0.04, 0.04)``; a bowl is ``(outer diameter, outer diameter, height)``;
+a flat marker such as a zone is ``(length, width, thickness)``. An object's
+position is the centre of that box. No kind uses radii or half extents in a graph.
+
+Each kind's facts (default size, whether it moves, whether it collides, what
+can be done with it) live in :data:`ASSET_KINDS` and nowhere else.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Literal, get_args
+
+from factask.vocabulary.errors import FactaskError
+
+AssetKind = Literal[
+    "block",
+    "box",
+    "cylinder",
+    "ball",
+    "log",
+    "bowl",
+    "container",
+    "zone",
+    "pallet",
+    "stand",
+    "corner",
+    "line",
+    "ell",
+    "fixture",
+    "kit",
+    "holed_box",
+    "pile",
+    "rope",
+]
+
+KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
+
+
+@dataclass(frozen=True)
+class KindSpec:
+    """What factask knows about one asset kind.
+
+    Attributes:
+        name: The kind's name as used in graphs.
+        description: One line for docs and LLM prompts.
+        default_size: Full extents (x, y, z) in metres.
+        movable: Free (pickable) by default; otherwise fixed to the table.
+        collides: Has collision geometry (markers such as zones do not).
+        round: Footprint is round: yaw never matters.
+        asymmetric: Footprint has no rotational symmetry below 360 degrees.
+        support: Other objects can rest on its top face.
+        receptacle: Objects can be put *inside* it (``inside`` relation).
+        region: Marks an area of the table (``in_zone`` relation).
+        density: kg/m^3 used when a variable gives no mass (solid bounding box).
+    """
+
+    name: str
+    description: str
+    default_size: tuple[float, float, float]
+    movable: bool
+    collides: bool = True
+    round: bool = False
+    asymmetric: bool = False
+    support: bool = False
+    receptacle: bool = False
+    region: bool = False
+    density: float = 500.0
+
+
+_SPECS = [
+    KindSpec("block", "solid cube-like block (Ravens block: 4 cm cube)",
+             (0.04, 0.04, 0.04), movable=True, support=True),
+    KindSpec("box", "solid cuboid of any size", (0.06, 0.06, 0.06), movable=True, support=True,
+             density=250.0),
+    KindSpec("cylinder", "upright solid cylinder; size = (diameter, diameter, height)",
+             (0.04, 0.04, 0.06), movable=True, round=True, support=True),
+    KindSpec("ball", "solid sphere; size = (diameter, diameter, diameter)",
+             (0.04, 0.04, 0.04), movable=True, round=True),
+    KindSpec("log", "solid cylinder lying on its side, its axis along x (it can roll "
+             "across it); size = (length, diameter, diameter)",
+             (0.12, 0.04, 0.04), movable=True),
+    KindSpec("bowl", "open round bowl; size = (outer diameter, outer diameter, height)",
+             (0.12, 0.12, 0.05), movable=False, round=True, receptacle=True, region=True),
+    KindSpec("container", "open-top box with thin walls; size = outer extents",
+             (0.16, 0.16, 0.05), movable=False, receptacle=True, region=True),
+    KindSpec("zone", "flat coloured marker on the table (no collision)",
+             (0.12, 0.12, 0.001), movable=False, collides=False, region=True),
+    KindSpec("pallet", "low flat platform that objects are stacked on",
+             (0.30, 0.25, 0.0375), movable=False, support=True, region=True),
+    KindSpec("stand", "thin base plate (Ravens stand: 3 plates of 5 x 5 x 0.5 cm in a row)",
+             (0.15, 0.05, 0.005), movable=False, support=True, region=True),
+    KindSpec("corner", "L-shaped flat marker of a corner (arms 5.5 cm, no collision)",
+             (0.055, 0.055, 0.001), movable=False, collides=False, asymmetric=True),
+    KindSpec("line", "flat straight line marker (no collision)", (0.30, 0.01, 0.001),
+             movable=False, collides=False, region=True),
+    KindSpec("ell", "L-shaped piece made of two bars (Ravens ell); size = L's bounding box",
+             (0.08, 0.08, 0.04), movable=True, asymmetric=True),
+    KindSpec("fixture", "open frame whose hollow matches an ell or block; walls 4 cm high",
+             (0.12, 0.12, 0.04), movable=False, receptacle=True, region=True),
+    KindSpec("kit", "flat kitting plate", (0.28, 0.20, 0.005), movable=False, support=True,
+             region=True),
+    KindSpec("holed_box", "box fixed to the table with a square hole in the middle of its +x "
+             "side (a log is lined up with it: 'aligned' mode 'hole'); size = outer extents",
+             (0.08, 0.08, 0.05), movable=False, asymmetric=True),
+    KindSpec("pile", "pile of small blocks pushed as one (Ravens small block: 1 cm cube); "
+             "size = one block, count = number of blocks, spawned in a cluster",
+             (0.01, 0.01, 0.01), movable=True),
+    KindSpec("rope", "rope of count segments linked in a chain (Ravens' bead chain); size = "
+             "one segment: (length along the rope, diameter, diameter)",
+             (0.014, 0.01, 0.01), movable=True),
+]
+
+#: Kind name -> :class:`KindSpec`. Read-only.
+ASSET_KINDS = MappingProxyType({s.name: s for s in _SPECS})
+assert tuple(ASSET_KINDS) == KIND_NAMES, "AssetKind literal and ASSET_KINDS must agree"
+
+#: Width of an ell's bar as a fraction of the ell's x extent (Ravens: 0.03 of 0.08).
+ELL_BAR_FRACTION = 0.375
+#: Wall thickness of containers and fixtures, metres.
+WALL_THICKNESS = 0.01
+#: The side of a ``holed_box``'s square hole as a fraction of its +x face's smaller
+#: extent (a "small hole": half the face's height on a box lower than it is wide).
+HOLE_FRACTION = 0.5
+
+
+def side_hole(size: tuple[float, float, float]) -> tuple[float, float]:
+    """A ``holed_box``'s hole: its side and its centre's height above the box's bottom
+    (metres). The hole is square, in the middle of the +x face.
+    """
+    return HOLE_FRACTION * min(size[1], size[2]), size[2] / 2
+
+
+class UnknownKindError(FactaskError, ValueError):
+    """An asset kind that factask does not have."""
+
+
+def kind_spec(kind: str) -> KindSpec:
+    """The :class:`KindSpec` of ``kind``.
+
+    Raises:
+        UnknownKindError: not a known kind; the message lists the valid kinds.
+    """
+    try:
+        return ASSET_KINDS[kind]
+    except KeyError:
+        raise UnknownKindError(
+            f"unknown asset kind {kind!r}; valid kinds: {', '.join(KIND_NAMES)}"
+        ) from None
+
+
+def yaw_symmetry_deg(kind: str, size: tuple[float, float, float]) -> float:
+    """Smallest yaw rotation (degrees) that maps the object's footprint onto itself.
+
+    Returns 0 for round objects (any yaw is equivalent: yaw is never checked),
+    90 for square footprints, 180 for rectangles and logs (whose axis lies in the
+    plane) and 360 for asymmetric shapes.
+    """
+    spec = kind_spec(kind)
+    if spec.round:
+        return 0.0
+    if spec.asymmetric:
+        return 360.0
+    if kind == "log":  # its axis has a direction in the plane, even when as long as thick
+        return 180.0
+    if math.isclose(size[0], size[1], rel_tol=1e-6, abs_tol=1e-9):
+        return 90.0
+    return 180.0
+
+
+def default_mass(kind: str, size: tuple[float, float, float]) -> float:
+    """Mass (kg) of a solid bounding box of ``size`` at the kind's density, >= 10 g."""
+    spec = kind_spec(kind)
+    volume = size[0] * size[1] * size[2]
+    if spec.round and kind == "ball":
+        volume *= math.pi / 6.0
+    elif spec.round or kind == "log":  # a disk's area: across z upright, across x lying
+        volume *= math.pi / 4.0
+    return max(0.01, spec.density * volume)
+
+
+#: Relative tolerance for "x equals y" of round footprints.
+ROUND_RTOL = 1e-6
+
+
+def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str] | None:
+    """Why an object of ``kind`` cannot have ``size``, as (message, fix), or None.
+
+    The rules every builder relies on: round kinds have equal x and y, a ball is
+    (d, d, d), receptacles have room inside their walls, an ell's bar fits its
+    other arm. (Sizes are already positive and finite.)
+    """
+    x, y, z = size
+    spec = kind_spec(kind)
+    if kind == "log" and not math.isclose(y, z, rel_tol=ROUND_RTOL):
+        return (f"a log's size y and z are both its diameter, got {tuple(size)}",
+                "give (length, d, d)")
+    if kind == "ball":
+        if not (math.isclose(x, y, rel_tol=ROUND_RTOL) and math.isclose(x, z, rel_tol=ROUND_RTOL)):
+            return (f"a ball's size must be its diameter three times, got {tuple(size)}",
+                    "give (d, d, d)")
+    elif spec.round and not math.isclose(x, y, rel_tol=ROUND_RTOL):
+        return (f"a {kind} has a round footprint but size x {x} != size y {y}",
+                "give the diameter as both size x and size y")
+    if kind in ("bowl", "container", "fixture", "holed_box"):
+        walls = 2 * WALL_THICKNESS
+        if not (x > walls and y > walls and z > WALL_THICKNESS):
+            return (f"a {kind} of size {tuple(size)} has no room inside its walls "
+                    f"({WALL_THICKNESS} m thick)",
+                    f"make size x and y larger than {walls:.3f} and z larger than "
+                    f"{WALL_THICKNESS}")
+    if kind == "holed_box":
+        side, _ = side_hole(size)
+        if side > min(y, z) - 2 * WALL_THICKNESS:
+            return (f"a holed_box of size {tuple(size)} has no room for its hole ({side:.3f} m "
+                    f"square) inside its walls ({WALL_THICKNESS} m thick)",
+                    f"make size y and z at least {4 * WALL_THICKNESS:.2f}")
+    if kind == "ell" and not ELL_BAR_FRACTION * x < y:
+        return (f"an ell's bar width {ELL_BAR_FRACTION * x:.4f} m ({ELL_BAR_FRACTION} x size "
+                f"x) must be less than size y {y}", "make size y larger than the bar width")
+    return None

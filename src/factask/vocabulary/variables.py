@@ -1,0 +1,186 @@
+"""State variables: the named, typed things in a scene."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Annotated, Literal, Protocol
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from factask.vocabulary.errors import InvalidValueError
+from factask.vocabulary.kinds import AssetKind, default_mass, kind_spec, yaw_symmetry_deg
+from factask.vocabulary.limits import MAX_COUNT, MAX_HORIZONTAL, MIN_LENGTH, Text
+from factask.vocabulary.names import Name, instance_names
+from factask.vocabulary.palette import normalize_color
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
+
+PositiveLength = Annotated[float, Field(ge=MIN_LENGTH, le=MAX_HORIZONTAL, allow_inf_nan=False)]
+
+
+class OnTable(BaseModel):
+    """Start at a random free spot of the workspace (the default)."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["table"] = "table"
+
+
+class InRegion(BaseModel):
+    """Start at a random free spot inside an x/y box of the table (metres)."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["region"] = "region"
+    x: tuple[float, float] = Field(WORKSPACE_X)
+    y: tuple[float, float] = Field(WORKSPACE_Y)
+
+    @model_validator(mode="after")
+    def _ordered(self) -> InRegion:
+        for axis, (lo, hi), (wlo, whi) in (("x", self.x, WORKSPACE_X), ("y", self.y, WORKSPACE_Y)):
+            if not lo < hi:
+                raise InvalidValueError(f"region {axis} range must have low < high, got {(lo, hi)}")
+            if lo < wlo - 1e-9 or hi > whi + 1e-9:
+                raise InvalidValueError(
+                    f"region {axis} range {(lo, hi)} leaves the workspace {(wlo, whi)}"
+                )
+        return self
+
+
+#: A given place on a host is at most this far (metres) from the host's centre.
+MAX_OFFSET = 1.0
+Offset = Annotated[float, Field(ge=-MAX_OFFSET, le=MAX_OFFSET, allow_inf_nan=False)]
+
+
+class _OnHost(BaseModel):
+    """Where on its host an object starts: a free spot (default), or the place
+    given by ``offset`` (x, y in metres, in the host's frame) and ``yaw_deg``
+    (relative to the host) — e.g. a disk on a given peg of a stand. A given place
+    is a fact: an object there that overlaps something else is an error, never
+    moved."""
+
+    model_config = ConfigDict(extra="forbid")
+    offset: tuple[Offset, Offset] | None = None
+    yaw_deg: Annotated[float, Field(ge=-360, le=360, allow_inf_nan=False)] = 0.0
+
+
+class StartOn(_OnHost):
+    """Start resting on top of another variable (e.g. disks stacked on a stand)."""
+
+    type: Literal["on"] = "on"
+    support: Name
+
+
+class StartInside(_OnHost):
+    """Start inside a receptacle variable (a container or bowl)."""
+
+    type: Literal["inside"] = "inside"
+    container: Name
+
+
+class AtFixedPose(BaseModel):
+    """Start at a given x, y (metres) and yaw (degrees), resting on the table."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["pose"] = "pose"
+    x: Annotated[float, Field(ge=WORKSPACE_X[0], le=WORKSPACE_X[1], allow_inf_nan=False)]
+    y: Annotated[float, Field(ge=WORKSPACE_Y[0], le=WORKSPACE_Y[1], allow_inf_nan=False)]
+    yaw_deg: Annotated[float, Field(allow_inf_nan=False)] = 0.0
+
+
+Placement = Annotated[
+    OnTable | InRegion | StartOn | StartInside | AtFixedPose, Field(discriminator="type")
+]
+
+
+class StateVariable(BaseModel):
+    """A named thing (or group of identical things) in the scene.
+
+    Attributes:
+        name: snake_case identifier, unique in the graph.
+        description: What the variable means in the task.
+        kind: Asset kind (see :data:`factask.vocabulary.kinds.ASSET_KINDS`).
+        size: Full extents (x, y, z) in metres (the one size convention, see
+            :mod:`factask.vocabulary.kinds`); defaults to the kind's size.
+        color: Palette colour name (see :data:`factask.vocabulary.palette.COLORS`).
+        count: Number of identical objects the variable stands for.
+        mass: Mass of one object in kg; defaults from the kind's density.
+        fixed: Fixed to the table; defaults to the kind's default.
+        symmetry_deg: Yaw symmetry override in degrees (0: yaw never matters);
+            defaults from the kind and footprint.
+        initial: Where the object(s) start; default a free table spot.
+    """
+
+    model_config = ConfigDict(extra="forbid")
+
+    name: Name
+    description: Text = ""
+    kind: AssetKind
+    size: tuple[PositiveLength, PositiveLength, PositiveLength] | None = None
+    color: str = "gray"
+    count: int = Field(1, ge=1, le=MAX_COUNT)
+    mass: Annotated[float, Field(gt=0, le=50, allow_inf_nan=False)] | None = None
+    fixed: bool | None = None
+    symmetry_deg: Annotated[float, Field(ge=0, le=360, allow_inf_nan=False)] | None = None
+    initial: Placement = Field(default_factory=OnTable)
+
+    @field_validator("color")
+    @classmethod
+    def _known_color(cls, value: str) -> str:
+        return normalize_color(value)
+
+    @model_validator(mode="after")
+    def _fill_defaults(self) -> StateVariable:
+        spec = kind_spec(self.kind)
+        if self.size is None:
+            self.size = spec.default_size
+        if self.fixed is None:
+            self.fixed = not spec.movable
+        return self
+
+    @property
+    def extents(self) -> tuple[float, float, float]:
+        """Full extents (never None after validation)."""
+        assert self.size is not None
+        return self.size
+
+    @property
+    def is_fixed(self) -> bool:
+        """True if the variable's objects are fixed to the table."""
+        return bool(self.fixed)
+
+    @property
+    def symmetry(self) -> float:
+        """Yaw symmetry in degrees (0: any yaw is equivalent)."""
+        if self.symmetry_deg is not None:
+            return self.symmetry_deg
+        return yaw_symmetry_deg(self.kind, self.extents)
+
+    @property
+    def object_mass(self) -> float:
+        """Mass of one object, kg."""
+        return self.mass if self.mass is not None else default_mass(self.kind, self.extents)
+
+    @property
+    def instances(self) -> list[str]:
+        """Names of the objects this variable stands for."""
+        return instance_names(self.name, self.count)
+
+    def references(self) -> list[str]:
+        """Other variables this variable's initial placement depends on."""
+        if isinstance(self.initial, StartOn):
+            return [self.initial.support]
+        if isinstance(self.initial, StartInside):
+            return [self.initial.container]
+        return []
+
+
+class VariableSet(Protocol):
+    """What the layers below the task graph read of one: its variables, and one by name.
+
+    :class:`factask.graph.TaskGraph` is one. The scene geometry and the relations'
+    solvers sit below the graph (the graph imports the relations), so they name this
+    protocol, not the class.
+    """
+
+    @property
+    def variables(self) -> Sequence[StateVariable]: ...
+
+    def variable(self, name: str) -> StateVariable: ...
