@@ -1,4 +1,4 @@
-"""Commands of LLM generation: ``generate`` and ``benchmark``.
+"""Commands of LLM generation: ``generate``, ``benchmark`` and ``compare`` (the meaning metric).
 
 litellm and MuJoCo are imported only when a command runs.
 """
@@ -274,3 +274,34 @@ def benchmark(
     if no_call:
         _fail(f"no LLM call succeeded in {ran['sent']} generation(s): see the failures in "
               f"{out / RESULTS_FILE}", EXIT_NO_CALL)
+
+
+@app.command()
+def compare(
+    generated: str = typer.Argument(..., help="The graph to judge: FILE.json, a library task "
+                                    "name or FILE.py[:Class] (a CLIPort task file)."),
+    reference: str = typer.Argument(..., help="The task it should be (same forms)."),
+    as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
+) -> None:
+    """Does GENERATED mean the task REFERENCE is? Exit 0 when the two are the same task
+    (the same objects, goals and orders, up to names, wording, weights, tolerances and
+    numeric parameters), 1 when not, with what differs; 2 when either cannot be read."""
+    import json
+
+    from factask.cli.run_cmds import load_task
+    from factask.gen.compare import compare as compare_graphs
+
+    result = compare_graphs(load_task(generated), load_task(reference))
+    if as_json:
+        typer.echo(json.dumps({"generated": generated, "reference": reference,
+                               **result.to_dict()}))
+    else:
+        verdict = "the same task" if result.equivalent else "a different task"
+        console.print(f"{generated} vs {reference}: {verdict}; object F1 "
+                      f"{result.object_f1:.2f}, relation F1 {result.relation_f1:.2f}, order "
+                      f"agreement {result.order_agreement:.2f}", markup=False, soft_wrap=True)
+        for line in result.differences:
+            console.print(f"  {line}", markup=False, soft_wrap=True)
+        for line in result.details:
+            console.print(f"  (not counted) {line}", markup=False, soft_wrap=True)
+    raise typer.Exit(0 if result.equivalent else 1)
