@@ -10,10 +10,10 @@ from hypothesis import strategies as st
 from factask.graph import parse_graph
 from factask.graph.taskgraph import TaskGraph
 from factask.scene.objects import Area
+from factask.scene.routes import crosses
 from factask.sim.oracle.push import (
     CLEARANCE,
     LEAD,
-    crosses,
     entry_distance,
     obstacle_regions,
     plan_route,

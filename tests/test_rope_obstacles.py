@@ -16,13 +16,14 @@ from factask.graph.taskgraph import TaskGraph
 from factask.relations.rope import rope_slot_order
 from factask.relations.solving import SolvedFactor
 from factask.scene.objects import SceneObject, objects_by_name, resting_pose
+from factask.scene.routes import gap_to
 from factask.sim.layout.checks import check_task
 from factask.sim.layout.reset import reset_layout
 from factask.sim.oracle.rope import (
     CLEARANCE,
     GRASP_CLEARANCE,
     detour,
-    gap_to,
+    footprints,
     path_clear,
     plan_rope_carry,
     solid_obstacles,
@@ -58,7 +59,7 @@ def test_a_carry_through_a_block_goes_round_it_and_a_clear_one_straight() -> Non
     wp = detour(a, b, obstacles)
     assert wp is not None
     assert path_clear(a, wp, obstacles) and path_clear(wp, b, obstacles)
-    assert gap_to(wp, obstacles) >= CLEARANCE
+    assert gap_to(wp, footprints(obstacles)) >= CLEARANCE
     beside = np.array([0.6, 0.15])
     assert path_clear(np.array([0.6, -0.15]), beside, obstacles)
     assert detour(np.array([0.6, -0.15]), beside, obstacles) is None
@@ -117,12 +118,12 @@ def test_a_segment_against_a_block_is_moved_by_its_neighbour() -> None:
     p0 = poses[names[0]]
     poses[names[0]] = Pose(np.array([a[0] + 0.028, a[1] + 0.024, p0.pos[2]]), p0.quat)
     obstacles = solid_obstacles(objs, poses, names, 0.01)
-    assert gap_to(poses[names[0]].pos[:2], obstacles) < GRASP_CLEARANCE
+    assert gap_to(poses[names[0]].pos[:2], footprints(obstacles)) < GRASP_CLEARANCE
     status = check_task(graph, solved, poses).factors["lay"]
     assert set(status.targets) == {names[0]}
     action = plan_rope_carry("lay", solved["lay"], status, objs, poses)
     assert action is not None and action.obj == names[1]
-    assert gap_to(action.pick[:2], obstacles) >= GRASP_CLEARANCE
+    assert gap_to(action.pick[:2], footprints(obstacles)) >= GRASP_CLEARANCE
     # ... set down on its own slot.
     slot1 = solved["lay"].slots[1 if status.targets[names[0]] == 0 else len(names) - 2]
     assert np.linalg.norm(action.place[:2] - slot1.pos[:2]) < 0.012

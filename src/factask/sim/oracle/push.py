@@ -32,9 +32,8 @@ by pushes that did not help) are aimed at last.
 
 from __future__ import annotations
 
-import heapq
 import math
-from collections.abc import Collection, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,6 +48,7 @@ from factask.relations.pile_in_zone import (
 from factask.relations.solving import SolvedFactor
 from factask.scene.collision import WORKSPACE_AREA
 from factask.scene.objects import Area, SceneObject, placement_area, yaw_rotation_2d
+from factask.scene.routes import Route, RouteMap, crosses, grown, inside, ring_points
 from factask.sim.robots.spatula import BLADE_THICKNESS, BLADE_WIDTH
 from factask.vocabulary.world import TABLE_Z
 
@@ -101,23 +101,6 @@ class PushAction:
         return {"start": self.start, "end": self.end}
 
 
-@dataclass(frozen=True)
-class Route:
-    """How one block gets into the zone clear of the obstacle regions.
-
-    Attributes:
-        legs: Pushes it takes (1: straight in).
-        length: Its length (m), :data:`LEG_COST` added per extra leg.
-        via: The first waypoint, or None when the first leg goes straight in.
-        zone: Index of the zone it ends in.
-    """
-
-    legs: int
-    length: float
-    via: np.ndarray | None
-    zone: int = 0
-
-
 def _blade_free(xy: np.ndarray, yaw: float, blocks: np.ndarray, margin: float) -> bool:
     """No block centre within ``margin`` of the blade's footprint at ``xy``."""
     if len(blocks) == 0:
@@ -137,11 +120,6 @@ def _shrunk(area: Area, by: float) -> Area:
     return Area(area.center, area.yaw, np.maximum(area.half - by, 0.0), area.round)
 
 
-def _grown(area: Area, by: float) -> Area:
-    """``area`` as a rectangle (a disk: its bounding square) with every side moved out by ``by``."""
-    return Area(area.center, area.yaw, area.half + by)
-
-
 def entry_distance(area: Area, p: np.ndarray, u: np.ndarray, inset: float) -> float:
     """How far from ``p`` along unit ``u`` a point is ``inset`` inside ``area``'s
     edge, at most the distance to its centre (the ray aims at the centre)."""
@@ -158,29 +136,6 @@ def entry_distance(area: Area, p: np.ndarray, u: np.ndarray, inset: float) -> fl
         t1, t2 = (-half[i] - q[i]) / v[i], (half[i] - q[i]) / v[i]
         t_in = max(t_in, min(t1, t2))
     return float(min(max(t_in, 0.0), to_centre))
-
-
-def crosses(a: np.ndarray, b: np.ndarray, rect: Area) -> bool:
-    """True when the segment ``a``-``b`` runs through the inside of ``rect`` (a
-    disk taken as its bounding square); touching its edge does not count."""
-    rot = yaw_rotation_2d(rect.yaw)
-    p, d = (a - rect.center) @ rot, (b - a) @ rot
-    t0, t1 = 0.0, 1.0
-    for i in range(2):
-        h = float(rect.half[i])
-        if abs(d[i]) < 1e-12:
-            if abs(p[i]) >= h:
-                return False
-            continue
-        lo, hi = sorted(((-h - p[i]) / d[i], (h - p[i]) / d[i]))
-        t0, t1 = max(t0, lo), min(t1, hi)
-    return t1 - t0 > 1e-9
-
-
-def _inside(rect: Area, p: np.ndarray) -> bool:
-    """``p`` strictly inside ``rect`` (as a rectangle)."""
-    local = np.abs((p - rect.center) @ yaw_rotation_2d(rect.yaw))
-    return bool(np.all(local < rect.half))
 
 
 def _clusters(xy: np.ndarray, side: float) -> list[Area]:
@@ -255,21 +210,6 @@ def obstacle_regions(solved: SolvedFactor, objects: Mapping[str, SceneObject],
     return out
 
 
-def _waypoints(grown: Sequence[Area]) -> list[np.ndarray]:
-    """The grown regions' corners, :data:`CORNER_OUT` further out, that lie in the
-    workspace and outside every grown region."""
-    room = _shrunk(WORKSPACE_AREA, BLADE_WIDTH / 2)
-    out = []
-    for rect in grown:
-        rot = yaw_rotation_2d(rect.yaw)
-        for sx in (-1.0, 1.0):
-            for sy in (-1.0, 1.0):
-                p = rect.center + rot @ ((rect.half + CORNER_OUT) * np.array([sx, sy]))
-                if room.contains(p[None])[0] and not any(_inside(g, p) for g in grown):
-                    out.append(p)
-    return out
-
-
 def plan_route(blocks: np.ndarray, zones: Sequence[Area], regions: Sequence[Area],
                back: float) -> list[Route | None]:
     """Each block's route into the nearest reachable of ``zones`` clear of ``regions``.
@@ -291,66 +231,42 @@ def plan_route(blocks: np.ndarray, zones: Sequence[Area], regions: Sequence[Area
     Returns:
         Per block its :class:`Route`, or None when none is clear.
     """
-    grown = [_grown(r, BLADE_WIDTH / 2 + CLEARANCE) for r in regions]
+    grown_regions = [grown(r, BLADE_WIDTH / 2 + CLEARANCE) for r in regions]
 
-    def goal_leg(q: np.ndarray, rects: Sequence[Area]) -> tuple[float, int]:
-        best = (math.inf, 0)
-        for k, zone in enumerate(zones):
-            d = zone.center - q
-            length = float(np.linalg.norm(d))
-            if length < 1e-9:
-                return (0.0, k)
-            u = d / length
-            enter = q + u * entry_distance(zone, q, u, 0.0)
-            if not any(crosses(q - u * back, enter, r) for r in rects):
-                best = min(best, (length, k))
-        return best
+    def goal_leg(rects: Sequence[Area]) -> Callable[[np.ndarray], tuple[float, int]]:
+        def leg(q: np.ndarray) -> tuple[float, int]:
+            best = (math.inf, 0)
+            for k, zone in enumerate(zones):
+                d = zone.center - q
+                length = float(np.linalg.norm(d))
+                if length < 1e-9:
+                    return (0.0, k)
+                u = d / length
+                enter = q + u * entry_distance(zone, q, u, 0.0)
+                if not any(crosses(q - u * back, enter, r) for r in rects):
+                    best = min(best, (length, k))
+            return best
+        return leg
 
-    def clear(q: np.ndarray, w: np.ndarray, rects: Sequence[Area]) -> bool:
-        d = w - q
-        u = d / max(float(np.linalg.norm(d)), 1e-9)
-        return not any(crosses(q - u * back, w + u * LEAD, r) for r in rects)
+    def clear(rects: Sequence[Area]) -> Callable[[np.ndarray, np.ndarray], bool]:
+        def leg(q: np.ndarray, w: np.ndarray) -> bool:
+            d = w - q
+            u = d / max(float(np.linalg.norm(d)), 1e-9)
+            return not any(crosses(q - u * back, w + u * LEAD, r) for r in rects)
+        return leg
 
-    nodes = _waypoints(grown)
-    n = len(nodes)
-    # Cost to go from each waypoint (Dijkstra from the zones backwards).
-    ends = [goal_leg(v, grown) for v in nodes]
-    cost = [c for c, _ in ends]
-    zone_of = [k for _, k in ends]
-    legs = [1] * n
-    edge = [[i != j and clear(nodes[i], nodes[j], grown) for j in range(n)] for i in range(n)]
-    heap = [(c, j) for j, c in enumerate(cost) if c < math.inf]
-    heapq.heapify(heap)
-    done = [False] * n
-    while heap:
-        c, j = heapq.heappop(heap)
-        if done[j] or c > cost[j]:
-            continue
-        done[j] = True
-        for i in range(n):
-            if edge[i][j] and not done[i]:
-                cand = c + float(np.linalg.norm(nodes[j] - nodes[i])) + LEG_COST
-                if cand < cost[i]:
-                    cost[i], legs[i], zone_of[i] = cand, legs[j] + 1, zone_of[j]
-                    heapq.heappush(heap, (cand, i))
-    # A block needs only its first waypoint: the next call plans on from there.
+    # Waypoints: the grown regions' corners, CORNER_OUT further out, in the room and
+    # outside every grown region.
+    room = _shrunk(WORKSPACE_AREA, BLADE_WIDTH / 2)
+    nodes = [p for p in ring_points(grown_regions, CORNER_OUT, edges=False)
+             if room.contains(p[None])[0] and not any(inside(g, p) for g in grown_regions)]
+    routes = RouteMap(nodes, goal_leg(grown_regions), clear(grown_regions), LEG_COST)
     out: list[Route | None] = []
     for p in np.asarray(blocks, dtype=float).reshape(-1, 2):
         # From inside a grown region: that region ungrown, or none if inside that too.
-        rects = [g if not _inside(g, p) else r for g, r in zip(grown, regions, strict=True)
-                 if not _inside(r, p)]
-        best: Route | None = None
-        straight, k = goal_leg(p, rects)
-        if straight < math.inf:
-            best = Route(1, straight, None, k)
-        for j, v in enumerate(nodes):
-            if cost[j] == math.inf or float(np.linalg.norm(v - p)) < MIN_LEG:
-                continue
-            total = float(np.linalg.norm(v - p)) + LEG_COST + cost[j]
-            if (best is None or (legs[j] + 1, total) < (best.legs, best.length)) \
-                    and clear(p, v, rects):
-                best = Route(legs[j] + 1, total, v, zone_of[j])
-        out.append(best)
+        rects = [g if not inside(g, p) else r
+                 for g, r in zip(grown_regions, regions, strict=True) if not inside(r, p)]
+        out.append(routes.route_from(p, goal_leg(rects), clear(rects), MIN_LEG))
     return out
 
 
@@ -399,7 +315,7 @@ def plan_push(factor: str, goal: PileInZone, solved: SolvedFactor,
     p = xy[aim]
     route = by_block[aim]
     via = route.via if route is not None else None
-    zone = areas[route.zone] if route is not None else _zone_for(areas, p)
+    zone = areas[route.goal] if route is not None else _zone_for(areas, p)
     d = (via if via is not None else zone.center) - p
     length = float(np.linalg.norm(d))
     u = d / length if length > 1e-9 else np.array([1.0, 0.0])

@@ -47,7 +47,6 @@ Each move is a low carry (:mod:`factask.sim.robots.low_carry`): the segment is l
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Collection, Mapping
 
@@ -58,7 +57,8 @@ from factask.relations.rope import SLOT_PITCH, rope_slot_order
 from factask.relations.solving import SolvedFactor
 from factask.relations.status import FactorStatus
 from factask.scene.collision import WORKSPACE_CENTER, WORKSPACE_HALF
-from factask.scene.objects import SceneObject, top_z, yaw_rotation_2d
+from factask.scene.objects import Area, SceneObject, top_z
+from factask.scene.routes import RouteMap, gap_to, grown, keeps_clearance, ring_points
 from factask.sim.robots.low_carry import ROPE_LIFT, CarryAction
 from factask.sim.robots.suction import CUP_RADIUS
 
@@ -134,38 +134,30 @@ def solid_obstacles(objects: Mapping[str, SceneObject], poses: Mapping[str, Pose
             and o.size[2] > height]
 
 
-def gap_to(point: np.ndarray, obstacles: list[tuple[SceneObject, Pose]]) -> float:
-    """The distance (m) from an (x, y) point to the nearest obstacle's footprint (0
-    inside one; inf without obstacles)."""
-    out = math.inf
-    for obj, pose in obstacles:
-        local = yaw_rotation_2d(-pose.yaw) @ (np.asarray(point, dtype=float) - pose.pos[:2])
-        out = min(out, float(np.linalg.norm(np.maximum(np.abs(local) - obj.half_xy, 0.0))))
-    return out
+def footprints(obstacles: list[tuple[SceneObject, Pose]]) -> list[Area]:
+    """The obstacles' footprints, as the route planner's rectangles."""
+    return [Area(pose.pos[:2], pose.yaw, obj.half_xy) for obj, pose in obstacles]
 
 
 def path_clear(a: np.ndarray, b: np.ndarray, obstacles: list[tuple[SceneObject, Pose]],
                clearance: float = CLEARANCE) -> bool:
-    """True when the straight line from ``a`` to ``b`` (x, y) keeps ``clearance`` from
-    every obstacle, its first and last :data:`PATH_STEP` aside (a segment may lie
-    close to an object, as a run's end beside its anchor does)."""
-    length = float(np.linalg.norm(b - a))
-    steps = max(1, math.ceil(length / PATH_STEP))
-    return all(gap_to(a + (b - a) * k / steps, obstacles) >= clearance
-               for k in range(1, steps))
+    """True when a carry's straight line from ``a`` to ``b`` (x, y) keeps ``clearance``
+    from every obstacle (:func:`factask.scene.routes.keeps_clearance`, every
+    :data:`PATH_STEP`)."""
+    return keeps_clearance(a, b, footprints(obstacles), clearance, PATH_STEP)
 
 
 def detour(a: np.ndarray, b: np.ndarray, obstacles: list[tuple[SceneObject, Pose]],
            clearance: float = CLEARANCE) -> np.ndarray | None:
-    """A waypoint (x, y) for a carry from ``a`` to ``b`` whose straight line passes
-    too near an obstacle, or None when the line is clear (or no way round is found).
+    """The first waypoint (x, y) of a carry from ``a`` to ``b`` whose straight line
+    passes too near an obstacle, or None when the line is clear (or no way round is
+    found).
 
-    Waypoints are the points round each obstacle (its footprint's corners and edge
-    middles, pushed out by ``clearance`` and :data:`DETOUR_MARGIN`) inside the
-    workspace. The way is the shortest through one of them, or failing that
-    through two (an end close behind a block sees no single point round it), with
-    every straight leg clear of every obstacle; the first waypoint is returned
-    (the next move goes on from there).
+    The route is :mod:`factask.scene.routes`' (fewest legs, then shortest): its
+    waypoints are the points round each obstacle (its footprint's corners and edge
+    middles, :data:`DETOUR_MARGIN` beyond ``clearance``) inside the workspace, every
+    leg keeping ``clearance`` (:func:`path_clear`). The next move goes on from the
+    waypoint.
 
     Args:
         a: Where the carry starts.
@@ -173,29 +165,21 @@ def detour(a: np.ndarray, b: np.ndarray, obstacles: list[tuple[SceneObject, Pose
         obstacles: The solid objects (see :func:`solid_obstacles`).
         clearance: How far the legs keep from them.
     """
-    if path_clear(a, b, obstacles, clearance):
+    rects = footprints(obstacles)
+
+    def clear(p: np.ndarray, q: np.ndarray) -> bool:
+        return keeps_clearance(p, q, rects, clearance, PATH_STEP)
+
+    def to_b(q: np.ndarray) -> tuple[float, int]:
+        return (float(np.linalg.norm(b - q)), 0) if clear(q, b) else (math.inf, 0)
+
+    if clear(a, b):
         return None
     lo, hi = WORKSPACE_CENTER - WORKSPACE_HALF, WORKSPACE_CENTER + WORKSPACE_HALF
-    points = []
-    for obj, pose in obstacles:
-        reach = obj.half_xy + clearance + DETOUR_MARGIN
-        rot = yaw_rotation_2d(pose.yaw)
-        points += [pose.pos[:2] + rot @ (reach * np.array([sx, sy]))
-                   for sx in (-1, 0, 1) for sy in (-1, 0, 1) if sx or sy]
-    points = [p for p in points if np.all(p >= lo) and np.all(p <= hi)]
-    first = [p for p in points if path_clear(a, p, obstacles, clearance)]
-    last = [p for p in points if path_clear(p, b, obstacles, clearance)]
-
-    def length(*way: np.ndarray) -> float:
-        return float(sum(np.linalg.norm(q - p) for p, q in itertools.pairwise(way)))
-
-    one = [(length(a, p, b), k) for k, p in enumerate(first)
-           if any(p is q for q in last)]
-    if one:
-        return first[min(one)[1]]
-    two = [(length(a, p, q, b), k) for k, p in enumerate(first) for q in last
-           if path_clear(p, q, obstacles, clearance)]
-    return first[min(two)[1]] if two else None
+    nodes = [p for p in ring_points([grown(r, clearance) for r in rects], DETOUR_MARGIN, True)
+             if np.all(p >= lo) and np.all(p <= hi)]
+    route = RouteMap(nodes, to_b, clear).route_from(a, to_b, clear)
+    return route.via if route is not None else None
 
 
 def _graspable(name: str, rope: list[str], poses: Mapping[str, Pose],
@@ -206,7 +190,7 @@ def _graspable(name: str, rope: list[str], poses: Mapping[str, Pose],
     for d in range(GRASP_REACH + 1):
         for j in ((k - d, k + d) if d else (k,)):
             if 0 <= j < len(rope) and gap_to(poses[rope[j]].pos[:2],
-                                             obstacles) >= GRASP_CLEARANCE:
+                                             footprints(obstacles)) >= GRASP_CLEARANCE:
                 return rope[j]
     return None
 
@@ -264,5 +248,5 @@ def plan_rope_carry(fname: str, solved: SolvedFactor, status: FactorStatus,
 
 
 __all__ = ["CLEARANCE", "FOLD_NEAR", "GRASP_CLEARANCE", "KINK_DEG", "MAX_FOLD_FIXES",
-           "aim_points", "detour", "gap_to", "heading", "path_clear", "plan_rope_carry",
+           "aim_points", "detour", "footprints", "heading", "path_clear", "plan_rope_carry",
            "segment_slots", "solid_obstacles"]
