@@ -20,11 +20,14 @@ from typer.testing import CliRunner
 from factask.cli import app
 from factask.evaluation.benchmark import (
     RESEARCH_RATES,
+    BenchmarkError,
     BenchTask,
     load_tasks,
+    meaning_of,
     non_rigid_reason,
     not_expressible_reason,
     read_results,
+    reference_graph,
     research_sample,
     run_benchmark,
     summarize,
@@ -35,6 +38,7 @@ from factask.gen.llm import LLMClient, LLMConfig
 from factask.gen.loopback import LoopbackServer
 from factask.gen.strategies import Generator
 from factask.gen.verify import Verifier
+from factask.library.tasks import get_task
 
 TASKS = [
     {"name": "red-in-zone-then-blue-on-red", "description": "put the red block in the zone, "
@@ -96,8 +100,31 @@ def test_summary_last_line_wins_and_errors_are_separate() -> None:
     assert (row["syntax"], row["runtime"], row["completion"]) == (1.0, 1.0, 0.5)
     assert row["tokens"] == 10
     table = summary_table(s)
-    assert "| one-shot | 2 | 100.0 | 100.0 | 50.0 | 1 | 1 |" in table
+    assert "| one-shot | 2 | 100.0 | 100.0 | 50.0 | - | 1 | 1 |" in table
     assert "95.0 / 53.3 / 16.7" in table
+
+
+def test_faithful_is_judged_against_the_reference_and_summarised() -> None:
+    wanted = get_task("stack-block-pyramid")
+    task = BenchTask("stack-block-pyramid", "stack the blocks into a pyramid")
+    assert reference_graph(task) == wanted  # the library's graph of the same name
+    assert meaning_of(wanted, task)["faithful"] is True
+    other = meaning_of(get_task("build-house"), task)
+    assert other["faithful"] is False
+    assert any(d.startswith("missing goal") for d in other["meaning"]["differences"])
+    assert meaning_of(None, task) == {"faithful": False, "meaning": {
+        "reference": "stack-block-pyramid", "differences": ["no graph"]}}
+    own = BenchTask("my-task", "words", reference="build-house")
+    assert meaning_of(get_task("build-house"), own)["faithful"] is True
+    assert meaning_of(wanted, BenchTask("not-in-the-library", "words"))["faithful"] is None
+    with pytest.raises(BenchmarkError, match="reference"):
+        reference_graph(BenchTask("x", "y", reference={"name": "x", "variables": "none"}))
+    lines = [{"approach": "one-shot", "task": n, "status": "done",
+              "level_reached": "completion", "faithful": f}
+             for n, f in (("a", True), ("b", False), ("c", None))]
+    row = summarize(lines, ["one-shot"])["approaches"]["one-shot"]
+    assert row["faithful"] == 0.5 and row["counts"]["with_reference"] == 2
+    assert "| 50.0 (of 2) |" in summary_table(summarize(lines, ["one-shot"]))
 
 
 def _generator(server: LoopbackServer) -> Generator:
@@ -128,8 +155,11 @@ def test_run_writes_jsonl_summary_table_chart_and_skips_finished_pairs(tmp_path)
     assert {r["status"] for r in cloth} == {"not_expressible"} and "cloth" in cloth[0]["reason"]
     saved = json.loads((tmp_path / "summary.json").read_text())
     assert saved["research"]["subtasks-first"] == list(RESEARCH_RATES["subtasks-first"])
-    assert "| subtasks-first | 1 | 100.0 | 100.0 | 100.0 | 1 |" in (
+    assert "| subtasks-first | 1 | 100.0 | 100.0 | 100.0 | - | 1 |" in (
         tmp_path / "summary.md").read_text()
+    done = [r for r in lines if r["status"] == "done"]
+    assert {r["faithful"] for r in done} == {None}  # no library task of that name
+    assert {r["meaning"]["reference"] for r in done} == {None}
     assert (tmp_path / "rates.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 

@@ -251,9 +251,10 @@ def benchmark(
             progress.advance(bar)
             ran["pairs"] += 1
             ran["sent"] += record.get("status") in ("done", "llm_error", "error")
+            meaning = {True: "faithful", False: "not faithful"}.get(record.get("faithful"), "")
             progress.console.print(f"  {record['approach']:<16} {record['task']:<40} "
-                                   f"{record['status']:<15} {record.get('level_reached')}",
-                                   markup=False)
+                                   f"{record['status']:<15} {record.get('level_reached')!s:<11}"
+                                   f" {meaning}", markup=False)
 
         try:
             summary = run_benchmark(task_list, approaches, gen, out, on_start, on_result,

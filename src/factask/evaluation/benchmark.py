@@ -6,7 +6,12 @@ interrupted run loses nothing and a rerun resumes where it stopped without
 repeating a finished pair. At the end the three rates of the research — the
 fraction of tasks whose final graph reaches *syntax*, *runtime* and
 *completion* — are written per approach as ``summary.json``, ``summary.md``
-and a bar chart ``rates.png`` next to the research's numbers.
+and a bar chart ``rates.png`` next to the research's numbers, with a fourth:
+*faithful*, the fraction of tasks with a reference graph whose final graph means
+the task (:func:`factask.gen.compare.compare`; every line says whether its graph is
+faithful and what differs). A task's reference is its own entry's ``reference``
+(a graph, or a library task's name), else the library's graph of the same name
+(188 of the 192 list).
 
 Tasks that need deformables a rigid suction world cannot express (ropes, cloth,
 bags, particle piles, spatula sweeping) are not sent to the model; they get a
@@ -26,12 +31,14 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from factask.gen.compare import compare
 from factask.gen.llm import LLMFatalError
 from factask.gen.memory import SubtaskMemory
 from factask.gen.results import APPROACHES
 from factask.gen.strategies import Generator
 from factask.gen.verify import LEVELS, at_least
-from factask.vocabulary.errors import FactaskError
+from factask.graph.taskgraph import TaskGraph, parse_graph
+from factask.vocabulary.errors import FactaskError, GraphValidationError
 
 #: The research's rates in percent (syntax, runtime, completion), GPT-4, 55 tasks.
 RESEARCH_RATES: dict[str, tuple[float, float, float]] = {
@@ -70,12 +77,15 @@ class BenchTask:
         description: What the task is.
         assets: GenSim/Ravens URDF names the original used.
         origin: Where it comes from (``ravens_cliport_original``, ``gensim_generated``).
+        reference: The graph the task means (a graph dict, or a library task's name);
+            None: the library's graph of the same name, if there is one.
     """
 
     name: str
     description: str
     assets: list[str] = field(default_factory=list)
     origin: str = ""
+    reference: dict[str, Any] | str | None = None
 
     @property
     def proposal(self) -> str:
@@ -108,7 +118,8 @@ def load_tasks(path: str | os.PathLike[str]) -> list[BenchTask]:
         tasks.append(BenchTask(name=str(item["name"]), description=str(item.get("description",
                                                                                  "")),
                                assets=[str(a) for a in item.get("assets", [])],
-                               origin=str(item.get("origin", ""))))
+                               origin=str(item.get("origin", "")),
+                               reference=item.get("reference")))
     return tasks
 
 
@@ -335,7 +346,45 @@ def _run_one(generator: Generator, task: BenchTask, approach: str,
               "status": "llm_error" if result.llm_error else "done",
               "repairs": result.repairs,
               "wall_s": round(time.perf_counter() - start, 3)}
+    record.update(meaning_of(result.graph, task))
     return record
+
+
+def reference_graph(task: BenchTask) -> TaskGraph | None:
+    """The graph ``task`` means: its own ``reference``, else the library's graph of the
+    same name, else None.
+
+    Raises:
+        BenchmarkError: the entry's reference is not a valid graph or library name.
+    """
+    from factask.library.tasks import UnknownTaskError, get_task
+
+    ref = task.reference
+    try:
+        if isinstance(ref, str):
+            return get_task(ref)
+        if ref is not None:
+            return parse_graph(ref)
+    except (UnknownTaskError, GraphValidationError) as exc:
+        raise BenchmarkError(f"task {task.name!r}: its reference is not usable: {exc}") from None
+    try:
+        return get_task(task.name)
+    except UnknownTaskError:
+        return None
+
+
+def meaning_of(graph: TaskGraph | None, task: BenchTask) -> dict[str, Any]:
+    """A result line's meaning fields: ``faithful`` (True / False; None without a
+    reference) and ``meaning`` (the comparison, or why there is none)."""
+    reference = reference_graph(task)
+    if reference is None:
+        return {"faithful": None, "meaning": {"reference": None}}
+    if graph is None:
+        return {"faithful": False, "meaning": {"reference": reference.name,
+                                               "differences": ["no graph"]}}
+    result = compare(graph, reference)
+    return {"faithful": result.equivalent,
+            "meaning": {"reference": reference.name, **result.to_dict()}}
 
 
 # ----------------------------------------------------------------------- summary
@@ -370,10 +419,13 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
         tokens = sum(int(r.get("usage", {}).get("total_tokens", 0)) for r in done)
         cost = sum(float(r.get("usage", {}).get("cost_usd", 0.0)) for r in done)
         wall = sum(float(r.get("wall_s", 0.0)) for r in done)
+        judged = [r for r in done if r.get("faithful") is not None]
+        faithful = sum(1 for r in judged if r.get("faithful"))
         table[a] = {
             "tasks": n,
             **{lvl: (counts[lvl] / n if n else 0.0) for lvl in RATE_LEVELS},
-            "counts": counts,
+            "faithful": faithful / len(judged) if judged else None,
+            "counts": {**counts, "faithful": faithful, "with_reference": len(judged)},
             "not_expressible": sum(1 for r in rows if r.get("status") == "not_expressible"),
             "llm_errors": sum(1 for r in rows if r.get("status") == "llm_error"),
             "errors": sum(1 for r in rows if r.get("status") == "error"),
@@ -388,16 +440,20 @@ def summarize(records: Iterable[Mapping[str, Any]], approaches: Sequence[str],
 
 def summary_table(summary: Mapping[str, Any]) -> str:
     """The summary as a Markdown table (ours next to the research's numbers)."""
-    head = ("| approach | tasks | syntax % | runtime % | completion % | not expressible | "
-            "LLM errors | repairs | tokens | wall s | cost $ | research syntax / runtime / "
-            "completion % |")
-    lines = [head, "|" + "---|" * 12]
+    head = ("| approach | tasks | syntax % | runtime % | completion % | faithful % | "
+            "not expressible | LLM errors | repairs | tokens | wall s | cost $ | research "
+            "syntax / runtime / completion % |")
+    lines = [head, "|" + "---|" * 13]
     for a, row in summary["approaches"].items():
         ref = RESEARCH_RATES.get(a)
         ref_text = " / ".join(f"{x:.1f}" for x in ref) if ref else "-"
+        rate = row.get("faithful")
+        with_ref = row.get("counts", {}).get("with_reference", 0)
+        faithful = "-" if rate is None else f"{100 * rate:.1f} (of {with_ref})"
         lines.append(
             f"| {a} | {row['tasks']} | {100 * row['syntax']:.1f} | {100 * row['runtime']:.1f} | "
-            f"{100 * row['completion']:.1f} | {row['not_expressible']} | {row['llm_errors']} | "
+            f"{100 * row['completion']:.1f} | {faithful} | {row['not_expressible']} | "
+            f"{row['llm_errors']} | "
             f"{row['repairs']} | {row['tokens']} | {row.get('wall_s', 0.0):.0f} | "
             f"{row['cost_usd']:.4f} | {ref_text} |")
     return "\n".join(lines)
@@ -410,35 +466,39 @@ def write_summary(out_dir: str | os.PathLike[str], summary: Mapping[str, Any]) -
     md = ["# Generation benchmark", "",
           "Rates: fraction of tasks whose final graph reaches each level "
           "(syntax: valid graph; runtime: compiles, resets and steps; completion: the "
-          "oracle succeeds in at least half of the episodes).", "", summary_table(summary), ""]
+          "oracle succeeds in at least half of the episodes); faithful: of the tasks with a "
+          "reference graph, the fraction whose final graph is the same task "
+          "(`factask compare`).", "", summary_table(summary), ""]
     (out / "summary.md").write_text("\n".join(md))
     plot_rates(summary, out / "rates.png")
 
 
 def plot_rates(summary: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
-    """Grouped bar chart: per approach and level, this run's rate and the research's."""
+    """Grouped bar chart: per approach and level, this run's rate and the research's, and
+    the faithful rate (the research had none)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     approaches = list(summary["approaches"])
-    fig, axes = plt.subplots(1, len(RATE_LEVELS), figsize=(4.2 * len(RATE_LEVELS), 4.0),
-                             sharey=True)
+    panels = [*RATE_LEVELS, "faithful"]
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 4.0), sharey=True)
     width = 0.38
-    for ax, lvl in zip(axes, RATE_LEVELS, strict=True):
-        i = RATE_LEVELS.index(lvl)
+    for ax, lvl in zip(axes, panels, strict=True):
         xs = range(len(approaches))
-        ours = [100 * summary["approaches"][a][lvl] for a in approaches]
-        ref = [RESEARCH_RATES.get(a, (0.0, 0.0, 0.0))[i] for a in approaches]
+        ours = [100 * (summary["approaches"][a].get(lvl) or 0.0) for a in approaches]
         ax.bar([x - width / 2 for x in xs], ours, width, label="this run", color="#4e79a7")
-        ax.bar([x + width / 2 for x in xs], ref, width, label="research (GPT-4)",
-               color="#bab0ac")
+        if lvl in RATE_LEVELS:  # the research reported no meaning rate
+            i = RATE_LEVELS.index(lvl)
+            ref = [RESEARCH_RATES.get(a, (0.0, 0.0, 0.0))[i] for a in approaches]
+            ax.bar([x + width / 2 for x in xs], ref, width, label="research (GPT-4)",
+                   color="#bab0ac")
         for x, v in zip(xs, ours, strict=True):
             ax.text(x - width / 2, v + 1, f"{v:.0f}", ha="center", fontsize=8)
         ax.set_xticks(list(xs))
         ax.set_xticklabels(approaches, rotation=15, fontsize=8)
-        ax.set_title(f"{lvl} pass rate")
+        ax.set_title(f"{lvl} rate" if lvl == "faithful" else f"{lvl} pass rate")
         ax.set_ylim(0, 110)
     axes[0].set_ylabel("% of tasks")
     handles, labels = axes[0].get_legend_handles_labels()
@@ -458,10 +518,12 @@ __all__ = [
     "default_tasks_path",
     "finished_pairs",
     "load_tasks",
+    "meaning_of",
     "non_rigid_reason",
     "not_expressible_reason",
     "plot_rates",
     "read_results",
+    "reference_graph",
     "research_sample",
     "run_benchmark",
     "summarize",
