@@ -26,7 +26,9 @@ OUT_OF_SCOPE = ("rope", "piles", "google")
 MIN_SUCCESSES = 3
 
 
-@pytest.fixture(scope="module")
+# Session scope: xdist (loadgroup) interleaves other modules' tests on this worker, and a
+# module-scoped fixture is torn down at each module change, so the corpus ran twice.
+@pytest.fixture(scope="session")
 def corpus_records(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
     out = tmp_path_factory.mktemp("corpus") / "results.jsonl"
     subprocess.run([sys.executable, str(ROOT / "benchmarks" / "cliport_corpus.py"), str(CORPUS),
