@@ -57,6 +57,8 @@ CASES: dict[str, tuple[list[str], int, bool]] = {
     # No LLM is called: a bad approach is refused first (bad usage, exit 2).
     "generate": (["generate", "x: y", "-a", "no-such-approach"], 2, False),
     "benchmark": (["benchmark", "-a", "no-such-approach", "-o", "{tmp}/b"], 2, False),
+    # The meaning metric: a graph file against a library name, the same task.
+    "compare": (["compare", "{tmp}/hanoi.json", "towers-of-hanoi", "--json"], 0, True),
     # The dataset commands (cli/data_cmds.py): bad input, refused before any work.
     "collect": (["collect", "-o", "{tmp}/ds"], 2, False),
     "replay": (["replay", "{tmp}/no-dataset", "--json"], 2, False),

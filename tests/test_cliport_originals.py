@@ -30,8 +30,14 @@ MIN_SUCCESSES = 3
 # module-scoped fixture is torn down at each module change, so the corpus ran twice.
 @pytest.fixture(scope="session")
 def corpus_records(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
+    # Only the files whose classes are checked here: the rope, pile and Google classes
+    # have tests of their own (test_compat_cliport_ropes, test_piles) and ran for nothing.
+    folder = tmp_path_factory.mktemp("rigid")
+    for path in CORPUS.glob("*.py"):
+        if not any(s in path.stem.lower() for s in OUT_OF_SCOPE):
+            (folder / path.name).symlink_to(path)
     out = tmp_path_factory.mktemp("corpus") / "results.jsonl"
-    subprocess.run([sys.executable, str(ROOT / "benchmarks" / "cliport_corpus.py"), str(CORPUS),
+    subprocess.run([sys.executable, str(ROOT / "benchmarks" / "cliport_corpus.py"), str(folder),
                     "--episodes", "4", "--timeout", "300", "--out", str(out)],
                    check=True, capture_output=True, text=True, timeout=1800, cwd=ROOT)
     return {r["class"]: r for r in map(json.loads, out.read_text().splitlines()) if r["class"]}

@@ -122,9 +122,16 @@ def generate(
     temperature: float = typer.Option(None, "--temperature", help="($FACTASK_TEMPERATURE)"),
     seed: int = typer.Option(None, "--seed", help="Sampling seed ($FACTASK_SEED)."),
     response_format: str = typer.Option(None, "--response-format", help=_FORMAT_HELP),
+    strict: bool = typer.Option(False, "--strict", help="Write no graph when it leaves words "
+                                "of the proposal unread (level partial)."),
     as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
 ) -> None:
     """Generate a task graph with an LLM, verify it, write it.
+
+    Every colour, number, order, side, quantifier, shape, relation and kind word of the
+    proposal must be used by the graph: words it leaves unread are listed, and a graph
+    the oracle completes then ends at level ``partial`` (exit 1; ``--strict`` writes no
+    graph).
 
     Exit status: 0 completion reached, 1 not reached, 2 the configuration cannot
     work (key, model, quota, context; one line says the fix), 3 no LLM call
@@ -148,7 +155,14 @@ def generate(
         result = gen.generate(proposal, approach)
         succeeded = gen.client.succeeded
     path = None
-    if result.graph is not None:
+    if result.unread:
+        words = ", ".join(dict.fromkeys(repr(w["word"]) for w in result.unread))
+        say.print(f"[yellow]unread:[/yellow] {escape(words)}")
+        for w in {w["word"]: w for w in result.unread}.values():
+            say.print(f"      {w['word']!r} ({w['category']}): {w['why']}", markup=False)
+    if result.graph is not None and strict and result.unread:
+        say.print("no graph written (--strict): the graph leaves proposal words unread")
+    elif result.graph is not None:
         path = out or Path(f"{result.task}.json")
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(result.graph.to_json())

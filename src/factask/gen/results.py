@@ -80,6 +80,9 @@ class GenerationResult:
         llm_error: The generation stopped because the LLM could not be reached
             (an infrastructure problem, not the model's answer: a benchmark
             retries such tasks on resume).
+        unread: The proposal's words the final graph leaves unread (word, category,
+            why; :func:`factask.gen.reading.accounting.account`): with any, a graph
+            the oracle completes ends at ``partial``, not ``completion``.
     """
 
     approach: str
@@ -91,6 +94,7 @@ class GenerationResult:
     usage: Usage = field(default_factory=Usage)
     failure: str | None = None
     llm_error: bool = False
+    unread: list[dict[str, str]] = field(default_factory=list)
 
     @property
     def completed(self) -> bool:
@@ -109,6 +113,7 @@ class GenerationResult:
             "llm_error": self.llm_error,
             "graph": self.graph.to_dict() if self.graph is not None else None,
             "steps": [s.to_dict() for s in self.steps], "usage": self.usage.to_dict(),
+            "unread": [dict(w) for w in self.unread],
         }
 
     @classmethod
@@ -122,4 +127,5 @@ class GenerationResult:
             steps=[AttemptRecord.from_dict(s) for s in data.get("steps", [])],
             usage=Usage.from_dict(data.get("usage", {})), failure=data.get("failure"),
             llm_error=bool(data.get("llm_error", False)),
+            unread=[dict(w) for w in data.get("unread", [])],
         )

@@ -56,6 +56,7 @@ from factask.gen.llm import LLMClient, LLMError, LLMFatalError, LLMRequestError
 from factask.gen.memory import SubtaskMemory
 from factask.gen.prompts import render, schema_skeleton
 from factask.gen.reading import grounded
+from factask.gen.reading.accounting import account, unread_summary
 from factask.gen.reading.mentions import grounding_feedback, mentions, mentions_text
 from factask.gen.results import APPROACHES, GenerationResult
 from factask.gen.steps import Abort, Evaluation, StepCallback, StepRunner, read_strict
@@ -182,10 +183,25 @@ class Generator(StepRunner):
         except LLMError as exc:
             result.failure = f"LLM call failed: {exc}"
             result.llm_error = True
+        if result.graph is not None:
+            self._account(result, proposal)
         if result.failure is None and not result.completed:
             result.failure = f"stopped at level {result.level_reached!r}"
         self._result = None
         return result
+
+    @staticmethod
+    def _account(result: GenerationResult, proposal: str) -> None:
+        """Record the proposal's words the final graph leaves unread; a completed graph
+        with any ends at ``partial``: never a confident wrong task."""
+        assert result.graph is not None
+        accounting = account(proposal, result.graph)
+        result.unread = accounting.to_dict()["unread"]
+        if accounting.unread and result.level_reached == "completion":
+            result.level_reached = "partial"
+            if result.failure is None:
+                result.failure = ("the oracle completes the graph, but it leaves words of the "
+                                  f"proposal unread: {unread_summary(accounting.unread)}")
 
     # ---------------------------------------------------------- whole graphs
     def _evaluate_graph(self, task: str, desc: str, schema: dict[str, Any],

@@ -28,9 +28,11 @@ from factask.sim.episode import check_runtime, run_episode
 from factask.sim.robots.registry import robot_entry
 from factask.vocabulary.errors import FactaskError, GraphValidationError, InvalidValueError
 
-Level = Literal["none", "syntax", "runtime", "completion"]
-#: The ladder, lowest first.
-LEVELS: tuple[Level, ...] = ("none", "syntax", "runtime", "completion")
+Level = Literal["none", "syntax", "runtime", "partial", "completion"]
+#: The ladder, lowest first. ``partial``: the oracle completes the graph, but the graph
+#: leaves words of the proposal unread (:mod:`factask.gen.reading.accounting`); the
+#: verifier itself never returns it (it does not read proposals), the generator does.
+LEVELS: tuple[Level, ...] = ("none", "syntax", "runtime", "partial", "completion")
 
 
 def level_index(level: str) -> int:

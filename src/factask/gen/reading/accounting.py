@@ -69,7 +69,7 @@ ALSO_MEANS: dict[str, tuple[str, ...]] = {"box": ("container",), "block": ("box"
 #: Shape adjectives before a kind word say the object's shape ("a square base"), which
 #: its kind gives: read when an object of that kind is in the graph.
 SHAPE_ADJECTIVES = frozenset({"square", "round", "circular", "rectangular", "triangular",
-                              "flat", "cylindrical", "spherical"})
+                              "cylindrical", "spherical"})
 #: Words that count nothing ("a red block": "a" is an article).
 _ARTICLES = frozenset({"a", "an"})
 #: Relations that put objects in a region.
@@ -156,7 +156,8 @@ class _Facts:
         for v in graph.variables:
             self.kind_colours.setdefault(v.kind, set()).add(str(v.color))
         self.most_of_a_kind = max(per_kind.values(), default=0)
-        self.explicit_size = any(v.size is not None for v in graph.variables)
+        self.explicit_size = any(
+            tuple(v.extents) != tuple(kind_spec(v.kind).default_size) for v in graph.variables)
         self.positions = any(f.goal.type == "at_pose" or getattr(f.goal, "poses", None)
                              for f in graph.factors)
         self.modes = {getattr(f.goal, "mode", None) for f in graph.factors}
@@ -228,10 +229,13 @@ def _judge(words: list[str], k: int, facts: _Facts) -> tuple[str, bool, str] | N
     if w in SHAPES:
         return ("shape", *_shape(w, facts))
     if w in RELATIONS:
+        after = [x for x in words[k + 1:k + 3] if x not in _ARTICLES]
+        if w in ("into", "within") and after and after[0] in SHAPES:
+            return None  # "into a tower": the shape word says it, and is judged
         return ("relation", *_relation(w, facts))
     if w in SIZES:
-        return ("size", facts.explicit_size, "objects of given sizes" if facts.explicit_size
-                else "every object has its kind's default size")
+        return ("size", facts.explicit_size, "objects of sizes other than their kind's"
+                if facts.explicit_size else "every object has its kind's default size")
     kind, _, stem = kind_of(w)
     if kind is not None:
         kinds = {kind, *ALSO_KINDS.get(stem, ()), *ALSO_MEANS.get(kind, ())}

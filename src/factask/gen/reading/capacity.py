@@ -47,8 +47,10 @@ zone), and the plain goal list sent where no shape covers the named objects
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Callable, Collection, Sequence
+from dataclasses import replace
 from functools import lru_cache
 from itertools import islice, product
 from math import prod
@@ -145,7 +147,7 @@ def layout_problem(goal: dict[str, Any], found: Sequence[Mention]) -> str | None
         not a valid goal (the syntax level's to report) or when the search ran out
         of time (not proof that it cannot).
     """
-    return _problem((_key(goal),), tuple(found))
+    return _canonical_problem([goal], found)
 
 
 def goals_problem(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> str | None:
@@ -159,7 +161,30 @@ def goals_problem(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> 
     Returns:
         The solver's reason, or None (fits, not a valid graph, or out of time).
     """
-    return _problem(tuple(_key(g) for g in goals), tuple(found))
+    return _canonical_problem(goals, found)
+
+
+def _canonical_problem(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> str | None:
+    """:func:`_problem` with the names of ``found`` replaced by placeholders that sort
+    as they do and the colours left out: a layout depends on kinds, counts and what
+    moves, not on what things are called or their colour, so proposals alike in those
+    share one cached search (the reason is given back in the proposal's own names)."""
+    names = sorted({m.name for m in found})
+    width = len(str(len(names)))
+    to = {n: f"v{i:0{width}d}" for i, n in enumerate(names)}
+    back = {c: n for n, c in to.items()}
+
+    def rename(value: Any) -> Any:
+        if isinstance(value, list):
+            return [rename(v) for v in value]
+        return to.get(value, value) if isinstance(value, str) else value
+
+    canon = tuple(_key({k: rename(v) for k, v in g.items()}) for g in goals)
+    mentions = tuple(replace(m, name=to[m.name], color=None) for m in found)
+    reason = _problem(canon, mentions)
+    if reason is None:
+        return None
+    return re.sub(r"\bv\d+(?=\b|__)", lambda m: back.get(m.group(0), m.group(0)), reason)
 
 
 def _key(goal: dict[str, Any]) -> tuple[tuple[str, Any], ...]:

@@ -1,0 +1,105 @@
+"""A graph told in words: one templated sentence per goal, in the graph's order.
+
+"put the red block into the green zone, then put the blue block onto the red block".
+Every word it writes is one :mod:`factask.gen.reading.accounting` reads back from the
+same graph (a property the tests check on every library graph), so a description
+written here is what a faithful reading of the graph must account for in full: a
+proposal set with reference graphs can be made from graphs, and a reader tested on
+words whose meaning is known.
+"""
+
+from __future__ import annotations
+
+from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.variables import StateVariable
+
+#: Numbers written as words (a larger count is written in digits).
+_NUMBERS = {2: "two", 3: "three", 4: "four", 5: "five", 6: "six", 7: "seven", 8: "eight",
+            9: "nine", 10: "ten", 11: "eleven", 12: "twelve"}
+#: Kind names as a proposal writes them (a plural adds ``s``/``es``).
+_KIND_WORDS = {"holed_box": "box with a hole"}
+
+
+def _plural(word: str) -> str:
+    return f"{word}es" if word.endswith(("s", "x", "ch", "sh")) else f"{word}s"
+
+
+def noun(v: StateVariable, definite: bool = True) -> str:
+    """``the three red blocks``, ``the green zone``, ``a box with a hole``."""
+    kind = _KIND_WORDS.get(v.kind, v.kind)
+    head, _, tail = kind.partition(" ")
+    colour = f"{v.color} " if v.color else ""
+    if v.count > 1:
+        count = _NUMBERS.get(v.count, str(v.count))
+        words = f"{count} {colour}{_plural(head)}"
+    else:
+        words = f"{colour}{head}"
+    words = f"{words} {tail}" if tail else words
+    return f"the {words}" if definite else words
+
+
+def _goal_words(graph: TaskGraph, name: str) -> str:
+    f = graph.factor(name)
+    goal = f.goal
+    movers = " and ".join(noun(graph.variable(o)) for o in goal.objects)
+    anchors = {field: [noun(graph.variable(n)) for n in goal.anchor_names(field)]
+               for field in type(goal).anchor_fields}
+
+    def anchor(field: str) -> str:
+        return " and ".join(anchors.get(field, []))
+
+    t = goal.type
+    if t in ("in_zone", "inside"):
+        return f"put {movers} into {anchor('zone' if t == 'in_zone' else 'container')}"
+    if t == "on":
+        return f"put {movers} onto {anchor('support')}"
+    if t == "stack":
+        base = f" onto {anchor('base')}" if anchors.get("base") else ""
+        return f"stack {movers} into a tower{base}"
+    if t == "row":
+        on = f" onto {anchor('on')}" if anchors.get("on") else ""
+        along = f" along {anchor('along')}" if anchors.get("along") else ""
+        return f"put {movers} in a row{along}{on}"
+    if t == "circle":
+        centre = f" around {anchor('center')}" if anchors.get("center") else ""
+        return f"put {movers} in a circle{centre}"
+    if t == "aligned":
+        if goal.mode == "hole":
+            return f"put {movers} aligned through the hole of {anchor('reference')}"
+        mode = " into its corner" if goal.mode == "corner" else ""
+        return f"put {movers} aligned with {anchor('reference')}{mode}"
+    if t == "pile_in_zone":
+        return f"sweep {movers} into {anchor('zone')}"
+    if t == "rope_along":
+        ends = [anchor(x) for x in ("along", "start", "end") if anchors.get(x)]
+        return f"lay {movers} along {' and '.join(ends)}" if ends else f"lay {movers} straight"
+    if t == "at_pose":
+        frame = f" relative to {anchor('frame')}" if anchors.get("frame") else ""
+        return f"put {movers} at its given pose{frame}"
+    return f"put {movers} where its {t} goal says"
+
+
+def describe(graph: TaskGraph) -> str:
+    """``graph`` as a proposal: its goals in order, joined by ``then`` where the graph
+    orders them and ``and`` where it does not; objects no goal names are listed first
+    ("with the yellow ball on the table"), so every object is in the words.
+
+    Args:
+        graph: A valid task graph.
+
+    Returns:
+        One sentence.
+    """
+    order = graph.factor_order()
+    before = graph.dependency_graph()
+    parts: list[str] = []
+    for k, name in enumerate(order):
+        words = _goal_words(graph, name)
+        if k:
+            joined = any(before.has_edge(p, name) for p in order[:k])
+            words = (", then " if joined else ", and ") + words
+        parts.append(words)
+    named = {n for f in graph.factors for n in f.goal.variable_names()}
+    others = [noun(v) for v in graph.variables if v.name not in named]
+    extra = f"with {' and '.join(others)} on the table, " if others else ""
+    return extra + "".join(parts)
