@@ -38,8 +38,8 @@ from factask.gen.memory import SubtaskMemory, SubtaskMemoryError
 from factask.gen.prompts import render, schema_skeleton, schema_text
 from factask.gen.results import AttemptRecord, GenerationResult
 from factask.gen.verify import Level, Verifier, at_least, level_index
-from factask.graph.taskgraph import TaskGraph
-from factask.vocabulary.errors import FactaskError, InvalidValueError
+from factask.graph.taskgraph import TaskGraph, parse_graph
+from factask.vocabulary.errors import FactaskError, GraphValidationError, InvalidValueError
 
 T = TypeVar("T")
 
@@ -90,6 +90,39 @@ def read_strict(text: str, schema: Mapping[str, Any],
         raise AnswerError(f"The answer does not follow the schema ({len(problems)} "
                           f"problem(s)):\n{lines}{several_objects_note(count)}")
     return data
+
+
+def read_graph_answer(text: str, schema: Mapping[str, Any],
+                      overrides: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """A whole-graph answer: checked against the step's strict schema, or, where that
+    refuses it, accepted when it is a valid task graph all the same.
+
+    The strict schema is the grammar a small model is held to (fewer, shorter fields);
+    a capable model that writes what ``factask schema`` or ``factask show --json``
+    print (``fixed``, ``tolerances``, ``scope``, a long description) writes a valid
+    graph, and a valid graph is never refused.
+
+    Args:
+        text: The model's answer.
+        schema: The step's whole-graph schema.
+        overrides: Top-level values that are ours (the task's name).
+
+    Returns:
+        The graph's data (the strict schema's form, or the graph model's).
+
+    Raises:
+        AnswerError: not JSON, or neither the schema nor the graph model takes it
+            (the schema's problems are the feedback: the form the prompt asked for).
+    """
+    try:
+        return read_strict(text, schema, overrides)
+    except AnswerError as strict:
+        data, _ = read_json(text)
+        try:
+            graph = parse_graph({**data, **dict(overrides or {})})
+        except (GraphValidationError, TypeError):
+            raise strict from None
+        return graph.model_dump(mode="json", exclude_none=True)
 
 
 class StepRunner:
@@ -297,4 +330,4 @@ class StepRunner:
 
 
 __all__ = ["Abort", "Evaluation", "Outcome", "PromptBuilder", "StepCallback", "StepRunner",
-           "read_strict"]
+           "read_graph_answer", "read_strict"]

@@ -59,7 +59,14 @@ from factask.gen.reading import grounded
 from factask.gen.reading.accounting import account, unread_summary
 from factask.gen.reading.mentions import grounding_feedback, mentions, mentions_text
 from factask.gen.results import APPROACHES, GenerationResult
-from factask.gen.steps import Abort, Evaluation, StepCallback, StepRunner, read_strict
+from factask.gen.steps import (
+    Abort,
+    Evaluation,
+    StepCallback,
+    StepRunner,
+    read_graph_answer,
+    read_strict,
+)
 from factask.gen.verify import Level, Verifier, at_least, level_index
 from factask.graph.factors import SubtaskFactor
 from factask.graph.order import in_listed_order
@@ -211,7 +218,7 @@ class Generator(StepRunner):
             if expand is not None:  # a compact answer: its decisions -> the whole graph
                 data = expand(read_strict(text, schema))
             else:
-                data = normalise_weights(read_strict(text, schema, {"name": task}))
+                data = normalise_weights(read_graph_answer(text, schema, {"name": task}))
             # The task's name is ours, not the model's to choose.
             graph = self.verifier.syntax({**data, "name": task,
                                           "description": data.get("description") or desc})
