@@ -384,7 +384,10 @@ def _import_once(p: Path, class_name: str | None, seed: int,
     session = Session(seed=seed, rng=np.random.default_rng(seed))
     stage = f"loading {p.name}"
     try:
-        with cliport_aliases(), _seeded(seed), session_scope(session):
+        # The file's own prints go to stderr: stdout is the command's (one JSON value
+        # under --json), and a task that prints must not make it unreadable.
+        with cliport_aliases(), _seeded(seed), session_scope(session), \
+                contextlib.redirect_stdout(sys.stderr):
             try:
                 with _time_limit(time_limit), recording_refusals() as refused:
                     module = _exec_file(p)
