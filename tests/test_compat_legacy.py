@@ -56,3 +56,29 @@ def test_a_task_written_for_gensims_stack_imports() -> None:
     result = import_cliport(TASKS / "gensim_era_numpy_names.py", seed=0)
     assert 2 <= sum(v.kind == "block" for v in result.graph.variables) <= 3
     assert "product" not in vars(np)  # lent during the import only
+
+
+def test_debugging_imports_and_calls_do_nothing_and_are_reported(tmp_path: Path) -> None:
+    """``import IPython`` / ``ipdb`` at the top of a task file, ``embed()``,
+    ``set_trace()`` and ``breakpoint()`` in its reset: the import goes on (never waits
+    for a console), each call is a warning, and nothing is left in ``sys.modules``."""
+    import sys
+
+    source = (TASKS / "place_red_in_green.py").read_text()
+    source = ("import IPython\nimport ipdb\nfrom IPython import embed\n"
+              "from IPython.core.debugger import set_trace\n" + source)
+    source = source.replace("    def reset(self, env):\n",
+                            "    def reset(self, env):\n        embed()\n        ipdb.set_trace()\n"
+                            "        set_trace()\n        breakpoint()\n", 1)
+    path = tmp_path / "debugging.py"
+    path.write_text(source)
+    before = {name: sys.modules.get(name) for name in ("IPython", "ipdb")}
+    hook = sys.breakpointhook
+    result = import_cliport(path)
+    assert result.graph.factors
+    said = " ".join(result.warnings)
+    for call in ("IPython.embed()", "ipdb.set_trace()", "IPython.core.debugger.set_trace()",
+                 "breakpoint()"):
+        assert f"{call} ignored" in said, said
+    assert {name: sys.modules.get(name) for name in ("IPython", "ipdb")} == before
+    assert sys.breakpointhook is hook

@@ -32,6 +32,7 @@ from pydantic import ValidationError
 
 from factask.compat.cliport import cameras, grippers, primitives, pybullet_stub, task, utils
 from factask.compat.cliport.convert import build_graph, kebab, object_names
+from factask.compat.cliport.debugging import debugging_stand_ins
 from factask.compat.cliport.errors import (
     CliportImportError,
     NoGoals,
@@ -159,7 +160,9 @@ def _alias_modules() -> dict[str, types.ModuleType]:
 def cliport_aliases() -> Iterator[None]:
     """Make ``cliport.*`` and ``pybullet`` importable as factask's stand-ins, and
     lend the GenSim-era NumPy / ``random`` names task code uses
-    (:func:`~factask.compat.cliport.legacy.legacy_names`).
+    (:func:`~factask.compat.cliport.legacy.legacy_names`) and do-nothing debugging
+    modules (:mod:`factask.compat.cliport.debugging`: ``IPython``, ``ipdb``,
+    ``breakpoint()``).
 
     Whatever those names meant before (a real install, nothing) is restored on
     exit, so the aliases never leak into the rest of the process.
@@ -167,7 +170,7 @@ def cliport_aliases() -> Iterator[None]:
     saved = {name: sys.modules.get(name) for name in ALIAS_NAMES}
     sys.modules.update(_alias_modules())
     try:
-        with legacy_names():
+        with legacy_names(), debugging_stand_ins():
             yield
     finally:
         for name, prev in saved.items():
