@@ -26,6 +26,7 @@ Conventions fixed here (shared with the MJCF asset builders):
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -218,7 +219,17 @@ def footprint_points(obj: SceneObject, pose: Pose, per_axis: int = 3,
     rather than inside it (a polygon of points on the rim cuts its bulges, up to
     1.5 mm on a 4 cm ball), so "all points inside a convex area" proves the whole
     disk is: what layout sampling needs; checks keep the rim itself."""
-    if obj.is_round:
+    grid = _unit_footprint(bool(obj.is_round), per_axis, covering)
+    quat = np.array([1.0, 0.0, 0.0, 0.0]) if obj.kind in SPHERE_KINDS else pose.quat
+    pts = pose.pos + (grid * obj.half) @ rotation_matrix(quat).T
+    return pts[:, :2]
+
+
+@functools.lru_cache(maxsize=32)
+def _unit_footprint(round_: bool, per_axis: int, covering: bool) -> np.ndarray:
+    """:func:`footprint_points`' sample points in half-extent units (read-only: built
+    once, the layout search asks for them thousands of times)."""
+    if round_:
         ang = np.linspace(0.0, 2 * math.pi, ROUND_SAMPLES, endpoint=False)
         rim = 1.0 / math.cos(math.pi / ROUND_SAMPLES) if covering else 1.0
         disk = np.concatenate([[[0.0, 0.0]], rim * np.stack([np.cos(ang), np.sin(ang)], 1)])
@@ -226,9 +237,8 @@ def footprint_points(obj: SceneObject, pose: Pose, per_axis: int = 3,
     else:
         t = np.linspace(-1.0, 1.0, per_axis)
         grid = np.array([[a, b, c] for a in t for b in t for c in (-1.0, 1.0)])
-    quat = np.array([1.0, 0.0, 0.0, 0.0]) if obj.kind in SPHERE_KINDS else pose.quat
-    pts = pose.pos + (grid * obj.half) @ rotation_matrix(quat).T
-    return pts[:, :2]
+    grid.setflags(write=False)
+    return grid
 
 
 def _axes(corners: np.ndarray) -> np.ndarray:
