@@ -308,3 +308,9 @@ def test_render_writes_the_asked_size_from_every_view(camera: str, tmp_path: Pat
     assert result.exit_code == 0, result.output
     image = iio.imread(out)
     assert image.shape == (40, 72, 3) and image.std() > 1.0
+
+
+@pytest.mark.parametrize("command", ["eval-policy", "collect"])
+def test_help_keeps_square_brackets(command: str) -> None:
+    """Help is plain text: an extra's name in brackets is not read as a style tag."""
+    assert "pip install 'factask[ray]'" in " ".join(_cli(command, "--help").output.split())

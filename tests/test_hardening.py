@@ -11,7 +11,9 @@ import time
 
 import numpy as np
 import pytest
+from typer.testing import CliRunner
 
+from factask.cli import app
 from factask.graph import GraphValidationError, parse_graph
 from factask.scene.collision import LayoutError
 from factask.sim.layout.reset import reset_layout
@@ -231,3 +233,47 @@ def test_a_batch_over_a_folder_without_task_files_is_refused(tmp_path) -> None:
     result = _cli("import-cliport-batch", str(tmp_path), "-o", str(tmp_path / "r.jsonl"))
     assert result.exit_code == 2, result.output
     assert "has no .py files" in result.output
+
+
+def test_a_repeated_json_key_is_refused_naming_it(tmp_path) -> None:
+    """Plain JSON keeps the last of two equal keys silently (issue 37, item 7)."""
+    from factask.library import get_task
+
+    text = get_task("put-block-in-bowl").to_json()
+    doubled = text.replace('"name": ', '"name": "ghost", "name": ', 1)
+    with pytest.raises(GraphValidationError, match=r"repeats the key.*'name'"):
+        parse_graph(doubled)
+    emptied = text[:-1] + ', "variables": []}'
+    with pytest.raises(GraphValidationError, match="'variables'"):
+        parse_graph(emptied)
+    path = tmp_path / "dup.json"
+    path.write_text(doubled)
+    result = CliRunner().invoke(app, ["validate", str(path)])
+    assert result.exit_code == 1 and "repeats the key" in result.output
+
+
+def test_a_graph_with_no_factors_is_one_rule_for_validate_and_run(tmp_path) -> None:
+    """Valid as a fragment, not as a task: validate and run say so alike (item 6)."""
+    path = tmp_path / "empty.json"
+    path.write_text('{"name": "empty"}')
+    checked = CliRunner().invoke(app, ["validate", str(path)])
+    ran = CliRunner().invoke(app, ["run", str(path)])
+    assert checked.exit_code == 1 and "has no factors" in checked.output
+    assert ran.exit_code == 2 and "has no factors" in ran.output
+
+
+@pytest.mark.parametrize("command", [["validate", "{dir}/g.json"], ["run", "{dir}/g.json"],
+                                     ["import-cliport", "{dir}/t.py", "-o", "{dir}/o.json"]])
+def test_a_fifo_as_the_input_is_refused_not_waited_on(command: list[str], tmp_path) -> None:
+    """Reading a FIFO blocks until something writes to it (issue 37, item 2)."""
+    import os
+    import subprocess
+    import sys
+
+    os.mkfifo(tmp_path / "g.json")
+    os.mkfifo(tmp_path / "t.py")
+    args = [a.replace("{dir}", str(tmp_path)) for a in command]
+    # A blocked read would never return: the timeout turns that into a failure.
+    done = subprocess.run([sys.executable, "-m", "factask", *args], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode in (1, 2) and "not a regular file" in done.stderr + done.stdout

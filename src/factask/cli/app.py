@@ -15,6 +15,9 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    # Help text is plain text: with rich markup on, "pip install 'factask[ray]'" lost
+    # its "[ray]" (read as a style tag).
+    rich_markup_mode=None,
 )
 
 def _version(value: bool) -> None:

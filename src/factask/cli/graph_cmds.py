@@ -25,6 +25,11 @@ def validate(
 ) -> None:
     """Check a task-graph JSON file; exit 1 and list every problem if it is invalid
     (2 if it cannot be read)."""
+    if str(file) != "-" and file.exists() and not file.is_file():
+        err_console.print(f"cannot read {file}: not a regular file (a FIFO, a device or a "
+                          "folder); give a graph file or '-' for standard input",
+                          style="red", markup=False)
+        raise typer.Exit(2)
     try:
         text = typer.get_text_stream("stdin").read() if str(file) == "-" else file.read_text()
     except OSError as exc:
@@ -39,6 +44,9 @@ def validate(
     except GraphValidationError as exc:
         _report(file, as_json, exc.problems)
         raise typer.Exit(1) from None
+    if graph.task_problems():  # valid as a graph, but no task `run` would take
+        _report(file, as_json, graph.task_problems())
+        raise typer.Exit(1)
     if as_json:
         typer.echo(json.dumps({"file": str(file), "valid": True, "task": graph.name,
                                "problems": [], "order": graph.factor_order()}))

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections import Counter
 from collections.abc import Iterable, Mapping
 from typing import Any
 
@@ -175,6 +176,16 @@ class TaskGraph(BaseModel):
     def problems(self) -> list[Problem]:
         """Every whole-graph problem (empty if the graph is valid)."""
         return graph_problems(self)
+
+    def task_problems(self) -> list[Problem]:
+        """Why this valid graph is not a task that can run (empty when it can): a task
+        needs at least one factor. A graph with none is a valid fragment (the identity
+        of :func:`~factask.graph.templates.compose`), not a task: ``factask validate``
+        and every command that runs a task read this one rule."""
+        if self.factors:
+            return []
+        return [Problem("", "factors", f"graph {self.name!r} has no factors",
+                        "add at least one subtask factor")]
 
     def ensure_valid(self) -> TaskGraph:
         """Check every field again, then the graph as a whole; return it unchanged if
@@ -367,6 +378,22 @@ def problems_from_pydantic(error: ValidationError, data: Any) -> list[Problem]:
     return out
 
 
+class _DuplicateKeys(ValueError):
+    def __init__(self, keys: list[str]) -> None:
+        super().__init__(keys)
+        self.keys = ", ".join(repr(k[:40]) for k in keys[:5])
+
+
+def _no_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """``json.loads``' object hook: an object that gives a key twice is refused (plain
+    JSON keeps the last one silently: ``{"name": "a", "name": "b"}`` would read as b)."""
+    out = dict(pairs)
+    if len(out) != len(pairs):
+        counts = Counter(k for k, _ in pairs)
+        raise _DuplicateKeys([k for k, n in counts.items() if n > 1])
+    return out
+
+
 def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGraph:
     """Parse outside input into a fully validated :class:`TaskGraph`.
 
@@ -387,7 +414,11 @@ def parse_graph(source: str | bytes | Mapping[str, Any] | TaskGraph) -> TaskGrap
         if isinstance(source, str):
             source = source.removeprefix("\ufeff")  # as json.loads does for bytes
         try:
-            data = json.loads(source)
+            data = json.loads(source, object_pairs_hook=_no_duplicate_keys)
+        except _DuplicateKeys as exc:
+            raise GraphValidationError(
+                [Problem("", "", f"a JSON object repeats the key(s) {exc.keys}: which one "
+                         "counts would be a guess", "give each key once")]) from None
         except RecursionError:
             raise GraphValidationError(
                 [Problem("", "", "JSON nested too deeply", "send one flat task-graph object")]

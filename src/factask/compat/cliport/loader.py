@@ -224,6 +224,9 @@ def _user_error(what: str, exc: BaseException, path: Path) -> CliportImportError
 
 
 def _exec_file(path: Path) -> types.ModuleType:
+    if path.exists() and not path.is_file():  # a FIFO or a device would block the read
+        raise CliportImportError(f"cannot read {path}: not a regular file (a FIFO, a "
+                                 "device or a folder); give a task file")
     try:
         source = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:

@@ -153,9 +153,9 @@ def _check_args(graph: TaskGraph, robot: str | None, timestep: float,
                 validate: bool = True) -> None:
     if validate:
         graph.ensure_valid()
-    if not graph.factors:
-        raise CompileError("", f"graph {graph.name!r} has no factors",
-                           "add at least one subtask factor")
+    not_a_task = graph.task_problems()
+    if not_a_task:
+        raise CompileError("", not_a_task[0].message, not_a_task[0].fix)
     if robot is not None and robot not in ROBOT_NAMES:
         raise CompileError("", f"unknown robot {robot!r}",
                            f"use one of {', '.join(ROBOT_NAMES)} or None")
