@@ -277,3 +277,26 @@ def test_a_fifo_as_the_input_is_refused_not_waited_on(command: list[str], tmp_pa
     done = subprocess.run([sys.executable, "-m", "factask", *args], capture_output=True,
                           text=True, timeout=120)
     assert done.returncode in (1, 2) and "not a regular file" in done.stderr + done.stdout
+
+
+def test_every_problem_is_under_a_kilobyte_in_every_output_form(tmp_path) -> None:
+    """A goal type of a million characters: pydantic quotes it whole; each problem is
+    cut once, where it is made (issue 37, item 9)."""
+    from factask.library import get_task
+
+    data = json.loads(get_task("put-block-in-bowl").to_json())
+    data["factors"][0]["goal"]["type"] = "x" * 1_000_000
+    data["variables"][0]["name"] = "y" * 5_000
+    path = tmp_path / "huge.json"
+    path.write_text(json.dumps(data))
+    with pytest.raises(GraphValidationError) as caught:
+        parse_graph(path.read_text())
+    assert caught.value.problems
+    for problem in caught.value.problems:
+        assert len(str(problem)) <= 1024 and len(json.dumps(vars(problem))) <= 1024
+    report = CliRunner().invoke(app, ["validate", str(path), "--json"])
+    assert report.exit_code == 1
+    for problem in json.loads(report.stdout)["problems"]:
+        assert len(json.dumps(problem)) <= 1024
+    plain = CliRunner().invoke(app, ["validate", str(path)])
+    assert max(len(line) for line in plain.output.splitlines()) <= 1024

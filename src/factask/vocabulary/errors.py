@@ -13,6 +13,9 @@ from dataclasses import dataclass
 QUOTE_LIMIT = 80
 #: A validation report lists at most this many problems, then says how many more.
 MAX_PROBLEMS_LISTED = 25
+#: Most characters of each part of a :class:`Problem` (node, field, message, fix): a
+#: problem is under 1 KB in every output form, text or JSON, whatever the input held.
+PROBLEM_PART_LIMITS = {"node": 120, "field": 160, "message": 400, "fix": 240}
 
 
 def quote(text: object, limit: int = QUOTE_LIMIT) -> str:
@@ -59,6 +62,14 @@ class Problem:
     field: str
     message: str
     fix: str = ""
+
+    def __post_init__(self) -> None:
+        # A message may quote the input (pydantic quotes a whole bad value): each part
+        # is cut here, once, so no output form has to remember to.
+        for part, limit in PROBLEM_PART_LIMITS.items():
+            value = getattr(self, part)
+            if not isinstance(value, str) or len(value) > limit:
+                object.__setattr__(self, part, clip(value, limit - 24))
 
     def __str__(self) -> str:
         # Node names come from the user's input: quoted when they could mislead.
