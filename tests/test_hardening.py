@@ -300,3 +300,25 @@ def test_every_problem_is_under_a_kilobyte_in_every_output_form(tmp_path) -> Non
         assert len(json.dumps(problem)) <= 1024
     plain = CliRunner().invoke(app, ["validate", str(path)])
     assert max(len(line) for line in plain.output.splitlines()) <= 1024
+
+
+@pytest.mark.parametrize(("shell", "says"), [
+    ("factask show towers-of-hanoi --json >/dev/full", "No space left"),
+    ("factask run put-block-in-bowl --json >&-", "standard output is closed"),
+    ("factask validate - <&-", "standard input is closed"),
+])
+def test_a_closed_or_full_standard_stream_is_one_line_and_exit_2(shell: str, says: str) -> None:
+    """Not a traceback, not a silent exit 0 with the result lost (issue 37, item 4)."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = str(Path(sys.executable).with_name("factask"))
+    if not Path(script).exists():
+        script = shutil.which("factask") or pytest.skip("no factask console script")
+    done = subprocess.run(["bash", "-c", shell.replace("factask", script, 1)],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 2, (done.returncode, done.stderr[-500:])
+    assert says in done.stderr and "Traceback" not in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1

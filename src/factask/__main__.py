@@ -1,5 +1,5 @@
 """``python -m factask`` runs the command line."""
 
-from factask.cli import app
+from factask.cli import main
 
-app()
+main()
