@@ -322,3 +322,19 @@ def test_a_closed_or_full_standard_stream_is_one_line_and_exit_2(shell: str, say
     assert done.returncode == 2, (done.returncode, done.stderr[-500:])
     assert says in done.stderr and "Traceback" not in done.stderr
     assert len(done.stderr.strip().splitlines()) == 1
+
+
+def test_the_task_code_time_limit_is_an_option_the_error_names(tmp_path) -> None:
+    """A loop in reset is stopped at --time-limit, and the error says how to change it
+    (issue 37, item 5); the help states the loader's default."""
+    from pathlib import Path
+
+    from factask.compat.cliport.loader import TIME_LIMIT_S
+
+    bad = Path(__file__).parent / "cliport_tasks" / "bad" / "hangs.py"
+    result = CliRunner().invoke(app, ["run", f"{bad}", "--time-limit", "0.5"])
+    assert result.exit_code == 2 and "0.5 s limit" in result.output
+    assert "--time-limit" in result.output
+    for command in ("run", "import-cliport"):
+        text = " ".join(CliRunner().invoke(app, [command, "--help"]).output.split())
+        assert f"default {TIME_LIMIT_S:g}," in text

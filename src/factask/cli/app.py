@@ -118,3 +118,9 @@ def check_robot(robot: str) -> None:
         Console(stderr=True, soft_wrap=True).print(
             f"unknown robot {robot!r} (use one of {', '.join(ROBOT_NAMES)})", markup=False)
         raise typer.Exit(2)
+
+
+#: ``--time-limit``'s help (``run``, ``import-cliport``): what it bounds and why.
+TIME_LIMIT_HELP = ("Seconds a CLIPort task file's own code (module and reset) may run "
+                   "before it is stopped (default 60, the loader's TIME_LIMIT_S): a real "
+                   "reset takes milliseconds, so only a loop that never ends reaches it.")

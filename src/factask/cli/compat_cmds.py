@@ -14,7 +14,14 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from factask.cli.app import JSON_HELP, MAX_SEED, ROBOT_HELP, app, check_robot
+from factask.cli.app import (
+    JSON_HELP,
+    MAX_SEED,
+    ROBOT_HELP,
+    TIME_LIMIT_HELP,
+    app,
+    check_robot,
+)
 
 console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
@@ -35,6 +42,8 @@ def import_cliport_cmd(
                              help="Seed of the reset's random draws."),
     out: Path = typer.Option(..., "--out", "-o", help="Where to write the graph JSON."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="Do not print the warnings."),
+    time_limit: float | None = typer.Option(None, "--time-limit", min=0.1, max=86_400,
+                                            help=TIME_LIMIT_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object: file, ok, "
                                  "class, task, variables, factors, milestones, warnings, "
                                  "error, out."),
@@ -43,7 +52,8 @@ def import_cliport_cmd(
     from factask.compat.cliport import CliportImportError, import_cliport
 
     try:
-        result = import_cliport(file, class_name=class_name, seed=seed)
+        limit = {} if time_limit is None else {"time_limit": time_limit}
+        result = import_cliport(file, class_name=class_name, seed=seed, **limit)
     except CliportImportError as exc:
         if as_json:
             typer.echo(json.dumps({"file": str(file), "ok": False, "error": str(exc)}))

@@ -18,6 +18,7 @@ from factask.cli.app import (
     MAX_EPISODES,
     MAX_SEED,
     ROBOT_HELP,
+    TIME_LIMIT_HELP,
     app,
     check_camera,
     check_robot,
@@ -43,12 +44,15 @@ def load_task(spec: str, seed: int = 0) -> TaskGraph:
     return load_task_source(spec, seed)[0]
 
 
-def load_task_source(spec: str, seed: int = 0) -> tuple[TaskGraph, Any]:
+def load_task_source(spec: str, seed: int = 0,
+                     time_limit: float | None = None) -> tuple[TaskGraph, Any]:
     """A task and, for a CLIPort task file, its import result (None otherwise).
 
     Args:
         spec: ``NAME`` (library), ``FILE.json``, or ``FILE.py[:ClassName]``.
         seed: Seed for CLIPort task files (their ``reset`` samples poses).
+        time_limit: Seconds a CLIPort task file's own code may run (``--time-limit``;
+            None: the loader's default).
 
     Raises:
         typer.Exit: with code 2 and a message when the task cannot be loaded.
@@ -63,7 +67,8 @@ def load_task_source(spec: str, seed: int = 0) -> tuple[TaskGraph, Any]:
         from factask.compat.cliport import import_cliport
 
         try:
-            result = import_cliport(path_part, class_name or None, seed=seed)
+            limit = {} if time_limit is None else {"time_limit": time_limit}
+            result = import_cliport(path_part, class_name or None, seed=seed, **limit)
         except FactaskError as exc:
             err_console.print(f"cannot import {spec}: {exc}", style="red", markup=False)
             raise typer.Exit(2) from None
@@ -184,6 +189,8 @@ def run(
         "weight), XY within pos_eps and yaw within rot_eps modulo symmetry (z ignored), "
         "a finished goal never re-checked, success at reward >= 0.99. Shown beside "
         "factask's own checks."),
+    time_limit: float | None = typer.Option(None, "--time-limit", min=0.1, max=86_400,
+                                            help=TIME_LIMIT_HELP),
 ) -> None:
     """Run the scripted oracle on a task and report reward and success per episode.
 
@@ -196,7 +203,7 @@ def run(
     check_robot(robot)
     check_video(video)
     frame_size = _frame_size(size)
-    graph, source = load_task_source(task, seed)
+    graph, source = load_task_source(task, seed, time_limit)
     env = _compile(graph, robot)
     recording = None
     if video is not None:

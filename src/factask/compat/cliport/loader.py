@@ -404,7 +404,8 @@ def _import_once(p: Path, class_name: str | None, seed: int,
                     instance = _run_reset(cls, session, p, refused)
             except _OutOfTime as exc:
                 raise TaskTimeout(f"{stage} ran past the {time_limit:g} s limit (a loop "
-                                  f"that never ends?); stopped at {_where(exc, p)}") from None
+                                  f"that never ends? --time-limit sets the limit); stopped "
+                                  f"at {_where(exc, p)}") from None
             for message in dict.fromkeys(refused):
                 session.warn(f"the task caught factask's refusal and went on without it: "
                              f"{message}")
