@@ -338,3 +338,16 @@ def test_the_task_code_time_limit_is_an_option_the_error_names(tmp_path) -> None
     for command in ("run", "import-cliport"):
         text = " ".join(CliRunner().invoke(app, [command, "--help"]).output.split())
         assert f"default {TIME_LIMIT_S:g}," in text
+
+
+@pytest.mark.parametrize("field", ["size", "fixed"])
+def test_a_default_set_back_to_none_is_refused_typed(field: str) -> None:
+    """``v.size = None`` raised a bare AssertionError; ``bowl.fixed = None`` made a fixed
+    bowl movable, silently (issue 37, item 8)."""
+    from factask.library import get_task
+
+    graph = get_task("put-block-in-bowl")
+    variable = next(v for v in graph.variables if v.kind == "bowl")
+    setattr(variable, field, None)
+    with pytest.raises(GraphValidationError, match=rf"{variable.name}\.{field}: {field} is None"):
+        graph.ensure_valid()

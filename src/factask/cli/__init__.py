@@ -26,9 +26,15 @@ from factask.cli import (  # noqa: F401 - importing a module registers its comma
     run_cmds,
 )
 from factask.cli.app import app
+from factask.vocabulary.errors import FactaskError
 
 #: Exit status when the output cannot be written (as for bad usage or input).
 EXIT_STREAM = 2
+
+
+class ClosedStreamError(FactaskError, OSError):
+    """A standard stream the shell closed was read or written (an ``OSError`` too, as
+    a stream's own errors are, so :func:`main` and the commands treat it alike)."""
 
 
 class _ClosedStream(io.TextIOBase):
@@ -39,7 +45,7 @@ class _ClosedStream(io.TextIOBase):
         self.stream_name = name
 
     def _closed(self, *_: object) -> None:
-        raise OSError(errno.EBADF, f"standard {self.stream_name} is closed")
+        raise ClosedStreamError(errno.EBADF, f"standard {self.stream_name} is closed")
 
     write = read = readline = _closed
 
@@ -74,4 +80,4 @@ def main() -> None:
     sys.exit(code)
 
 
-__all__ = ["app", "main"]
+__all__ = ["ClosedStreamError", "app", "main"]

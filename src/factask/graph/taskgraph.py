@@ -205,6 +205,12 @@ class TaskGraph(BaseModel):
             TaskGraph.model_validate(data)
         except ValidationError as exc:
             raise GraphValidationError(problems_from_pydantic(exc, data)) from None
+        unset = [Problem(v.name, f, f"{f} is None: it was set after the variable was made "
+                         "(None means the kind's default only when a variable is made)",
+                         f"give a {f}, or make the variable again for its kind's default")
+                 for v in self.variables for f in v.unset_defaults()]
+        if unset:
+            raise GraphValidationError(unset)
         found = self.problems()
         if found:
             raise GraphValidationError(found)

@@ -137,9 +137,23 @@ class StateVariable(BaseModel):
 
     @property
     def extents(self) -> tuple[float, float, float]:
-        """Full extents (never None after validation)."""
-        assert self.size is not None
+        """Full extents (never None after validation).
+
+        Raises:
+            InvalidValueError: ``size`` was set to None after the variable was made.
+        """
+        if self.size is None:
+            raise InvalidValueError(f"variable {self.name!r}: size is None (set after it was "
+                                    "made); give a size, or make the variable again for "
+                                    "its kind's default")
         return self.size
+
+    def unset_defaults(self) -> list[str]:
+        """Fields filled with the kind's default when the variable was made that were set
+        back to None afterwards (``v.size = None``): None means "the default" only at
+        construction, so such a variable is refused, not silently changed (a fixed bowl
+        read as movable)."""
+        return [f for f in ("size", "fixed") if getattr(self, f) is None]
 
     @property
     def is_fixed(self) -> bool:
