@@ -314,3 +314,19 @@ def test_render_writes_the_asked_size_from_every_view(camera: str, tmp_path: Pat
 def test_help_keeps_square_brackets(command: str) -> None:
     """Help is plain text: an extra's name in brackets is not read as a style tag."""
     assert "pip install 'factask[ray]'" in " ".join(_cli(command, "--help").output.split())
+
+
+def test_piped_output_is_never_wrapped_or_cut(tmp_path: Path) -> None:
+    """Piped (CliRunner is no terminal), a long line stays one line and a table cell is
+    never cut at rich's 80 columns (issue 37, item 11)."""
+    graph = get_task("towers-of-hanoi")
+    path = tmp_path / "hanoi.json"
+    path.write_text(graph.to_json())
+    order = " -> ".join(graph.factor_order())
+    validated = _cli("validate", path)
+    assert validated.exit_code == 0 and order in validated.output  # one line, not split
+    data = json.loads(graph.to_json())
+    data["factors"][0]["description"] = "a language goal long enough to pass 80 columns " * 3
+    path.write_text(json.dumps(data))
+    shown = _cli("show", path)
+    assert shown.exit_code == 0 and data["factors"][0]["description"].strip() in shown.output

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import sys
+from typing import Any
+
 import typer
 from rich.console import Console
 
@@ -124,3 +127,23 @@ def check_robot(robot: str) -> None:
 TIME_LIMIT_HELP = ("Seconds a CLIPort task file's own code (module and reset) may run "
                    "before it is stopped (default 60, the loader's TIME_LIMIT_S): a real "
                    "reset takes milliseconds, so only a loop that never ends reaches it.")
+
+
+#: Width of a console whose stream is not a terminal: rich's default there is 80
+#: columns, which cut table cells and split long lines of a piped run.
+PIPE_WIDTH = 1000
+
+
+def make_console(stderr: bool = False, **kwargs: Any) -> Console:
+    """A command's console: on a terminal as rich sizes it; piped or redirected, lines
+    are never wrapped and tables never cut (``render ... | cat`` kept ``success=True``
+    whole, ``validate g.json | cat`` its order line).
+
+    Args:
+        stderr: Write to stderr (messages, progress) instead of stdout.
+        **kwargs: Other :class:`rich.console.Console` options (``highlight`` ...).
+    """
+    stream = sys.stderr if stderr else sys.stdout
+    piped = not (stream is not None and hasattr(stream, "isatty") and stream.isatty())
+    return Console(stderr=stderr, soft_wrap=True, width=PIPE_WIDTH if piped else None,
+                   **kwargs)

@@ -11,7 +11,6 @@ import json
 from pathlib import Path
 
 import typer
-from rich.console import Console
 from rich.markup import escape
 
 from factask.cli.app import (
@@ -21,10 +20,11 @@ from factask.cli.app import (
     TIME_LIMIT_HELP,
     app,
     check_robot,
+    make_console,
 )
 
-console = Console()
-err_console = Console(stderr=True, soft_wrap=True)
+console = make_console()
+err_console = make_console(stderr=True)
 
 _EXEC_WARNING = ("The task file is Python code and IS EXECUTED (not sandboxed): "
                  "only import files you trust.")

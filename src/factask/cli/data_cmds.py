@@ -7,14 +7,13 @@ import os
 from pathlib import Path
 
 import typer
-from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-from factask.cli.app import MAX_EPISODES, ROBOT_HELP, app, check_robot
+from factask.cli.app import MAX_EPISODES, ROBOT_HELP, app, check_robot, make_console
 from factask.vocabulary.errors import FactaskError
 
-console = Console()
-err_console = Console(stderr=True, soft_wrap=True)
+console = make_console()
+err_console = make_console(stderr=True)
 
 SIZE_HELP = "Camera image size WIDTHxHEIGHT (even numbers; Ravens' is 640x480)."
 

@@ -14,13 +14,13 @@ from typing import TYPE_CHECKING, Any, NoReturn
 import typer
 from rich.console import Console
 
-from factask.cli.app import JSON_HELP, ROBOT_HELP, app, check_robot, fail
+from factask.cli.app import JSON_HELP, ROBOT_HELP, app, check_robot, fail, make_console
 
 if TYPE_CHECKING:
     from factask.gen.strategies import Generator
 
-console = Console(highlight=False)
-err_console = Console(stderr=True, highlight=False)
+console = make_console(highlight=False)
+err_console = make_console(stderr=True, highlight=False)
 
 _APPROACH_HELP = "one-shot (baseline), variables-first (approach 1) or subtasks-first (approach 2)"
 

@@ -6,14 +6,13 @@ import json
 from pathlib import Path
 
 import typer
-from rich.console import Console
 
-from factask.cli.app import app
+from factask.cli.app import app, make_console
 from factask.graph import GraphValidationError, TaskGraph, parse_graph
 from factask.vocabulary.errors import Problem, problem_lines
 
-console = Console()
-err_console = Console(stderr=True, soft_wrap=True)
+console = make_console()
+err_console = make_console(stderr=True)
 
 
 @app.command()

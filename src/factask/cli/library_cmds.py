@@ -10,18 +10,17 @@ import json
 from pathlib import Path
 
 import typer
-from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from factask.cli.app import app
+from factask.cli.app import app, make_console
 from factask.graph import SubtaskFactor, TaskGraph
 from factask.library import UnknownTaskError, get_task, list_tasks, task_names
 from factask.library.tags import matches_tags, reuse_stats
 from factask.vocabulary.errors import quote
 
-console = Console()
-err_console = Console(stderr=True, soft_wrap=True)
+console = make_console()
+err_console = make_console(stderr=True)
 
 
 @app.command("list")

@@ -24,12 +24,13 @@ from factask.cli.app import (
     check_robot,
     check_video,
     fail,
+    make_console,
     parse_size,
 )
 from factask.graph import FactaskError, GraphValidationError, TaskGraph, parse_graph
 
-console = Console()
-err_console = Console(stderr=True, soft_wrap=True)
+console = make_console()
+err_console = make_console(stderr=True)
 
 def _progress(quiet: bool) -> Progress:
     return Progress(
