@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import Any
 
 import typer
@@ -147,3 +148,11 @@ def make_console(stderr: bool = False, **kwargs: Any) -> Console:
     piped = not (stream is not None and hasattr(stream, "isatty") and stream.isatty())
     return Console(stderr=stderr, soft_wrap=True, width=PIPE_WIDTH if piped else None,
                    **kwargs)
+
+
+def check_readable_file(path: str | Path) -> None:
+    """Refuse (exit 2, one line) a path that exists but is not a regular file: reading a
+    FIFO or a device blocks until something writes to it, a folder cannot be read."""
+    p = Path(path)
+    if p.exists() and not p.is_file():
+        raise fail(f"cannot read {path}: not a regular file (a FIFO, a device or a folder)")

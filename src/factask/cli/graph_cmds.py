@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from factask.cli.app import app, make_console
+from factask.cli.app import app, check_readable_file, make_console
 from factask.graph import GraphValidationError, TaskGraph, parse_graph
 from factask.vocabulary.errors import Problem, problem_lines
 
@@ -24,11 +24,8 @@ def validate(
 ) -> None:
     """Check a task-graph JSON file; exit 1 and list every problem if it is invalid
     (2 if it cannot be read)."""
-    if str(file) != "-" and file.exists() and not file.is_file():
-        err_console.print(f"cannot read {file}: not a regular file (a FIFO, a device or a "
-                          "folder); give a graph file or '-' for standard input",
-                          style="red", markup=False)
-        raise typer.Exit(2)
+    if str(file) != "-":
+        check_readable_file(file)
     try:
         text = typer.get_text_stream("stdin").read() if str(file) == "-" else file.read_text()
     except OSError as exc:

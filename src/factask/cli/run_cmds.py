@@ -21,6 +21,7 @@ from factask.cli.app import (
     TIME_LIMIT_HELP,
     app,
     check_camera,
+    check_readable_file,
     check_robot,
     check_video,
     fail,
@@ -59,11 +60,8 @@ def load_task_source(spec: str, seed: int = 0,
         typer.Exit: with code 2 and a message when the task cannot be loaded.
     """
     path_part, _, class_name = spec.partition(":") if ".py" in spec else (spec, "", "")
-    if Path(path_part).exists() and not Path(path_part).is_file() \
-            and (path_part.endswith((".py", ".json")) or "/" in path_part):
-        err_console.print(f"cannot read {path_part}: not a regular file (a FIFO, a device or "
-                          "a folder)", style="red", markup=False)
-        raise typer.Exit(2)
+    if path_part.endswith((".py", ".json")):  # a file, not a library name
+        check_readable_file(path_part)
     if path_part.endswith(".py"):
         from factask.compat.cliport import import_cliport
 

@@ -22,7 +22,7 @@ from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from factask.gen.reading.mentions import ALSO_KINDS, NUMBER_WORDS, kind_of, words_of
+from factask.gen.reading.mentions import ALSO_KINDS, count_of, kind_of, words_of
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
@@ -182,9 +182,8 @@ class _Facts:
 
 
 def _number(word: str) -> int:
-    if word.isdigit():
-        return int(word)
-    return 0 if word in _ARTICLES else NUMBER_WORDS.get(word, 0)
+    """The count a word says, as the reader counts (an article counts nothing here)."""
+    return 0 if word in _ARTICLES else count_of(word)
 
 
 def _judge(words: list[str], k: int, facts: _Facts) -> tuple[str, bool, str] | None:

@@ -10,18 +10,15 @@ words whose meaning is known.
 
 from __future__ import annotations
 
+from factask.gen.reading.mentions import NUMBER_WORDS, plural_of
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.variables import StateVariable
 
-#: Numbers written as words (a larger count is written in digits).
-_NUMBERS = {2: "two", 3: "three", 4: "four", 5: "five", 6: "six", 7: "seven", 8: "eight",
-            9: "nine", 10: "ten", 11: "eleven", 12: "twelve"}
+#: Numbers written as words, the reader's own count words (a larger count: digits).
+_NUMBERS = {n: w for w, n in NUMBER_WORDS.items()
+            if n > 1 and w not in ("pair", "dozen")}
 #: Kind names as a proposal writes them (a plural adds ``s``/``es``).
 _KIND_WORDS = {"holed_box": "box with a hole"}
-
-
-def _plural(word: str) -> str:
-    return f"{word}es" if word.endswith(("s", "x", "ch", "sh")) else f"{word}s"
 
 
 def noun(v: StateVariable, definite: bool = True) -> str:
@@ -31,7 +28,7 @@ def noun(v: StateVariable, definite: bool = True) -> str:
     colour = f"{v.color} " if v.color else ""
     if v.count > 1:
         count = _NUMBERS.get(v.count, str(v.count))
-        words = f"{count} {colour}{_plural(head)}"
+        words = f"{count} {colour}{plural_of(head)}"
     else:
         words = f"{colour}{head}"
     words = f"{words} {tail}" if tail else words

@@ -222,7 +222,7 @@ def kind_of(word: str) -> tuple[str | None, bool, str]:
     return None, False, word
 
 
-def _plural(stem: str) -> str:
+def plural_of(stem: str) -> str:
     """``red_block`` -> ``red_blocks``, ``box`` -> ``boxes``."""
     return f"{stem}es" if stem.endswith(("s", "x", "z", "ch", "sh")) else f"{stem}s"
 
@@ -363,7 +363,7 @@ def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Men
     out = []
     for colour, count in zip(colours, counts, strict=True):
         stem = f"{colour}_{m.kind}"
-        out.append(Mention(_plural(stem) if count > 1 else stem, m.kind, colour,
+        out.append(Mention(plural_of(stem) if count > 1 else stem, m.kind, colour,
                            min(count, MAX_COUNT), m.also, moved=m.moved))
     return out
 
@@ -408,9 +408,9 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
         while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or") and colors)):
             if words[j] in COLOR_NAMES:
                 colors.insert(0, words[j])
-                if j >= 2 and _count_of(words[j - 1]) and (
+                if j >= 2 and count_of(words[j - 1]) and (
                         words[j - 2] in ("and", "or") or words[j - 2] in COLOR_NAMES):
-                    own_counts[words[j]] = _count_of(words[j - 1])
+                    own_counts[words[j]] = count_of(words[j - 1])
                     j -= 1
             j -= 1
         moved = kind in CARRIED_KINDS and _moved_at(words, j)
@@ -424,9 +424,9 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
         while j >= 0 and words[j] in MODIFIERS:  # "four differently colored blocks"
             j -= 1
         before = words[j] if j >= 0 else ""
-        total = _count_of(before)
-        if not total and j >= 1 and _is_adjunct(words[j]) and _count_of(words[j - 1]):
-            total = _count_of(words[j - 1])  # "three insertion fixtures"
+        total = count_of(before)
+        if not total and j >= 1 and _is_adjunct(words[j]) and count_of(words[j - 1]):
+            total = count_of(words[j - 1])  # "three insertion fixtures"
         listed: tuple[tuple[str, int], ...] = ()
         if plural and not colors:
             listed = _listed_colours(words, i + 1)  # "blocks (red, blue, green)"
@@ -447,9 +447,9 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                 count = total or (2 if plural else 1)
             count = min(count, MAX_COUNT)
             stem = f"{color}_{kind}" if color else kind
-            name = _plural(stem) if count > 1 else stem
+            name = plural_of(stem) if count > 1 else stem
             if _named(stem, found):
-                again = stem if stem in found else _plural(stem)
+                again = stem if stem in found else plural_of(stem)
                 if moved:
                     found[again] = replace(found[again], moved=True)
                 continue
@@ -461,7 +461,7 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
 
 def _named(stem: str, names: Collection[str]) -> bool:
     """Whether an object of this stem (``red_block``) is named already, one or many."""
-    return stem in names or _plural(stem) in names
+    return stem in names or plural_of(stem) in names
 
 
 def _moved_at(words: list[str], j: int) -> bool:
@@ -469,12 +469,12 @@ def _moved_at(words: list[str], j: int) -> bool:
     at ``words[j]`` (its colour words already read): "put the ...", "pick up two ..."."""
     k = j
     while k >= 0 and j - k < 6 and (words[k] in OBJECT_LEAD or words[k] in MODIFIERS
-                                    or words[k] in COLOR_NAMES or _count_of(words[k])):
+                                    or words[k] in COLOR_NAMES or count_of(words[k])):
         k -= 1
     return k >= 0 and words[k] in MOVE_VERBS
 
 
-def _count_of(word: str) -> int:
+def count_of(word: str) -> int:
     """The count a word says (``3`` for ``three`` or ``3``), else 0."""
     return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
 
@@ -482,7 +482,7 @@ def _count_of(word: str) -> int:
 def _is_adjunct(word: str) -> bool:
     """Whether ``word`` may be a noun used as an adjective before a kind word: not a
     function word, count, colour or kind word itself."""
-    return (word not in FUNCTION_WORDS and not _count_of(word) and word not in COLOR_NAMES
+    return (word not in FUNCTION_WORDS and not count_of(word) and word not in COLOR_NAMES
             and kind_of(word)[0] is None and word.isalpha())
 
 
@@ -496,15 +496,15 @@ def _listed_colours(words: list[str], start: int) -> tuple[tuple[str, int], ...]
     while k < len(words) and k - start < 4 and (words[k] in COLOUR_LIST_LEAD
                                                  or words[k] in NUMBER_WORDS
                                                  or words[k].isdigit()):
-        if _count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
+        if count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
             break  # "(three red and three blue)": the list starts at its first count
         k += 1
     listed: list[tuple[str, int]] = []
     while k < len(words):
         if words[k] in COLOR_NAMES:
             listed.append((words[k], 0))
-        elif _count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
-            listed.append((words[k + 1], min(_count_of(words[k]), MAX_COUNT)))
+        elif count_of(words[k]) and k + 1 < len(words) and words[k + 1] in COLOR_NAMES:
+            listed.append((words[k + 1], min(count_of(words[k]), MAX_COUNT)))
             k += 1
         elif not (words[k] in ("and", "or") and listed):
             break
