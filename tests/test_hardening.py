@@ -324,6 +324,39 @@ def test_a_closed_or_full_standard_stream_is_one_line_and_exit_2(shell: str, say
     assert len(done.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.parametrize(("command", "code", "says"), [
+    # a failed import is import-cliport's exit 1 (docs/cli.md), with its file named first
+    ("factask import-cliport bad/swallows_everything.py -o {out} --time-limit 1", 1,
+     "ran past the 1 s limit"),
+    ("factask run bad/swallows_everything.py --json --time-limit 1", 2,
+     "ran past the 1 s limit"),
+    ("factask run bad/exits_process.py --json", 2, "ended the process (exit code 0)"),
+    ("factask run bad/raises_interrupt.py --json", 2, "raised KeyboardInterrupt"),
+])
+def test_task_code_that_swallows_stops_or_ends_its_process_is_a_short_typed_failure(
+        tmp_path, command: str, code: int, says: str) -> None:
+    """Issue 37: a reset catching every stop ran for ever (item 1); ``os._exit(0)`` in
+    reset exited 0 with nothing written (item 3); a KeyboardInterrupt raised by task
+    code exited 130 with no word (item 4)."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = str(Path(sys.executable).with_name("factask"))
+    if not Path(script).exists():
+        script = shutil.which("factask") or pytest.skip("no factask console script")
+    out = tmp_path / "o.json"
+    argv = command.format(out=out).split()
+    done = subprocess.run([script, *argv[1:]], capture_output=True, text=True, timeout=120,
+                          cwd=Path(__file__).parent / "cliport_tasks")
+    assert done.returncode == code, (done.returncode, done.stderr[-500:])
+    assert says in done.stderr and "Traceback" not in done.stderr
+    # import-cliport: "F: import failed", then the error; the others: the error
+    assert len(done.stderr.strip().splitlines()) == {1: 2, 2: 1}[code], done.stderr
+    assert done.stdout == "" and not out.exists()
+
+
 def test_the_task_code_time_limit_is_an_option_the_error_names(tmp_path) -> None:
     """A loop in reset is stopped at --time-limit, and the error says how to change it
     (issue 37, item 5); the help states the loader's default."""

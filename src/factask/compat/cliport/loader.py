@@ -41,6 +41,7 @@ from factask.compat.cliport.errors import (
     Unsupported,
     recording_refusals,
 )
+from factask.compat.cliport.isolated import FORK_AVAILABLE, run_in_child
 from factask.compat.cliport.legacy import legacy_names
 from factask.compat.cliport.recorder import FAKE_ASSETS_ROOT, RecordingEnv, Session, session_scope
 from factask.compat.cliport.scoring import RavensGoal
@@ -72,12 +73,19 @@ class _OutOfTime(BaseException):
 
 
 @contextlib.contextmanager
-def _time_limit(seconds: float | None) -> Iterator[None]:
+def _time_limit(seconds: float | None,
+                on_stop: Callable[[Any], None] | None = None) -> Iterator[None]:
     """Stop the block with :class:`_OutOfTime` after ``seconds`` of wall clock.
 
     Uses ``SIGALRM``, so only where that exists, in the main thread, and when no
     other alarm is set (a test runner's own timeout keeps its alarm); elsewhere the
-    block runs unlimited (the batch command's child process has its own limit).
+    block runs unlimited. Code that catches the stop can go on regardless: for a
+    stop that always holds, :func:`import_cliport` runs this in a child process
+    that is killed at the limit.
+
+    Args:
+        seconds: The limit; None or 0: unlimited.
+        on_stop: Called once, with the frame the first stop lands in.
     """
     usable = (seconds is not None and seconds > 0 and hasattr(signal, "setitimer")
               and threading.current_thread() is threading.main_thread())
@@ -88,8 +96,12 @@ def _time_limit(seconds: float | None) -> Iterator[None]:
     if not usable:
         yield
         return
+    fired: list[bool] = []
 
     def fire(signum: int, frame: Any) -> None:
+        if not fired and on_stop is not None:
+            fired.append(True)
+            on_stop(frame)
         raise _OutOfTime()
 
     previous = signal.signal(signal.SIGALRM, fire)
@@ -195,11 +207,19 @@ def _seeded(seed: int) -> Iterator[None]:
 
 def _where(exc: BaseException, path: Path) -> str:
     """'file:line in function: code' of the last traceback frame in the user's file."""
-    frames = [f for f in traceback.extract_tb(exc.__traceback__)
-              if Path(f.filename).resolve() == path.resolve()]
-    if not frames:
+    return _last_in(traceback.extract_tb(exc.__traceback__), path)
+
+
+def _where_frame(frame: types.FrameType, path: Path) -> str:
+    """Like :func:`_where`, for the stack a running frame is in (a signal's frame)."""
+    return _last_in(traceback.extract_stack(frame), path)
+
+
+def _last_in(frames: traceback.StackSummary, path: Path) -> str:
+    own = [f for f in frames if Path(f.filename).resolve() == path.resolve()]
+    if not own:
         return str(path)
-    f = frames[-1]
+    f = own[-1]
     code = f" `{f.line.strip()}`" if f.line else ""
     return f"{path}:{f.lineno} in {f.name}:{code}"
 
@@ -313,7 +333,8 @@ def load_task_class(path: str | Path, class_name: str | None = None) -> type:
 
 def import_cliport(path: str | Path, class_name: str | None = None,
                    seed: int = 0, on_loaded: Callable[[type], None] | None = None,
-                   time_limit: float | None = TIME_LIMIT_S) -> ImportResult:
+                   time_limit: float | None = TIME_LIMIT_S,
+                   isolate: bool = True) -> ImportResult:
     """Load a task file, run ``reset`` against a recording env, and build its graph.
 
     Args:
@@ -322,9 +343,14 @@ def import_cliport(path: str | Path, class_name: str | None = None,
         seed: Seed of every random draw of the reset (``np.random``, ``random``,
             ``get_random_pose``).
         on_loaded: Called with the Task class once the file has run and the class
-            is picked, before ``reset`` (the batch worker reports that stage).
-        time_limit: Seconds the file's own code (module and ``reset``) may run
-            (main thread only, see :func:`_time_limit`); None: unlimited.
+            is picked, before ``reset`` (the batch worker reports that stage). It
+            runs where the file runs: in the child process unless ``isolate`` is False.
+        time_limit: Seconds the import may run; None: unlimited.
+        isolate: Run the file's code in a forked child process (where ``fork``
+            exists), killed at ``time_limit`` whatever the code catches, and whose
+            ``os._exit`` ends only itself. False: in this process, stopped by an
+            alarm the code can swallow (main thread only, see :func:`_time_limit`;
+            the batch worker, itself a killable child, uses this).
 
     Returns:
         The validated graph, the warnings and the Ravens goal queue.
@@ -337,15 +363,31 @@ def import_cliport(path: str | Path, class_name: str | None = None,
             CliportImportError).
     """
     p = Path(path)
+    if not (isolate and FORK_AVAILABLE):
+        return _import(p, class_name, seed, on_loaded, time_limit)
+    if p.exists() and not p.is_file():  # refused here: the child would block on it
+        _exec_file(p)
+    # the alarm stops code that does not swallow it a little before the kill, so the
+    # usual error (with the task's own traceback line) comes back first
+    alarm = None if not time_limit else time_limit - min(0.5, 0.1 * time_limit)
+    return run_in_child(
+        lambda note: _import(p, class_name, seed, on_loaded, time_limit, note, alarm),
+        time_limit=time_limit or None, what=str(p))
+
+
+def _import(p: Path, class_name: str | None, seed: int,
+            on_loaded: Callable[[type], None] | None, time_limit: float | None,
+            on_stop: Callable[[str], None] | None = None,
+            alarm_s: float | None = None) -> ImportResult:
     try:
-        return _import_once(p, class_name, seed, on_loaded, time_limit)
+        return _import_once(p, class_name, seed, on_loaded, time_limit, on_stop, alarm_s)
     except NoGoals as exc:
         if class_name is not None or exc.derived is None:
             raise
         # the class picked by default only sets the scene up; the one line of
         # classes the file derives from it (``Extra(Base)``, whose ``reset`` calls
         # ``super().reset(env)`` and queues the goals) ends in the task
-        result = _import_once(p, exc.derived, seed, on_loaded, time_limit)
+        result = _import_once(p, exc.derived, seed, on_loaded, time_limit, on_stop, alarm_s)
         result.warnings.insert(0, f"the file's default class queues no goals ({exc}); "
                                   f"imported {exc.derived}, the class derived from it")
         return result
@@ -386,16 +428,29 @@ def _run_reset(cls: type, session: Session, p: Path, refused: list[str]) -> Any:
 
 def _import_once(p: Path, class_name: str | None, seed: int,
                  on_loaded: Callable[[type], None] | None,
-                 time_limit: float | None = TIME_LIMIT_S) -> ImportResult:
+                 time_limit: float | None = TIME_LIMIT_S,
+                 on_stop: Callable[[str], None] | None = None,
+                 alarm_s: float | None = None) -> ImportResult:
+    """One import in this process; the alarm stops the task's code at ``alarm_s``
+    (default ``time_limit``), the messages name ``time_limit``."""
     session = Session(seed=seed, rng=np.random.default_rng(seed))
     stage = f"loading {p.name}"
+
+    def out_of_time(where: str) -> str:
+        return (f"{stage} ran past the {time_limit:g} s limit (a loop that never ends? "
+                f"--time-limit sets the limit); stopped at {where}")
+
+    def stopped(frame: types.FrameType) -> None:
+        if on_stop is not None:
+            on_stop(out_of_time(_where_frame(frame, p)))
     try:
         # The file's own prints go to stderr: stdout is the command's (one JSON value
         # under --json), and a task that prints must not make it unreadable.
         with cliport_aliases(), _seeded(seed), session_scope(session), \
                 contextlib.redirect_stdout(sys.stderr):
             try:
-                with _time_limit(time_limit), recording_refusals() as refused:
+                with _time_limit(time_limit if alarm_s is None else alarm_s, stopped), \
+                        recording_refusals() as refused:
                     module = _exec_file(p)
                     cls = _pick_class(module, p, class_name)
                     if on_loaded is not None:
@@ -403,9 +458,7 @@ def _import_once(p: Path, class_name: str | None, seed: int,
                     stage = f"{cls.__name__}.reset"
                     instance = _run_reset(cls, session, p, refused)
             except _OutOfTime as exc:
-                raise TaskTimeout(f"{stage} ran past the {time_limit:g} s limit (a loop "
-                                  f"that never ends? --time-limit sets the limit); stopped "
-                                  f"at {_where(exc, p)}") from None
+                raise TaskTimeout(out_of_time(_where(exc, p))) from None
             for message in dict.fromkeys(refused):
                 session.warn(f"the task caught factask's refusal and went on without it: "
                              f"{message}")

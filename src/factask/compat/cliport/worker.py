@@ -113,7 +113,7 @@ def _run_stages(rec: dict[str, Any], path: str, seed: int, episodes: int,
                 report: Callable[[], None], ravens: bool = False,
                 robot: str = "floating") -> None:
     try:
-        result = import_cliport(path, seed=seed, on_loaded=loaded)
+        result = import_cliport(path, seed=seed, on_loaded=loaded, isolate=False)
     except CliportImportError as exc:
         rec["error"] = str(exc)
         return
