@@ -15,9 +15,11 @@ from contextlib import contextmanager
 from dataclasses import replace
 from types import FrameType
 
+from factask.gen.first_choice import READER_MODEL, FirstChoiceResponder
 from factask.gen.llm import LLMClient, LLMConfig, ResponseCache, import_litellm
 from factask.gen.llm_errors import LLMAuthError, fix_for, provider_of
 from factask.gen.local import LocalLlamaServer, check_local_model
+from factask.gen.loopback import LoopbackServer
 
 #: The slowest generation speed planned for on a busy 2-core CPU: measured 0.2-3 s
 #: per token with a grammar at load average 5-7; a request's timeout leaves room
@@ -75,7 +77,9 @@ def open_client(config: LLMConfig, cache: ResponseCache | None = None,
     """An LLM client for ``config``; for a local model, with its server running.
 
     Args:
-        config: How to reach the model (``local/...``: the packaged local model).
+        config: How to reach the model (``local/...``: the packaged local model;
+            ``local/reader``: no model, the first choice of each step's schema,
+            :mod:`factask.gen.first_choice`).
         cache: Disk cache, or None.
         startup_timeout: Seconds the local server may take to answer.
 
@@ -86,6 +90,13 @@ def open_client(config: LLMConfig, cache: ResponseCache | None = None,
         LLMAuthError: a remote provider's key is missing (before any call).
         LocalModelError: the local model is missing or its server did not start.
     """
+    if config.model == READER_MODEL:  # no model: the reading's first choices
+        with LoopbackServer(FirstChoiceResponder()) as reader:
+            # the schema itself goes out (json_schema), not a grammar made from it
+            yield LLMClient(replace(config, api_base=reader.url, response_format="json_schema"),
+                            cache,
+                            wire_model="openai/reader", prompt_budget=LOCAL_PROMPT_BUDGET)
+        return
     preflight(config)
     if not config.is_local:
         yield LLMClient(config, cache)
