@@ -47,7 +47,13 @@ def test_split_proposal() -> None:
     assert split_proposal("build-a-bridge: two pillars and a deck") == (
         "build-a-bridge", "two pillars and a deck")
     name, desc = split_proposal("Put the red block in the bowl!")
-    assert name == "put-the-red-block-in-the" and desc.startswith("Put")
+    assert name == "put-red-block-in-bowl" and desc.startswith("Put")
+    # whole words: never cut mid-phrase after "in the" (issue 37, item 15)
+    assert split_proposal("put the small yellow cylinder and the blue ball in the green "
+                          "bowl")[0] == "put-small-yellow-cylinder-and-blue-ball"
+    assert split_proposal("place the blue ball into the second red zone")[0] == (
+        "place-blue-ball-into-second-red-zone")
+    assert split_proposal("stack-the-blocks: three high")[0] == "stack-the-blocks"  # given
 
 
 @pytest.mark.parametrize("approach", APPROACHES)

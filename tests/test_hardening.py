@@ -384,3 +384,21 @@ def test_a_default_set_back_to_none_is_refused_typed(field: str) -> None:
     setattr(variable, field, None)
     with pytest.raises(GraphValidationError, match=rf"{variable.name}\.{field}: {field} is None"):
         graph.ensure_valid()
+
+
+def test_list_sorts_names_as_a_reader_does() -> None:
+    """``Four-corner-pyramid-challenge`` came first, before every lower-case name
+    (issue 37, item 15); the real command, piped."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = str(Path(sys.executable).with_name("factask"))
+    if not Path(script).exists():
+        script = shutil.which("factask") or pytest.skip("no factask console script")
+    done = subprocess.run([script, "list"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    names = [line.split("\t")[0] for line in done.stdout.splitlines()[1:]]
+    assert "Four-corner-pyramid-challenge" in names
+    assert names == sorted(names, key=str.casefold) and names[0][0].islower()

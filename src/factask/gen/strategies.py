@@ -87,18 +87,39 @@ _PROPOSAL_RE = re.compile(r"^\s*([a-z0-9][a-z0-9_-]{1,99})\s*[:]\s+(.+)$", re.DO
 MAX_TASK_NAME = 100
 
 
-def task_slug(text: str, max_words: int = 6) -> str:
-    """A kebab-case task name from free text ("Stack the blocks!" -> "stack-the-blocks"),
-    at most :data:`MAX_TASK_NAME` characters."""
-    return slugify(text, "-", MAX_TASK_NAME, "generated-task", max_words=max_words,
+#: Words a generated task's name leaves out (articles) or does not end on (a name
+#: cut after "in the" reads as half a phrase: ``put-the-red-block-in-the``).
+_NAME_SKIPS = frozenset({"the", "a", "an"})
+_NAME_DANGLING = frozenset({"in", "into", "on", "onto", "to", "of", "and", "with", "at", "by",
+                            "for", "from", "then", "next", "inside", "over", "under",
+                            "between", "near", "beside", "around", "along", "so", "that",
+                            "each", "every", "all", "its", "their", "your"})
+
+
+def task_slug(text: str, max_words: int = 8) -> str:
+    """A kebab-case task name from free text, in whole words: articles left out, at
+    most ``max_words`` words, never ending on a preposition or conjunction ("put the
+    red block in the green bowl" -> "put-red-block-in-green-bowl"), at most
+    :data:`MAX_TASK_NAME` characters."""
+    words = [w for w in re.findall(r"[a-z0-9]+", text.lower()) if w not in _NAME_SKIPS]
+    words = words[:max_words]
+    while len(words) > 1 and words[-1] in _NAME_DANGLING:
+        words.pop()
+    return slugify(" ".join(words), "-", MAX_TASK_NAME, "generated-task",
                    letter_first=False)
+
+
+def given_name(name: str) -> str:
+    """A name the user gave, made kebab-case and nothing more (every word kept)."""
+    return slugify(name.replace("_", "-"), "-", MAX_TASK_NAME, "generated-task",
+                   max_words=20, letter_first=False)
 
 
 def split_proposal(proposal: str) -> tuple[str, str]:
     """``"name: description"`` -> (name, description); free text -> (slug, text)."""
     m = _PROPOSAL_RE.match(proposal)
     if m:
-        return task_slug(m.group(1).replace("_", "-"), max_words=20), m.group(2).strip()
+        return given_name(m.group(1)), m.group(2).strip()
     return task_slug(proposal), proposal.strip()
 
 
@@ -169,7 +190,7 @@ class Generator(StepRunner):
             raise UnknownApproachError(f"unknown approach {approach!r}; use one of "
                                        f"{', '.join(APPROACHES)}")
         task, desc = split_proposal(proposal)
-        task = task_slug(name.replace("_", "-"), max_words=20) if name else task
+        task = given_name(name) if name else task
         desc = description or desc
         result = GenerationResult(approach=approach, proposal=proposal, task=task)
         self._result = result

@@ -34,7 +34,10 @@ from factask.library.builders import BUILDERS
 from factask.library.tags import graph_tags, task_tags
 
 #: Task name -> builder returning a fresh, validated graph.
-TASKS: dict[str, Callable[[], TaskGraph]] = dict(sorted(BUILDERS.items()))
+#: By name as a reader sorts (case-insensitive): the 192 list spells one name with a
+#: capital (``Four-corner-pyramid-challenge``), which a plain sort put first.
+TASKS: dict[str, Callable[[], TaskGraph]] = dict(
+    sorted(BUILDERS.items(), key=lambda item: (item[0].casefold(), item[0])))
 
 
 class UnknownTaskError(FactaskError, KeyError):
