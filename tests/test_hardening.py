@@ -402,3 +402,21 @@ def test_list_sorts_names_as_a_reader_does() -> None:
     names = [line.split("\t")[0] for line in done.stdout.splitlines()[1:]]
     assert "Four-corner-pyramid-challenge" in names
     assert names == sorted(names, key=str.casefold) and names[0][0].islower()
+
+
+def test_a_bad_name_in_a_list_option_stops_before_any_episode() -> None:
+    """``eval-library -t a,b -t nonexist`` ran two tasks, then exited 2 with no table
+    (issue 37, item 12); the real command."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = str(Path(sys.executable).with_name("factask"))
+    if not Path(script).exists():
+        script = shutil.which("factask") or pytest.skip("no factask console script")
+    done = subprocess.run([script, "eval-library", "-t", "put-block-in-bowl,align-box-corner",
+                           "-t", "nonexist-task"], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 2, done.stderr
+    assert "nonexist-task" in done.stderr and "Traceback" not in done.stderr
+    assert "put-block-in-bowl" not in done.stderr + done.stdout  # no episode ran

@@ -286,12 +286,14 @@ def eval_library(
     names = [n.strip() for t in tasks for n in t.split(",") if n.strip()] if tasks else (
         task_names())
     names = names[:limit] if limit else names
+    # every name is checked before any episode runs: a typo in the last -t must not
+    # cost the run of the others and then drop their table
+    graphs = [load_task(name) for name in names]
     results = []
     lines = not as_json and not err_console.is_terminal
     with _progress(as_json or lines) as progress:
         bar = progress.add_task("library", total=len(names) * episodes)
-        for k, name in enumerate(names, 1):
-            graph = load_task(name)
+        for k, (name, graph) in enumerate(zip(names, graphs, strict=True), 1):
             progress.update(bar, description=name)
             results.append(evaluate_task(graph, episodes, seed, robot,
                                          on_episode=lambda _r: progress.advance(bar)))
