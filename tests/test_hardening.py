@@ -420,3 +420,32 @@ def test_a_bad_name_in_a_list_option_stops_before_any_episode() -> None:
     assert done.returncode == 2, done.stderr
     assert "nonexist-task" in done.stderr and "Traceback" not in done.stderr
     assert "put-block-in-bowl" not in done.stderr + done.stdout  # no episode ran
+
+
+@pytest.mark.parametrize(("argv", "says"), [
+    (["run", "put-block-in-bowl", "--seed", "-1"], "factask run: Invalid value for '--seed'"),
+    (["run", "put-block-in-bowl", "--episodes", "0"], "Invalid value for '--episodes'"),
+    (["run", "--bogus"], "factask run: No such option: --bogus"),
+    (["nosuchcommand"], "No such command 'nosuchcommand'"),
+    (["import-cliport", "nonexistent.py", "-o", "x.json"], "cannot read nonexistent.py"),
+    (["run", "nonexistent.py"], "nonexistent.py"),
+    (["show", "put-block-in-bowl", "--png", "g.svg"], "--png g.svg: give a .png file"),
+])
+def test_usage_and_unreadable_input_are_one_line_and_exit_2(tmp_path, argv, says) -> None:
+    """Option errors were click's four-line block; ``import-cliport`` of a missing file
+    exited 1 where ``run`` exited 2; ``show --png g.svg`` wrote a PNG named .svg (issue
+    37, item 13). The real command."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = str(Path(sys.executable).with_name("factask"))
+    if not Path(script).exists():
+        script = shutil.which("factask") or pytest.skip("no factask console script")
+    done = subprocess.run([script, *argv], capture_output=True, text=True, timeout=120,
+                          cwd=tmp_path)
+    assert done.returncode == 2, (done.returncode, done.stderr)
+    assert says in done.stderr and "Traceback" not in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert list(tmp_path.iterdir()) == []  # nothing written

@@ -8,10 +8,55 @@ from typing import Any
 
 import typer
 from rich.console import Console
+from typer.core import TyperGroup
 
 from factask.sim.robots.registry import ROBOT_NAMES, describe_robots
 
+
+def _click_class(name: str) -> type[Exception]:
+    """One of click's exception classes as typer raises it (typer ≥ 0.20 vendors its
+    own click; earlier versions use click's): found from ``typer.BadParameter``."""
+    return next(c for c in typer.BadParameter.__mro__ if c.__name__ == name)
+
+
+_UsageError = _click_class("UsageError")
+_ClickException = _click_class("ClickException")
+
+
+class OneLineErrorsGroup(TyperGroup):
+    """The app's group: a usage error (an unknown option, a value out of range, a
+    missing argument) is one line on stderr, exit 2, as docs/cli.md promises, instead
+    of click's four-line block."""
+
+    def main(self, args: Any = None, prog_name: str | None = None,
+             complete_var: str | None = None, standalone_mode: bool = True,
+             **extra: Any) -> Any:
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode=False,
+                                **extra)
+        try:
+            value = super().main(args, prog_name, complete_var, standalone_mode=False,
+                                 **extra)
+        except _UsageError as exc:
+            if type(exc).__name__ == "NoArgsIsHelpError":  # bare ``factask``: the help
+                exc.show()  # type: ignore[attr-defined]
+                sys.exit(exc.exit_code)  # type: ignore[attr-defined]
+            ctx = getattr(exc, "ctx", None)
+            where = ctx.command_path if ctx is not None else "factask"
+            message = " ".join(exc.format_message().split())  # type: ignore[attr-defined]
+            print(f"{where}: {message} (see '{where} --help')", file=sys.stderr)
+            sys.exit(exc.exit_code)  # type: ignore[attr-defined]
+        except _ClickException as exc:
+            exc.show()  # type: ignore[attr-defined]
+            sys.exit(exc.exit_code)  # type: ignore[attr-defined]
+        except typer.Abort:
+            print("Aborted!", file=sys.stderr)
+            sys.exit(1)
+        sys.exit(value if isinstance(value, int) and not isinstance(value, bool) else 0)
+
+
 app = typer.Typer(
+    cls=OneLineErrorsGroup,
     name="factask",
     help="Robot manipulation tasks as factor graphs: validate, show, run, generate, evaluate. "
     "Exit codes: 0 success; 1 the task or a check failed; 2 bad usage or input; 3 "

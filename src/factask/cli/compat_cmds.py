@@ -19,7 +19,9 @@ from factask.cli.app import (
     ROBOT_HELP,
     TIME_LIMIT_HELP,
     app,
+    check_readable_file,
     check_robot,
+    fail,
     make_console,
 )
 
@@ -51,6 +53,11 @@ def import_cliport_cmd(
     """Write the graph JSON; print the import warnings; exit 1 with the reason on failure."""
     from factask.compat.cliport import CliportImportError, import_cliport
 
+    # an input that cannot be read is bad input (exit 2) as everywhere; a file that
+    # runs and fails to import is a failed import (exit 1)
+    check_readable_file(file)
+    if not Path(file).is_file():
+        raise fail(f"cannot read {file}: no such file")
     try:
         limit = {} if time_limit is None else {"time_limit": time_limit}
         result = import_cliport(file, class_name=class_name, seed=seed, **limit)

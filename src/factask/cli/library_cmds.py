@@ -13,7 +13,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from factask.cli.app import app, make_console
+from factask.cli.app import app, fail, make_console
 from factask.graph import SubtaskFactor, TaskGraph
 from factask.library import UnknownTaskError, get_task, list_tasks, task_names
 from factask.library.tags import matches_tags, reuse_stats
@@ -146,6 +146,8 @@ def show(
     png: Path | None = typer.Option(None, "--png", help="Also draw the graph to this PNG."),
 ) -> None:
     """Show a task: variables, factors, their order and language goals."""
+    if png is not None and png.suffix.lower() != ".png":  # refused before any work
+        raise fail(f"--png {png}: give a .png file")
     if task.endswith((".json", ".py")) or ".py:" in task or Path(task).is_file():
         from factask.cli.run_cmds import load_task
 
