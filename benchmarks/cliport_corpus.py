@@ -110,21 +110,31 @@ def main() -> int:
     if not files:
         print(f"no task files (*.py) in {args.folder}", file=sys.stderr)
         return 2
+    console = Console(stderr=True)
+    # not on a terminal (CI, a log file) a live bar shows nothing until the end: one
+    # line per file listed and per class finished instead
+    lines = not console.is_terminal
+    if lines:
+        print(f"listing the task classes of {len(files)} file(s)...", file=sys.stderr,
+              flush=True)
     jobs: list[tuple[Path, str | None, str | None]] = []
     for path in files:
         classes, error = task_classes(path)
         jobs += [(path, c, None) for c in classes] or [(path, None, error or "no Task class")]
     records: list[dict[str, Any]] = []
-    console = Console(stderr=True)
-    with Progress(console=console) as progress, ThreadPoolExecutor(args.workers) as pool:
+    with Progress(console=console, disable=lines) as progress, \
+            ThreadPoolExecutor(args.workers) as pool:
         bar = progress.add_task("task classes", total=len(jobs))
         futures = [pool.submit(run_class, p, c, args.episodes, args.robot, args.timeout)
                    for p, c, _ in jobs]
-        for (_, _, why), fut in zip(jobs, futures, strict=True):
+        for k, ((_, _, why), fut) in enumerate(zip(jobs, futures, strict=True), 1):
             rec = fut.result()
             rec["error"] = rec["error"] or why
             records.append(rec)
             progress.advance(bar)
+            if lines:
+                print(f"[{k}/{len(jobs)}] {rec['file']} {rec['class'] or '-'}: {rec['level']}, "
+                      f"{rec['successes']}/{rec['episodes']}", file=sys.stderr, flush=True)
     if args.out:
         args.out.write_text("".join(json.dumps(r) + "\n" for r in records))
     table = Table(title=f"{args.folder} — {args.robot}, {args.episodes} episode(s) per class")

@@ -64,6 +64,20 @@ def test_a_missing_extra_is_a_typed_error(monkeypatch: pytest.MonkeyPatch) -> No
     assert isinstance(info.value, ImportError)
 
 
+def test_the_first_cpu_batch_says_once_that_kernels_compile(monkeypatch, capsys) -> None:
+    """The first batched step on a CPU waits minutes for Warp's compiler: say so once
+    (issue 37, item 14), not on a GPU, not twice."""
+    from factask.batch import device
+
+    monkeypatch.setattr(device, "_COMPILE_NOTICE_GIVEN", False)
+    device.announce_cpu_compile("cuda:0")
+    assert capsys.readouterr().err == ""
+    device.announce_cpu_compile("cpu")
+    device.announce_cpu_compile("cpu")
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and "compiles Warp's kernels the first time" in err[0]
+
+
 def test_asking_for_a_gpu_that_is_not_there_is_a_typed_error() -> None:
     wp, _ = load_backend()
     if wp.get_cuda_device_count() > 0:

@@ -31,3 +31,8 @@ def test_the_corpus_table_has_a_level_for_every_class(tmp_path: Path) -> None:
     assert records["leaves.py"]["level"] in ("none", "syntax")
     assert records["leaves.py"]["successes"] == 0
     assert "completion 1/3" in done.stdout
+    # stderr is a pipe here: progress is one line per class, not a live bar that shows
+    # nothing until the end (issue 37, item 14)
+    progress = [line for line in done.stderr.splitlines() if line.startswith("[")]
+    assert len(progress) == 3 and progress[-1].startswith("[3/3] ")
+    assert "listing the task classes of 3 file(s)" in done.stderr

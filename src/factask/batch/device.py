@@ -10,6 +10,7 @@ asking for a batch without it raises :class:`BatchBackendMissing`.
 from __future__ import annotations
 
 import importlib
+import sys
 from types import ModuleType
 
 from factask.vocabulary.errors import FactaskError, InvalidValueError
@@ -99,3 +100,30 @@ def resolve_device(device: str | None = None) -> str:
 
 __all__ = ["GPU_EXTRA", "INSTALL_HINT", "BatchBackendMissing", "DeviceUnavailableError",
            "load_backend", "resolve_device"]
+
+
+#: Said once per process: the first batch on the CPU waits for Warp's compiler.
+_COMPILE_NOTICE_GIVEN = False
+
+
+def announce_cpu_compile(device: str) -> None:
+    """Say once, on stderr, that the first batched step on the CPU compiles Warp's
+    kernels (90 s to 5 minutes on 2 cores; cached on disk afterwards), so a first run
+    that seems to hang is explained. Nothing on a GPU (seconds there) or the second time.
+
+    Args:
+        device: The resolved Warp device name.
+    """
+    global _COMPILE_NOTICE_GIVEN
+    if device != "cpu" or _COMPILE_NOTICE_GIVEN:
+        return
+    _COMPILE_NOTICE_GIVEN = True
+    try:
+        import warp as wp
+
+        cache = wp.config.kernel_cache_dir or "Warp's kernel cache"
+    except Exception:  # the notice must never fail the batch
+        cache = "Warp's kernel cache"
+    print(f"factask: the batched backend on the CPU compiles Warp's kernels the first time "
+          f"(90 s to 5 minutes; cached in {cache} afterwards)", file=sys.stderr, flush=True)
+

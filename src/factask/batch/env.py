@@ -31,7 +31,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from factask.batch.device import load_backend, resolve_device
+from factask.batch.device import announce_cpu_compile, load_backend, resolve_device
 from factask.batch.primitive import BatchActionResult, pick_and_place
 from factask.batch.scene import BatchScene
 from factask.batch.status import BatchTaskStatus, check_task_batch
@@ -86,6 +86,7 @@ class BatchEnv:
             raise InvalidValueError(f"num_envs must be at least 1, got {num_envs}")
         self.device = resolve_device(device)
         self._wp, self._mjw = load_backend()
+        announce_cpu_compile(self.device)
         from factask.batch import kernels  # imports Warp: only once the backend is there
 
         self._kernels = kernels
