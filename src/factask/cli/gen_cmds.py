@@ -296,6 +296,8 @@ def compare(
     generated: str = typer.Argument(..., help="The graph to judge: FILE.json, a library task "
                                     "name or FILE.py[:Class] (a CLIPort task file)."),
     reference: str = typer.Argument(..., help="The task it should be (same forms)."),
+    proposal: str = typer.Option(None, "--proposal", "-p", help="The words both graphs "
+                                 "read: colours they do not name match any colour."),
     as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
 ) -> None:
     """Does GENERATED mean the task REFERENCE is? Exit 0 when the two are the same task
@@ -306,7 +308,7 @@ def compare(
     from factask.cli.run_cmds import load_task
     from factask.gen.compare import compare as compare_graphs
 
-    result = compare_graphs(load_task(generated), load_task(reference))
+    result = compare_graphs(load_task(generated), load_task(reference), proposal)
     if as_json:
         typer.echo(json.dumps({"generated": generated, "reference": reference,
                                **result.to_dict()}))

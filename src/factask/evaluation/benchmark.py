@@ -382,7 +382,7 @@ def meaning_of(graph: TaskGraph | None, task: BenchTask) -> dict[str, Any]:
     if graph is None:
         return {"faithful": False, "meaning": {"reference": reference.name,
                                                "differences": ["no graph"]}}
-    result = compare(graph, reference)
+    result = compare(graph, reference, task.description)  # colours the words leave open
     return {"faithful": result.equivalent,
             "meaning": {"reference": reference.name, **result.to_dict()}}
 

@@ -22,6 +22,12 @@ compare equal:
   target coordinates) are left out: words rarely fix them, and they do not change
   which task it is (they are listed as details, not counted).
 
+**Colours the words leave open.** Given the proposal's words
+(:func:`colours_named`), a colour they do not name is no part of the task: "put a
+block in the green bowl" is met by a block of any colour, whatever colour the
+reference happened to give it. Every such colour, in both graphs, is compared as
+"unspecified"; the colours the words name are compared as they are.
+
 The graphs are **equivalent** when their canonical forms are isomorphic (networkx's
 ``DiGraphMatcher`` with node and edge matches) under a mapping that keeps every order
 of the reference (A before B, explicit or implied by anchors, transitively) — order is
@@ -34,6 +40,7 @@ generated graph keeps). :attr:`Comparison.differences` says in words what differ
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -43,6 +50,7 @@ import networkx as nx
 from networkx.algorithms.isomorphism import DiGraphMatcher
 
 from factask.graph.taskgraph import TaskGraph, parse_graph
+from factask.vocabulary.palette import COLOR_ALIASES, COLOR_NAMES
 
 #: Relations that hold object by object: a goal over several objects is one per object.
 PER_OBJECT_RELATIONS = frozenset(["in_zone", "inside", "on"])
@@ -107,11 +115,22 @@ def _colour(value: Any) -> str:
     return str(value or "").strip().lower()
 
 
-def _instances(graph: TaskGraph) -> tuple[dict[str, InstanceLabel], dict[str, list[str]]]:
+def colours_named(text: str) -> frozenset[str]:
+    """The palette colours ``text`` names (``grey`` read as ``gray``)."""
+    words = re.findall(r"[a-z]+", text.lower())
+    return frozenset(COLOR_ALIASES.get(w, w) for w in words
+                     if COLOR_ALIASES.get(w, w) in COLOR_NAMES)
+
+
+def _instances(graph: TaskGraph, stated: frozenset[str] | None = None,
+               ) -> tuple[dict[str, InstanceLabel], dict[str, list[str]]]:
     labels: dict[str, InstanceLabel] = {}
     of: dict[str, list[str]] = {}
     for v in graph.variables:
-        label = (v.kind, _colour(v.color), bool(v.is_fixed))
+        colour = _colour(v.color)
+        if stated is not None and colour not in stated:
+            colour = ""  # the words leave it open
+        label = (v.kind, colour, bool(v.is_fixed))
         of[v.name] = list(v.instances)
         for inst in v.instances:
             labels[inst] = label
@@ -145,9 +164,10 @@ def _ordered(goal: Any) -> bool:
     return bool(getattr(goal, "ordered", False))
 
 
-def canonical(graph: TaskGraph) -> _Canon:
-    """``graph`` in the canonical form the comparison reads (see the module doc)."""
-    labels, of = _instances(graph)
+def canonical(graph: TaskGraph, stated_colours: frozenset[str] | None = None) -> _Canon:
+    """``graph`` in the canonical form the comparison reads (see the module doc);
+    with ``stated_colours``, every other colour is read as unspecified."""
+    labels, of = _instances(graph, stated_colours)
     g = nx.DiGraph()
     for inst, label in labels.items():
         g.add_node(inst, label=("object", *label))
@@ -256,12 +276,15 @@ def _order_agreement(gen: _Canon, ref: _Canon) -> tuple[float, list[str]]:
 
 
 def compare(generated: TaskGraph | dict[str, Any] | str,
-            reference: TaskGraph | dict[str, Any] | str) -> Comparison:
+            reference: TaskGraph | dict[str, Any] | str,
+            proposal: str | None = None) -> Comparison:
     """Compare a generated graph with a reference graph (see the module doc).
 
     Args:
         generated: The graph to judge (a graph, its dict or its JSON).
         reference: The task it should be.
+        proposal: The words both graphs are readings of; colours they do not name
+            match any colour. None: every colour counts.
 
     Returns:
         The :class:`Comparison`.
@@ -269,7 +292,9 @@ def compare(generated: TaskGraph | dict[str, Any] | str,
     Raises:
         GraphValidationError: either graph is not a valid task graph.
     """
-    gen, ref = canonical(parse_graph(generated)), canonical(parse_graph(reference))
+    stated = None if proposal is None else colours_named(proposal)
+    gen = canonical(parse_graph(generated), stated)
+    ref = canonical(parse_graph(reference), stated)
     objects_got, objects_want = Counter(gen.instances.values()), Counter(ref.instances.values())
     sig_got = Counter(_signature(gen, n) for n in gen.factors)
     sig_want = Counter(_signature(ref, n) for n in ref.factors)

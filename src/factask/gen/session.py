@@ -95,7 +95,7 @@ def open_client(config: LLMConfig, cache: ResponseCache | None = None,
             # the schema itself goes out (json_schema), not a grammar made from it
             yield LLMClient(replace(config, api_base=reader.url, response_format="json_schema"),
                             cache,
-                            wire_model="openai/reader", prompt_budget=LOCAL_PROMPT_BUDGET)
+                            wire_model="openai/reader")  # no context: prompts of any size
         return
     preflight(config)
     if not config.is_local:
