@@ -43,8 +43,9 @@ def first_choice(schema: Mapping[str, Any]) -> Any:
             arrays with ``prefixItems``, strings, numbers, booleans, null).
 
     Returns:
-        The instance: required properties only, ``minItems`` items, numbers at the
-        middle of their range, strings of ``minLength`` letters.
+        The instance: a node's ``default`` where it has one; required properties only,
+        ``minItems`` items, numbers at the middle of their range, strings of
+        ``minLength`` letters (a pattern's first short match, distinct in the answer).
 
     Raises:
         FirstChoiceError: the schema has no instance this can build.
@@ -106,6 +107,8 @@ def _pick(node: Any, root: Mapping[str, Any], depth: int, picker: _Picker) -> An
         return picker.pick(merged, depth + 1)
     if "const" in node:
         return node["const"]
+    if "default" in node:  # the schema's own choice where it has one
+        return node["default"]
     if "enum" in node:
         if not node["enum"]:
             raise FirstChoiceError("an empty enum has no instance")
