@@ -36,15 +36,16 @@ CASE_LIMIT_S = 1.0
 PROBLEM_LIMIT = 1024
 
 
-def _paths(node: Any, path: tuple = ()) -> list[tuple]:
-    """Every path into the JSON tree (dict keys and list indices)."""
+def json_paths(node: Any, path: tuple = ()) -> list[tuple]:
+    """Every path into the JSON tree (dict keys and list indices); tests/test_fuzz.py
+    draws from it too."""
     out = [path]
     if isinstance(node, dict):
         for k, v in node.items():
-            out += _paths(v, (*path, k))
+            out += json_paths(v, (*path, k))
     elif isinstance(node, list):
         for i, v in enumerate(node):
-            out += _paths(v, (*path, i))
+            out += json_paths(v, (*path, i))
     return out
 
 
@@ -57,7 +58,7 @@ def _get(node: Any, path: tuple) -> Any:
 def corrupt(data: dict, rng: random.Random) -> dict | str:
     """``data`` with one random corruption; a string when the text itself is broken."""
     data = copy.deepcopy(data)
-    paths = [p for p in _paths(data) if p]
+    paths = [p for p in json_paths(data) if p]
     if not paths:  # corrupted down to an empty object: nothing left to corrupt
         return data
     path = rng.choice(paths)

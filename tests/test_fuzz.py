@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 from factask.graph import GraphValidationError, TaskGraph, parse_graph
 from factask.library import get_task
 from factask.vocabulary.errors import FactaskError
+from scripts.fuzz_graphs import json_paths
 
 #: Longest message a validation report may have, characters.
 MAX_MESSAGE = 20_000
@@ -38,18 +39,6 @@ json_values = st.recursive(json_leaves, lambda inner: st.one_of(
 
 LIBRARY = [get_task(n).to_dict() for n in ("stack-block-pyramid", "put-block-in-bowl",
                                            "towers-of-hanoi", "align-box-corner")]
-
-
-def _paths(data: Any, prefix: tuple = ()) -> list[tuple]:
-    """Every path to a value inside nested dicts and lists."""
-    out = [prefix]
-    if isinstance(data, dict):
-        for k, v in data.items():
-            out += _paths(v, (*prefix, k))
-    elif isinstance(data, list):
-        for i, v in enumerate(data):
-            out += _paths(v, (*prefix, i))
-    return out
 
 
 def _set(data: Any, path: tuple, value: Any) -> Any:
@@ -85,7 +74,7 @@ def test_random_json_parses_or_fails_typed(data: Any) -> None:
 def test_a_library_graph_with_one_corrupted_value_parses_or_fails_naming_it(
         which: int, data: st.DataObject, junk: Any) -> None:
     graph = json.loads(json.dumps(LIBRARY[which]))
-    path = data.draw(st.sampled_from(_paths(graph)[1:]))
+    path = data.draw(st.sampled_from(json_paths(graph)[1:]))
     corrupted = _set(graph, path, junk)
     try:
         parse_graph(corrupted)

@@ -50,7 +50,7 @@ import networkx as nx
 from networkx.algorithms.isomorphism import DiGraphMatcher
 
 from factask.graph.taskgraph import TaskGraph, parse_graph
-from factask.vocabulary.palette import COLOR_ALIASES, COLOR_NAMES
+from factask.vocabulary.palette import colour_of_word
 
 #: Relations that hold object by object: a goal over several objects is one per object.
 PER_OBJECT_RELATIONS = frozenset(["in_zone", "inside", "on"])
@@ -117,9 +117,8 @@ def _colour(value: Any) -> str:
 
 def colours_named(text: str) -> frozenset[str]:
     """The palette colours ``text`` names (``grey`` read as ``gray``)."""
-    words = re.findall(r"[a-z]+", text.lower())
-    return frozenset(COLOR_ALIASES.get(w, w) for w in words
-                     if COLOR_ALIASES.get(w, w) in COLOR_NAMES)
+    named = (colour_of_word(w) for w in re.findall(r"[a-z]+", text.lower()))
+    return frozenset(c for c in named if c is not None)
 
 
 def _instances(graph: TaskGraph, stated: frozenset[str] | None = None,

@@ -62,7 +62,57 @@ class _Picker:
         self.used: set[str] = set()
 
     def pick(self, node: Any, depth: int) -> Any:
-        return _pick(node, self.root, depth, self)
+        if depth > _MAX_DEPTH:
+            raise FirstChoiceError("the schema nests deeper than 64 levels (a $ref cycle?)")
+        if node is True or node == {}:
+            return None
+        if not isinstance(node, Mapping):
+            raise FirstChoiceError(f"no instance of schema node {str(node)[:80]}")
+        if "$ref" in node:
+            return self.pick(_resolve(node["$ref"], self.root), depth + 1)
+        for key in ("anyOf", "oneOf"):
+            if node.get(key):
+                return self.pick(node[key][0], depth + 1)
+        if node.get("allOf"):
+            merged: dict[str, Any] = {}
+            for part in node["allOf"]:
+                merged.update(_resolve(part["$ref"], self.root) if "$ref" in part else part)
+            return self.pick(merged, depth + 1)
+        if "const" in node:
+            return node["const"]
+        if "default" in node:  # the schema's own choice where it has one
+            return node["default"]
+        if "enum" in node:
+            if not node["enum"]:
+                raise FirstChoiceError("an empty enum has no instance")
+            return node["enum"][0]
+        kind = node.get("type")
+        if isinstance(kind, list):
+            kind = kind[0] if kind else None
+        if kind == "object" or (kind is None and "properties" in node):
+            props = node.get("properties", {})
+            required = node.get("required", list(props))
+            return {k: self.pick(props[k], depth + 1) for k in required if k in props}
+        if kind == "array" or (kind is None and ("items" in node or "prefixItems" in node)):
+            prefix = [self.pick(item, depth + 1) for item in node.get("prefixItems", [])]
+            more = max(0, int(node.get("minItems", 0)) - len(prefix))
+            items = node.get("items")
+            if more and (items is None or items is False):
+                raise FirstChoiceError("an array needs more items than its schema allows")
+            return prefix + [self.pick(items, depth + 1) for _ in range(more)]
+        if kind == "string":
+            return self.string(node)
+        if kind in ("number", "integer"):
+            low = node.get("minimum", node.get("exclusiveMinimum"))
+            high = node.get("maximum", node.get("exclusiveMaximum"))
+            value = ((low + high) / 2 if low is not None and high is not None
+                     else low if low is not None else high if high is not None else 0)
+            return round(value) if kind == "integer" else value
+        if kind == "boolean":
+            return False
+        if kind == "null":
+            return None
+        raise FirstChoiceError(f"no instance of schema node {json.dumps(node)[:80]}")
 
     def string(self, node: Mapping[str, Any]) -> str:
         low, high = int(node.get("minLength", 0)), node.get("maxLength")
@@ -86,60 +136,6 @@ def _candidates() -> Iterator[str]:
     yield from (a + b for a in letters for b in letters)
     yield from (f"{a}{n}" for n in range(10) for a in letters)
     yield from (f"{a}_{b}" for a in letters for b in letters)
-
-
-def _pick(node: Any, root: Mapping[str, Any], depth: int, picker: _Picker) -> Any:
-    if depth > _MAX_DEPTH:
-        raise FirstChoiceError("the schema nests deeper than 64 levels (a $ref cycle?)")
-    if node is True or node == {}:
-        return None
-    if not isinstance(node, Mapping):
-        raise FirstChoiceError(f"no instance of schema node {str(node)[:80]}")
-    if "$ref" in node:
-        return picker.pick(_resolve(node["$ref"], root), depth + 1)
-    for key in ("anyOf", "oneOf"):
-        if node.get(key):
-            return picker.pick(node[key][0], depth + 1)
-    if node.get("allOf"):
-        merged: dict[str, Any] = {}
-        for part in node["allOf"]:
-            merged.update(_resolve(part["$ref"], root) if "$ref" in part else part)
-        return picker.pick(merged, depth + 1)
-    if "const" in node:
-        return node["const"]
-    if "default" in node:  # the schema's own choice where it has one
-        return node["default"]
-    if "enum" in node:
-        if not node["enum"]:
-            raise FirstChoiceError("an empty enum has no instance")
-        return node["enum"][0]
-    kind = node.get("type")
-    if isinstance(kind, list):
-        kind = kind[0] if kind else None
-    if kind == "object" or (kind is None and "properties" in node):
-        props = node.get("properties", {})
-        required = node.get("required", list(props))
-        return {k: picker.pick(props[k], depth + 1) for k in required if k in props}
-    if kind == "array" or (kind is None and ("items" in node or "prefixItems" in node)):
-        prefix = [picker.pick(item, depth + 1) for item in node.get("prefixItems", [])]
-        more = max(0, int(node.get("minItems", 0)) - len(prefix))
-        items = node.get("items")
-        if more and (items is None or items is False):
-            raise FirstChoiceError("an array needs more items than its schema allows")
-        return prefix + [picker.pick(items, depth + 1) for _ in range(more)]
-    if kind == "string":
-        return picker.string(node)
-    if kind in ("number", "integer"):
-        low = node.get("minimum", node.get("exclusiveMinimum"))
-        high = node.get("maximum", node.get("exclusiveMaximum"))
-        value = ((low + high) / 2 if low is not None and high is not None
-                 else low if low is not None else high if high is not None else 0)
-        return round(value) if kind == "integer" else value
-    if kind == "boolean":
-        return False
-    if kind == "null":
-        return None
-    raise FirstChoiceError(f"no instance of schema node {json.dumps(node)[:80]}")
 
 
 def _resolve(ref: str, root: Mapping[str, Any]) -> Any:

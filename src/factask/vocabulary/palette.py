@@ -70,6 +70,13 @@ def normalize_color(name: str) -> str:
     return key
 
 
+def colour_of_word(word: str) -> str | None:
+    """The palette colour a lower-case word of text names (``grey`` -> ``gray``), or
+    None when the word is no colour."""
+    key = COLOR_ALIASES.get(word, word)
+    return key if key in _RGB else None
+
+
 def rgba(name: str, alpha: float = 1.0) -> tuple[float, float, float, float]:
     """RGBA of a palette colour (raises :class:`UnknownColorError` if unknown)."""
     r, g, b = _RGB[normalize_color(name)]

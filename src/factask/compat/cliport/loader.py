@@ -243,10 +243,16 @@ def _user_error(what: str, exc: BaseException, path: Path) -> CliportImportError
     return cls(f"{what}: {type(exc).__name__}: {clip(exc, 300)} (at {_where(exc, path)})")
 
 
-def _exec_file(path: Path) -> types.ModuleType:
-    if path.exists() and not path.is_file():  # a FIFO or a device would block the read
+def _check_regular_file(path: Path) -> None:
+    """Refuse a path that exists but is not a regular file: a FIFO or a device would
+    block the read."""
+    if path.exists() and not path.is_file():
         raise CliportImportError(f"cannot read {path}: not a regular file (a FIFO, a "
                                  "device or a folder); give a task file")
+
+
+def _exec_file(path: Path) -> types.ModuleType:
+    _check_regular_file(path)
     try:
         source = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
@@ -365,8 +371,7 @@ def import_cliport(path: str | Path, class_name: str | None = None,
     p = Path(path)
     if not (isolate and FORK_AVAILABLE):
         return _import(p, class_name, seed, on_loaded, time_limit)
-    if p.exists() and not p.is_file():  # refused here: the child would block on it
-        _exec_file(p)
+    _check_regular_file(p)  # here: the child would block on it before its limit
     # the alarm stops code that does not swallow it a little before the kill, so the
     # usual error (with the task's own traceback line) comes back first
     alarm = None if not time_limit else time_limit - min(0.5, 0.1 * time_limit)

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from factask.gen.reading.mentions import ALSO_KINDS, count_of, kind_of, words_of
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.kinds import kind_spec
-from factask.vocabulary.palette import COLOR_NAMES
+from factask.vocabulary.palette import colour_of_word
 
 #: Word -> its category, for the words judged besides colours, counts and kinds.
 ORDINALS = frozenset({"first", "second", "third", "fourth", "fifth", "sixth", "seventh",
@@ -190,8 +190,8 @@ def _judge(words: list[str], k: int, facts: _Facts) -> tuple[str, bool, str] | N
     """(category, read, why) of ``words[k]``, or None when it is not judged."""
     w = words[k]
     nxt = words[k + 1] if k + 1 < len(words) else ""
-    if w in COLOR_NAMES or w == "grey":
-        c = "gray" if w == "grey" else w
+    c = colour_of_word(w)
+    if c is not None:
         return ("colour", c in facts.colours,
                 f"an object is {c}" if c in facts.colours else f"no object is {c}")
     if w in NEGATIONS:
