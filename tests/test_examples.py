@@ -31,6 +31,7 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "09_piles_and_ropes.py": ("09_piles_and_ropes.png", "09_results.json"),
     "10_batched.py": ("10_batched.json",),
     "11_does_it_mean_the_proposal.py": ("11_meaning.json",),
+    "12_reader_only.py": ("12_reader.json",),
 }
 #: Examples that compile MuJoCo Warp's kernels: with the batched env's tests in one
 #: xdist group, so one worker compiles them (once per machine, then cached).
