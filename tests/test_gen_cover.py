@@ -149,7 +149,7 @@ def test_the_answer_that_leaves_a_bowl_out_is_refused() -> None:
 def test_one_group_goal_or_one_goal_per_object() -> None:
     proposal = "stack the blue block and the green block on the red pallet"
     found = mentions(proposal)
-    schema = grounded.compact_graph_schema(found, proposal)
+    schema = grounded.compact_graph_schema(found, proposal, stated=False)  # the shapes
     variables = [{"name": m.name, "initial": {"type": "table"}} for m in found if m.movable]
     group = {"type": "stack", "objects": ["blue_block", "green_block"], "base": "red_pallet",
              "ordered": True}

@@ -172,11 +172,16 @@ def test_counts_read_past_modifiers_and_from_a_list_of_colours() -> None:
         ("blocks", "block", None, 4), ("bowls", "bowl", None, 4)]
     assert _names("twelve blocks of four different colors and a pallet") == [
         ("blocks", "block", None, 12), ("pallet", "pallet", None, 1)]
-    # A plural with no count is counted by the list of its colours right after it...
+    # A plural with no count is one object per colour of the list right after it...
     assert _names("stack the blocks (red, blue, green, and yellow) on the stand") == [
-        ("blocks", "block", None, 4), ("stand", "stand", None, 1)]
+        ("red_block", "block", "red", 1), ("blue_block", "block", "blue", 1),
+        ("green_block", "block", "green", 1), ("yellow_block", "block", "yellow", 1),
+        ("stand", "stand", None, 1)]
     assert _names("cylinders of different colors: red, blue and green") == [
-        ("cylinders", "cylinder", None, 3)]
+        ("red_cylinder", "cylinder", "red", 1), ("blue_cylinder", "cylinder", "blue", 1),
+        ("green_cylinder", "cylinder", "green", 1)]
+    assert _names("six blocks in two colours (three red and three blue)") == [
+        ("red_blocks", "block", "red", 3), ("blue_blocks", "block", "blue", 3)]
     # ... not by colours that belong to the next noun.
     assert _names("put the blocks in the red and blue bowls") == [
         ("blocks", "block", None, 2), ("red_bowl", "bowl", "red", 1),
@@ -221,9 +226,10 @@ def test_a_matching_colour_phrase_splits_groups_into_one_object_per_colour() -> 
         ("pallet", "pallet", None, 1)]
 
 
-def test_without_a_matching_phrase_a_listed_group_stays_one_group() -> None:
+def test_a_listed_group_is_one_object_per_colour_without_a_matching_phrase() -> None:
     assert _names("put the balls of different colors (red, blue, green) in the zone") == [
-        ("balls", "ball", None, 3), ("zone", "zone", None, 1)]
+        ("red_ball", "ball", "red", 1), ("blue_ball", "ball", "blue", 1),
+        ("green_ball", "ball", "green", 1), ("zone", "zone", None, 1)]
     from factask.gen.reading.mentions import colour_matched
 
     assert colour_matched("color-coordinated-ball-insertion")

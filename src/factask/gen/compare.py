@@ -15,7 +15,8 @@ compare equal:
   block in the zone" is the same task as one goal each;
 * a factor is labelled by its relation type, whether it is a milestone, and its
   categorical parameters (``ordered``, an aligned goal's ``mode``, a rope's ``side``
-  ...); each edge to an object names the role it plays (``objects`` with its position
+  ...); an order over objects that no label tells apart (a tower of three red
+  blocks) is no order; each edge to an object names the role it plays (``objects`` with its position
   when the relation orders them, or the anchor field: ``support``, ``zone``, ``base``
   ...);
 * names, descriptions, weights, tolerances and numeric parameters (spacing, radius,
@@ -175,16 +176,21 @@ def canonical(graph: TaskGraph, stated_colours: frozenset[str] | None = None) ->
     for f in graph.factors:
         goal = f.goal
         cats, nums = _parameters(goal)
-        label = (goal.type, bool(f.milestone), cats)
         anchor_roles = [(field_, inst) for field_ in type(goal).anchor_fields
                         for var in goal.anchor_names(field_) for inst in of.get(var, [])]
         movers = [inst for var in goal.objects for inst in of.get(var, [])]
+        ordered = _ordered(goal) and len({labels[m] for m in movers}) > 1
+        if not ordered:
+            # An order over objects no label tells apart (three red blocks, or
+            # blocks whose colours the words leave open) asks nothing: the same task.
+            cats = tuple((k, False if k == "ordered" else v) for k, v in cats)
+        label = (goal.type, bool(f.milestone), cats)
         per_object = goal.type in PER_OBJECT_RELATIONS and not getattr(goal, "poses", None)
         groups = [[m] for m in movers] if per_object and len(movers) > 1 else [movers]
         split_of[f.name] = []
         for k, group in enumerate(groups):
             node = f.name if len(groups) == 1 else f"{f.name}#{k}"
-            if _ordered(goal) and len(group) > 1:
+            if ordered and len(group) > 1:
                 roles = [(f"objects@{i}", m) for i, m in enumerate(group)]
             else:
                 roles = [("objects", m) for m in group]

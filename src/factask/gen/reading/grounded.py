@@ -33,12 +33,14 @@ from collections.abc import Collection, Sequence
 from itertools import product
 from typing import Any
 
+import networkx as nx
 from pydantic import ValidationError
 
 from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.examples import library_task_examples, render_examples
 from factask.gen.reading.bases import base_order
 from factask.gen.reading.capacity import prune
+from factask.gen.reading.clauses import read_goals
 from factask.gen.reading.cover import (
     GROUP_RELATIONS,
     colour_pins,
@@ -52,8 +54,9 @@ from factask.gen.reading.relation_schemas import (
     narrow_all_modes,
     relation_over,
 )
+from factask.gen.reading.stated_goals import after_lists, fit_sizes, matches, stated_factors
 from factask.graph.factors import SubtaskFactor
-from factask.graph.order import in_listed_order
+from factask.graph.order import dependency_graph, in_listed_order
 from factask.graph.taskgraph import TaskGraph
 from factask.relations import RELATION_TYPES
 from factask.vocabulary.errors import FactaskError, InvalidValueError
@@ -319,8 +322,16 @@ def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> 
     return out
 
 
+def graph_mentions(found: Sequence[Mention], proposal: str) -> list[Mention]:
+    """The named objects as the graph will have them: where the words state every
+    goal, the anchors those goals fill grown to hold what they put there
+    (:func:`factask.gen.reading.stated_goals.fit_sizes`)."""
+    stated = read_goals(proposal, found) if proposal else None
+    return fit_sizes(stated, found) if stated else list(found)
+
+
 def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
-                         cover: bool = True) -> Schema:
+                         cover: bool = True, stated: bool = True) -> Schema:
     """A whole graph's *decisions* only (one-shot with a grounded proposal).
 
     The named objects' kinds, colours, counts, sizes and descriptions come from
@@ -341,6 +352,9 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
             anchor: that start could be a goal met at the start). False, or
             where no such shape exists: an array of at most one goal per
             movable object (checked by :func:`goal_problems`).
+        stated: Whether goals the words state (:mod:`factask.gen.reading.clauses`)
+            are the only answer where the reading accounts for every named object
+            (False: the shapes above, whatever the words state).
 
     Returns:
         ``{"variables": [{name, initial}, ...], "factors": [{goal}, ...]}``
@@ -357,7 +371,13 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
                                 "(check applies() first)")
     factors: Schema | None = None
     order = base_order(found, proposal)  # goals build on earlier objects only: no cycle
-    if cover:
+    reading = read_goals(proposal, found) if proposal and stated else None
+    if reading:
+        # The words state every goal (factask.gen.reading.clauses): the grammar is that
+        # reading, the model writes only the numbers the words leave open.
+        factors = stated_factors(reading, kinds, counts, moved)
+        factors = factors and prune(factors, fit_sizes(reading, found), order)
+    if cover and factors is None:
         movers = [m.name for m in movable(found)]
         fixed = [m.name for m in found if m.name not in movers]
         # "each ball in the zone of its colour": the colours pin which goes where.
@@ -432,14 +452,27 @@ def expand_graph(data: dict[str, Any], found: Sequence[Mention], task: str,
         after it, the earlier one a milestone: :func:`factask.graph.order.in_listed_order`).
     """
     initial = {v["name"]: v["initial"] for v in data.get("variables", [])}
-    variables = [m.as_variable(initial.get(m.name)) for m in found]
     answered = list(data.get("factors", []))
+    stated = read_goals(description, found)
+    if stated and matches(stated, [f["goal"] for f in answered]):
+        found = fit_sizes(stated, found)  # the anchors the stated goals fill, grown
+    variables = [m.as_variable(initial.get(m.name)) for m in found]
     names = factor_names([f["goal"] for f in answered])
     factors = [{"name": n, "description": f"{n.replace('_', ' ')}: {description}"[:200],
                 "goal": f["goal"], "weight": 1.0 / len(answered)}
                for n, f in zip(names, answered, strict=True)]
+    if stated and matches(stated, [f["goal"] for f in answered]):
+        # "first ..., then ...": the words' steps are the factors' order.
+        for factor, after in zip(factors, after_lists(stated, names) or [], strict=True):
+            if after:
+                factor["after"] = after
     try:
-        ordered = in_listed_order([SubtaskFactor.model_validate(f) for f in factors])
+        listed = [SubtaskFactor.model_validate(f) for f in factors]
+        if not nx.is_directed_acyclic_graph(dependency_graph(listed)):
+            # The words' steps against the anchors' order ("drop the ball into the bowl,
+            # then carry the bowl"): the anchors decide, the steps are dropped.
+            listed = [f.model_copy(update={"after": []}) for f in listed]
+        ordered = in_listed_order(listed)
         factors = [f.model_dump(mode="json", exclude_none=True) for f in ordered]
     except ValidationError:
         pass  # the syntax check reports it, naming the node and field
@@ -483,5 +516,6 @@ def plan_bound(variables: Sequence[StateVariable]) -> int:
 __all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "GROUP_RELATIONS", "GROUP_WORDS", "MAX_EXTRA",
            "OBJECT_KINDS", "RELATION_WORDS", "applies", "compact_example", "compact_examples",
            "compact_graph_schema", "expand_graph", "factor_names", "goal_answer", "goal_problems",
+           "graph_mentions",
            "graph_schema", "grounded_variables", "group_named", "mention_variable", "movable",
            "named_relations", "plan_bound", "relation_over", "variables_answer"]

@@ -170,6 +170,11 @@ class Mention:
         also: Other kinds the proposal's word may mean (:data:`ALSO_KINDS`).
         moved: The words move an object whose kind is fixed by default ("then put
             the bowl in the green zone": the bowl is carried, :data:`MOVE_VERBS`).
+        counted: The words give its count ("three red blocks", "there are three of
+            each"); a plural without one is counted 2.
+        size: Its size where the goals the words state need more room than the
+            kind's default gives (:func:`factask.gen.reading.stated_goals.fit_sizes`);
+            None: the default.
         listed: The colours listed right after an uncoloured group ("blocks of
             different colors (red, blue, green)"), each with its count where the
             list gives one ("(two red, two blue)"; 0: not given).
@@ -182,6 +187,8 @@ class Mention:
     also: tuple[str, ...] = ()
     listed: tuple[tuple[str, int], ...] = ()
     moved: bool = False
+    counted: bool = False
+    size: tuple[float, float, float] | None = None
 
     def describe(self) -> str:
         """``red_blocks: kind block, colour red, count 3`` (``, moved`` for a bowl or
@@ -198,7 +205,8 @@ class Mention:
         """The object as a graph variable's data (size null: the kind's default;
         ``fixed`` false where the words move a kind that is fixed by default)."""
         out: dict[str, Any] = {"name": self.name, "description": self.describe(),
-                               "kind": self.kind, "size": None,
+                               "kind": self.kind,
+                               "size": list(self.size) if self.size else None,
                                "color": self.color or "gray", "count": self.count,
                                "initial": initial or {"type": "table"}}
         if self.moved:
@@ -265,11 +273,14 @@ def mentions(proposal: str) -> list[Mention]:
     found: dict[str, Mention] = {}
     words = words_of(desc)
     _scan(words, found)
+    _count_each(words, found)
     if name:
         said = {kind_of(w)[2] for w in _WORD.findall(desc.replace("-", " "))}
         _scan([w for w in words_of(name) if kind_of(w)[2] not in said], found)
     matched = _matched_kinds(words)
-    if matched is not None or colour_matched(name):
+    if matched is not None or colour_matched(name) or any(m.listed for m in found.values()):
+        # A group whose colours the words list ("blocks of different colours (red,
+        # blue, green)") is one object per colour, paired by colour or not.
         return _split_by_colour(list(found.values()), matched or set())
     return list(found.values())
 
@@ -380,7 +391,7 @@ HOLE_OF_BOX = re.compile(r"\b(?:the\s+)?holes?\s+(?:in|of|on)\s+(?=(?:the|each|i
 
 def words_of(text: str) -> list[str]:
     """The words of ``text``, with :data:`PHRASES` read as their kind words."""
-    text = text.replace("_", " ").replace("-", " ")
+    text = re.sub(r"\bgrey\b", "gray", text.replace("_", " ").replace("-", " "))
     found = list(HOLED_BOXES.finditer(text))
     if found:
         every = any(m.group(2) is None for m in found)
@@ -390,7 +401,93 @@ def words_of(text: str) -> list[str]:
             text = re.sub(r"\bbox(es)?\b", r"holedbox\1", text)
     for pattern, kind_word in PHRASES:
         text = pattern.sub(kind_word, text)
-    return _WORD.findall(text)
+    return _resolve_ones(_verb_senses(_WORD.findall(text)))
+
+
+#: Kind words that are also verbs or other words ("three bowls stand in a row",
+#: "you can put ..."): read as the kind only after a word that starts or qualifies
+#: a noun phrase (:data:`NOUN_LEAD`).
+VERB_SENSES = frozenset({"stand", "stands", "can", "cans", "target", "targets", "pad",
+                         "plate", "line", "lines", "board", "shape", "shapes", "set"})
+#: Words after which such a word is the noun: articles, determiners, counts, colours,
+#: modifiers ("the stand", "three stands", "a square plate", "differently colored stands").
+NOUN_LEAD = frozenset({"the", "a", "an", "each", "every", "its", "their", "this", "that",
+                       "these", "those", "one", "own", "same", "another", "other", "any",
+                       "both", "all", "square", "round", "circular", "rectangular",
+                       "wooden", "marked", "target", "goal", "kitting", "insertion",
+                       "straight", "long", "short"}) | MODIFIERS
+#: Words before "a line" that make it a shape of objects: "in a straight line", "form a line".
+_ROW_LEAD = frozenset({"in", "into", "form", "forming", "make", "making", "one", "single"})
+
+
+def _line_is_row(words: list[str], i: int) -> bool:
+    """Whether ``words[i]`` (line, lined ...) is a shape, not an object: "line up the
+    blocks", "lined up", "in a (straight) line"."""
+    if words[i] in ("lined", "lining") or (i + 1 < len(words) and words[i + 1] == "up"):
+        return True
+    k = i - 1
+    while k >= 0 and words[k] in ("a", "straight", "single", "one", "long", "neat"):
+        k -= 1
+    return k < i - 1 and k >= 0 and words[k] in _ROW_LEAD
+
+
+def _verb_senses(words: list[str]) -> list[str]:
+    """``words`` with the kind words of :data:`VERB_SENSES` used as verbs renamed (so
+    they name no object) and "a line" of objects read as a row."""
+    out = list(words)
+    for i, w in enumerate(words):
+        before = words[i - 1] if i else ""
+        after = words[i + 1] if i + 1 < len(words) else ""
+        if w in ("line", "lines", "lined", "lining") and _line_is_row(words, i):
+            out[i] = "row"
+            continue
+        if w not in VERB_SENSES:
+            continue
+        noun = before in NOUN_LEAD or before in COLOR_NAMES or bool(count_of(before)) \
+            or kind_of(after)[0] is not None
+        if not noun:
+            out[i] = f"{w}ing" if not w.endswith("s") else f"{w[:-1]}ing"
+    return out
+
+
+#: Prepositions after which a kind word names where objects go, not what moves.
+_PLACE_PREPOSITIONS = frozenset({"in", "into", "inside", "within", "on", "onto", "atop",
+                                 "upon", "along", "around", "to", "near", "beside"})
+
+
+def _after_preposition(words: list[str], i: int) -> bool:
+    """Whether the kind word ``words[i]`` ends a phrase a place preposition governs."""
+    j = i - 1
+    while j >= 0 and (words[j] in OBJECT_LEAD or words[j] in COLOR_NAMES
+                      or words[j] in MODIFIERS or count_of(words[j]) or words[j] == "top"):
+        j -= 1
+    return j >= 0 and words[j] in _PLACE_PREPOSITIONS
+
+
+def _resolve_ones(words: list[str]) -> list[str]:
+    return resolve_ones(words)[0]
+
+
+def resolve_ones(words: list[str], last: str | None = None) -> tuple[list[str], str | None]:
+    """"two blue blocks and three green ones": ``ones`` after a colour is the kind last
+    named (``blocks``), so the group is read like any other.
+
+    Args:
+        words: The words (as :func:`words_of` gives them).
+        last: The kind word named last before them (a sentence before), if any.
+
+    Returns:
+        The words with such ``one`` / ``ones`` replaced, and the kind word named last.
+    """
+    out = list(words)
+    for i, w in enumerate(words):
+        kind, _plural, singular = kind_of(w)
+        if kind is not None and not _after_preposition(words, i):
+            last = singular  # "the red ones in the red zone": the objects, not the zone
+        elif w in ("one", "ones") and last and i and words[i - 1] in COLOR_NAMES \
+                and not (i + 1 < len(words) and kind_of(words[i + 1])[0] is not None):
+            out[i] = plural_of(last) if w == "ones" else last
+    return out, last
 
 
 def _scan(words: list[str], found: dict[str, Mention]) -> None:
@@ -448,15 +545,45 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             count = min(count, MAX_COUNT)
             stem = f"{color}_{kind}" if color else kind
             name = plural_of(stem) if count > 1 else stem
+            counted = bool(total) or color in own_counts
             if _named(stem, found):
                 again = stem if stem in found else plural_of(stem)
                 if moved:
                     found[again] = replace(found[again], moved=True)
+                if counted and not found[again].counted:
+                    _recount(found, again, count)  # "... there are five yellow balls"
                 continue
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()),
-                                  listed, moved)
+                                  listed, moved, counted)
             if len(found) >= MAX_MENTIONS:
                 return
+
+
+def _recount(found: dict[str, Mention], name: str, count: int) -> None:
+    """Give the mention ``name`` the count a later phrase states, renamed to match
+    (``yellow_balls`` of 2 read, 5 stated), in its place in the order."""
+    old = found[name]
+    stem = f"{old.color}_{old.kind}" if old.color else old.kind
+    new = replace(old, name=plural_of(stem) if count > 1 else stem, count=count, counted=True)
+    items = [(new.name, new) if k == name else (k, m) for k, m in found.items()]
+    found.clear()
+    found.update(items)
+
+
+def _count_each(words: list[str], found: dict[str, Mention]) -> None:
+    """Give the coloured groups whose count the words did not state the count of "N
+    of each" ("the red blocks and the blue blocks; there are three of each", "two
+    blocks of each colour": only blocks)."""
+    for i in range(len(words) - 2):
+        if words[i + 1:i + 3] == ["of", "each"]:
+            n, kind = count_of(words[i]), None
+        elif i + 3 < len(words) and words[i + 2:i + 4] == ["of", "each"]:
+            n, kind = count_of(words[i]), kind_of(words[i + 1])[0]
+        else:
+            continue
+        for name, m in list(found.items()):
+            if n and m.color and not m.counted and m.count > 1 and kind in (None, m.kind):
+                _recount(found, name, min(n, MAX_COUNT))
 
 
 def _named(stem: str, names: Collection[str]) -> bool:

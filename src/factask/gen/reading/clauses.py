@@ -1,0 +1,463 @@
+"""The goals a proposal states, read clause by clause: which object goes where, how.
+
+:mod:`factask.gen.reading.mentions` finds the objects a proposal names; this module
+reads what the words do with them. A proposal is cut into **parts** (sentences, and
+the steps that "then", "after that", "next" or "finally" begin); in each part the
+words are read left to right:
+
+* a phrase naming objects (``the red blocks``, ``them``) with no preposition before
+  it names objects to **move**;
+* a preposition before such a phrase (``in``, ``into``, ``on``, ``on top of``,
+  ``along``, ``around``) makes it the **anchor** of the objects named since the last
+  anchor: "put the blue blocks in the blue bowl and the green blocks in the green
+  bowl" is two goals;
+* **shape words** (tower, stack, pyramid / row, line, side by side / circle, ring,
+  around) make the objects named near them one arrangement -- one per group where
+  the words say so ("two towers", "into another") -- with the anchor as its base,
+  line or centre;
+* the relation of an anchored goal follows the anchor's kind: a zone ``in_zone``
+  (``pile_in_zone`` for a pile), a bowl or container ``inside``, a fixture, kit or
+  hole ``aligned``, a pallet, stand or another object ``on``; a rope lies
+  ``rope_along`` a line;
+* the order of a stack or row of differently coloured objects is the order the
+  words give their colours, where they say an order ("in this sequence", "from the
+  bottom", "followed by", "in that order"); the goals of a part that "then"
+  begins come after those of the parts before.
+
+A reading is returned only when every named object is used by some goal and every
+goal is one the relation can hold; otherwise there is none (None), and the grammar
+offers the model the shapes of :mod:`factask.gen.reading.cover` instead. What the
+reading could not account for is :mod:`factask.gen.reading.accounting`'s to say.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+from factask.gen.reading.mentions import (
+    MOVE_VERBS,
+    Mention,
+    count_of,
+    kind_of,
+    resolve_ones,
+    words_of,
+)
+from factask.vocabulary.kinds import kind_spec
+from factask.vocabulary.palette import COLOR_NAMES
+
+#: Where a proposal passes from one part to the next; the second group says the next
+#: part comes after (a sequence word), not only beside it.
+_SPLIT = re.compile(r"([.;!?]|:\s)|(,?\s+(?:and\s+)?(?:then|after\s+that|afterwards|"
+                    r"next|finally|lastly|once\s+done)\b,?)")
+#: Verbs of an action: a part after "then" without one goes on the list before it.
+ACTION_VERBS = MOVE_VERBS | frozenset({
+    "build", "make", "form", "create", "construct", "repeat", "do", "sweep", "fill",
+    "cover", "rest", "use", "complete", "finish", "sort", "group", "surround",
+    "encircle", "balance", "assemble", "organize", "organise", "gather", "collect",
+    "return", "hang", "fit", "slot", "center", "centre", "attach", "connect", "lean"})
+#: Verbs that keep an object where it is: what they govern gets no goal of its own.
+STILL_VERBS = frozenset({"leave", "keep", "ignore", "avoid", "skip", "remain", "stay",
+                         "stays", "remains", "untouched"})
+#: Words that begin a part that comes first: "first put ...".
+_FIRST = frozenset({"first", "firstly", "start"})
+#: Prepositions that make the phrase after them an anchor, by the relation they ask.
+PREPOSITIONS: dict[str, str] = {
+    "in": "in", "into": "in", "inside": "in", "within": "in", "to": "in",
+    "on": "on", "onto": "on", "atop": "on", "upon": "on", "over": "on", "across": "on",
+    "along": "along", "around": "around", "encircling": "around", "surrounding": "around",
+}
+#: Words that may stand between a preposition and the kind word it governs.
+_LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "own", "this",
+                   "that", "these", "those", "top", "of", "both", "all", "same", "matching",
+                   "corresponding", "respective", "other", "another", "colored", "coloured",
+                   "color", "colour", "large", "small", "big", "little", "tiny", "larger",
+                   "smaller", "square", "round", "brown", "marked", "target", "specified",
+                   "designated", "empty", "open", "flat", "tall", "short", "wooden",
+                   "middle", "center", "centre"})
+#: Words that refer back to the objects moved last.
+PRONOUNS = frozenset({"them", "they", "it", "those", "these", "both"})
+#: Shape words: the arrangement they name.
+SHAPES: dict[str, str] = {
+    "tower": "stack", "towers": "stack", "stack": "stack", "stacks": "stack",
+    "stacked": "stack", "stacking": "stack", "pyramid": "stack", "column": "stack",
+    "columns": "stack",
+    "row": "row", "rows": "row", "line": "row",
+    "circle": "circle", "circles": "circle", "ring": "circle", "rings": "circle",
+    "circular": "circle",
+}
+#: Shape words that name several arrangements, one per group of objects.
+PLURAL_SHAPES = frozenset({"towers", "stacks", "rows", "circles", "rings", "columns"})
+#: Words that say a group goes into an arrangement of its own ("and the yellow ones into
+#: another", "two separate stacks").
+SEPARATE = frozenset({"another", "separate", "two", "three", "four", "each", "own"})
+#: Words that say the objects of an arrangement are listed in their order.
+ORDER_WORDS = frozenset({"order", "sequence", "bottom", "followed", "then", "next",
+                         "first", "second", "third", "starting", "start", "base",
+                         "sequentially", "ordered", "top", "left", "right"})
+#: Phrases that name a shape with words of relation: "side by side", "on top of each other".
+_SHAPE_PHRASES = (
+    (re.compile(r"\bside\s+by\s+side\b|\bnext\s+to\s+each\s+other\b|\bin\s+a\s+row\b"),
+     " row "),
+    (re.compile(r"\bon\s+(?:top\s+of\s+)?(?:each\s+other|one\s+another)\b"), " stacked "),
+)
+
+
+@dataclass(frozen=True)
+class ReadGoal:
+    """One goal the words state.
+
+    Attributes:
+        relation: The relation type (``inside``, ``stack``, ...).
+        objects: The names of the objects it moves, in the words' order.
+        anchor: The name of the object it anchors on (None: none).
+        ordered: Whether the order of ``objects`` is the task's (a stack's bottom first).
+        step: The part of the proposal it comes from, counted in sequence words:
+            a goal comes after every goal of a lower step.
+    """
+
+    relation: str
+    objects: tuple[str, ...]
+    anchor: str | None = None
+    ordered: bool = False
+    step: int = 0
+
+
+@dataclass
+class _Part:
+    words: list[str]
+    step: int
+    goals: list[ReadGoal] = field(default_factory=list)
+
+
+def parts_of(proposal: str) -> list[tuple[str, int]]:
+    """The proposal's parts, each with its step (raised by each sequence word)."""
+    text = proposal.lower()
+    for pattern, repl in _SHAPE_PHRASES:
+        text = pattern.sub(repl, text)
+    out: list[tuple[str, int]] = []
+    step, pos, sequenced = 0, 0, False
+    for match in [*_SPLIT.finditer(text), None]:
+        end = match.start() if match else len(text)
+        piece = text[pos:end]
+        if sequenced and out and not (ACTION_VERBS | SHAPES.keys()) & set(words_of(piece)):
+            # "..., followed by a green cylinder, then a red one": a list goes on, no step
+            out[-1] = (f"{out[-1][0]}, {piece}", out[-1][1])
+        elif piece.strip():
+            out.append((piece, step + (1 if sequenced and out else 0)))
+            step = out[-1][1]
+        if match is None:
+            break
+        sequenced = bool(match.group(2))
+        pos = match.end()
+    return out
+
+
+def _referents(words: list[str], i: int, found: Sequence[Mention]) -> list[Mention]:
+    """The mentions the kind word ``words[i]`` names: those of its kind (or a kind it
+    may also mean) with the colours just before it, or every one of its kind."""
+    kind = kind_of(words[i])[0]
+    colours: list[str] = []
+    j = i - 1
+    while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or", "then")
+                                                   and colours)):
+        if words[j] in COLOR_NAMES:
+            colours.append(words[j])
+        j -= 1
+    same = [m for m in found if m.kind == kind]
+    if not same:
+        same = [m for m in found if kind in m.also]
+    if colours:
+        return [m for m in same if m.color in colours]
+    return same
+
+
+def _anchor_prep(words: list[str], i: int) -> str | None:
+    """The preposition that governs the phrase ending at ``words[i]`` (a kind word), if any."""
+    j = i - 1
+    while j >= 0 and (words[j] in _LEAD or words[j] in COLOR_NAMES or count_of(words[j])):
+        j -= 1
+    return PREPOSITIONS.get(words[j]) if j >= 0 else None
+
+
+def _relation(prep: str, anchor: Mention, movers: Sequence[Mention], shape: str | None,
+              verbs: set[str]) -> str | None:
+    """The relation of a goal moving ``movers`` with this anchor."""
+    kind = anchor.kind
+    spec = kind_spec(kind)
+    if all(m.kind == "rope" for m in movers):
+        return "rope_along" if kind == "line" else None
+    if shape is not None:
+        return shape
+    if all(m.kind == "pile" for m in movers):
+        return "pile_in_zone" if kind == "zone" else None
+    if kind == "zone":
+        return "in_zone"
+    if kind in ("fixture", "kit") or (verbs & {"insert", "fit"} and kind != "container"):
+        return "aligned"
+    if prep == "along":
+        return "row"
+    if prep == "around":
+        return "circle"
+    if spec.receptacle and (prep == "in" or not spec.support):
+        return "inside"
+    if spec.support or anchor.movable:
+        return "on"
+    return None
+
+
+def _shape_of(words: list[str], lo: int, hi: int) -> list[tuple[int, str, bool]]:
+    """The shape words in ``words[lo:hi]``: (position, relation, plural)."""
+    out = []
+    for k in range(lo, hi):
+        w = words[k]
+        if w in SHAPES:
+            out.append((k, SHAPES[w], w in PLURAL_SHAPES))
+    return out
+
+
+def _ordered_objects(movers: list[Mention], text: str) -> tuple[list[Mention], bool]:
+    """The movers in the order the words give their colours, and whether the words
+    order them (an order word, and distinct colours named after it)."""
+    colours = [m.color for m in movers]
+    if len(movers) < 2 or None in colours or len(set(colours)) < len(colours):
+        return movers, False
+    words = re.findall(r"[a-z]+", text.replace("grey", "gray"))
+    cue = next((k for k, w in enumerate(words) if w in ORDER_WORDS), None)
+    if cue is None:
+        return movers, False
+    placed = _positions(text, colours)
+    if placed is not None:
+        return sorted(movers, key=lambda m: placed[str(m.color)]), True
+    seen: list[str] = []
+    for w in words[cue:]:
+        if w in colours and w not in seen:
+            seen.append(w)
+    if len(seen) < len(colours) - 1:
+        return movers, False
+    seen += [c for c in colours if c not in seen]  # the one the words leave last
+    tail = words[cue:]
+    top_first = "top" in tail and ("bottom" not in tail or tail.index("top") < tail.index("bottom"))
+    order = list(reversed(seen)) if top_first else seen  # "from the top: red, ..."
+    return sorted(movers, key=lambda m: order.index(str(m.color))), True
+
+
+#: Words that give a place in an order: the bottom (first) to the top (last).
+_PLACES: dict[str, float] = {
+    "bottom": 0, "base": 0, "lowest": 0, "first": 0, "start": 0, "starting": 0,
+    "begin": 0, "beginning": 0, "leftmost": 0, "second": 1, "middle": 1.5, "third": 2,
+    "fourth": 3, "fifth": 4, "top": 99, "last": 99, "highest": 99, "final": 99,
+    "rightmost": 99, "end": 99, "uppermost": 99,
+}
+
+
+def _positions(text: str, colours: Sequence[str | None]) -> dict[str, float] | None:
+    """Each colour's place where every colour is named in a phrase that gives one
+    ("2 purple blocks at the bottom and 3 yellow cylinders on top"), else None."""
+    out: dict[str, float] = {}
+    for chunk in re.split(r"[,;:]|\band\b|\bthen\b|\bfollowed\b", text.replace("grey", "gray")):
+        words = re.findall(r"[a-z]+", chunk)
+        places = [_PLACES[w] for w in words if w in _PLACES]
+        named = [w for w in words if w in colours]
+        if len(places) == 1 and len(set(named)) == 1 and named[0] not in out:
+            out[named[0]] = places[0]
+    if set(out) != {c for c in colours if c}:
+        return None
+    return out if len(set(out.values())) == len(out) else None
+
+
+def read_goals(proposal: str, found: Sequence[Mention]) -> list[ReadGoal] | None:
+    """The goals the proposal's words state over its mentions, or None.
+
+    Args:
+        proposal: The proposal (its description).
+        found: Its mentions (:func:`factask.gen.reading.mentions.mentions`).
+
+    Returns:
+        The goals, in the words' order, each with its step; None when the words name
+        no goal, or the goals leave a named object unused, or one has no relation.
+    """
+    if not found:
+        return None
+    goals: list[ReadGoal] = []
+    last: list[Mention] = []
+    sequenced = False
+    last_kind: str | None = None
+    for text, step in parts_of(proposal):
+        words, last_kind = resolve_ones(words_of(text), last_kind)  # "... the red ones"
+        if words and words[0] in _FIRST:
+            sequenced = True
+        verbs = set(words)
+        pending: list[Mention] = []
+        span = 0
+        part_goals: list[ReadGoal] = []
+        anchored_any = False
+        for i, w in enumerate(words):
+            if w in PRONOUNS:
+                refs = list(last)  # "... and put them on the pallet", "on top of it"
+            elif kind_of(w)[0] is not None:
+                refs = _referents(words, i, found)
+            else:
+                continue
+            if not refs:
+                continue
+            prep = _anchor_prep(words, i)
+            movers = [m for m in pending if m not in refs]
+            if prep is None or not movers:
+                pending.extend(m for m in refs if m not in pending and m.movable)
+                continue
+            shapes = _shape_of(words, span, i)
+            shape = shapes[-1][1] if shapes else None
+            made = _anchored(prep, refs, movers, shape, verbs, step, text)
+            if made is None:
+                return None
+            part_goals.extend(made)
+            anchored_any = True
+            last, pending, span = movers, [], i + 1
+        # "..., second the purple block": no verb, no place of its own (not "and the
+        # green block on the other", whose place the words do not name).
+        elliptic = not (ACTION_VERBS | STILL_VERBS | PREPOSITIONS.keys()) & set(words[span:])
+        if pending and part_goals and part_goals[-1].anchor and elliptic:
+            # "First put the orange block on the pallet, second the purple block": the
+            # same goal for each object named after it, in the words' order.
+            model = part_goals[-1]
+            ordinal = bool(set(words) & _PLACES.keys())
+            used = {n for g in (*goals, *part_goals) for n in (*g.objects, g.anchor) if n}
+            pending = [m for m in pending if m.name not in used]  # named again: no goal
+            for k, m in enumerate(pending, start=1):
+                part_goals.append(ReadGoal(model.relation, (m.name,), model.anchor, False,
+                                           model.step + (k if ordinal else 0)))
+            last, pending = pending, []
+        if pending:
+            shapes = _shape_of(words, 0, len(words))
+            if shapes:
+                made = _grouped(pending, shapes, words, step, text)
+                if made is None:
+                    return None
+                part_goals.extend(made)
+                last = pending
+            elif not anchored_any and not part_goals:
+                last = pending  # "three blocks are on the table": the objects, no goal
+        for goal in part_goals:
+            _add(goals, goal)
+    if not goals:
+        return None
+    if sequenced and len({g.step for g in goals}) == 1 and len(goals) > 1:
+        goals = [ReadGoal(g.relation, g.objects, g.anchor, g.ordered, k)
+                 for k, g in enumerate(goals)]  # "first A, B" : in the order read
+    goals = _in_colour_sequence(goals, proposal, found)
+    used = {n for g in goals for n in (*g.objects, g.anchor) if n}
+    if any(m.name not in used for m in found):
+        return None
+    return goals
+
+
+#: Words that say the goals are done in an order the words then list.
+_SEQUENCE_WORDS = frozenset({"sequence", "order", "sequentially", "sequential"})
+
+
+def _in_colour_sequence(goals: list[ReadGoal], proposal: str,
+                        found: Sequence[Mention]) -> list[ReadGoal]:
+    """Goals of one step, each moving one colour, put in the colour order the words
+    list after a sequence word ("... in a specific color sequence: red, blue, green")."""
+    colour = {m.name: m.color for m in found}
+    mine = [colour.get(g.objects[0]) if len(g.objects) == 1 else None for g in goals]
+    if len(goals) < 2 or len({g.step for g in goals}) > 1 or None in mine \
+            or len(set(mine)) < len(mine):
+        return goals
+    words = re.findall(r"[a-z]+", proposal.lower().replace("grey", "gray"))
+    cue = next((k for k, w in enumerate(words) if w in _SEQUENCE_WORDS), None)
+    if cue is None:
+        return goals
+    listed: list[str] = []
+    for w in words[cue:]:
+        if w in mine and w not in listed:
+            listed.append(w)
+    if len(listed) < len(mine) - 1:
+        return goals
+    listed += [c for c in mine if c not in listed and c is not None]
+    return [ReadGoal(g.relation, g.objects, g.anchor, g.ordered, listed.index(str(c)))
+            for g, c in zip(goals, mine, strict=True)]
+
+
+def _add(goals: list[ReadGoal], goal: ReadGoal) -> None:
+    """Add ``goal``, or -- where an earlier goal of the same relation moves the same
+    objects ("stack them in the container. The bottom of the stack is red ...") --
+    refine that one: the words describe one goal twice."""
+    for k, old in enumerate(goals):
+        if old.relation == goal.relation and set(old.objects) == set(goal.objects) \
+                and goal.anchor in (None, old.anchor):
+            ordered = goal if goal.ordered else old
+            goals[k] = ReadGoal(old.relation, ordered.objects, old.anchor,
+                                old.ordered or goal.ordered, old.step)
+            return
+    goals.append(goal)
+
+
+def _anchored(prep: str, anchors: list[Mention], movers: list[Mention], shape: str | None,
+              verbs: set[str], step: int, text: str) -> list[ReadGoal] | None:
+    """The goals that put ``movers`` at ``anchors`` (one anchor: all there; as many
+    anchors as movers and paired by colour or order: each with its own)."""
+    pairs: list[tuple[list[Mention], Mention]]
+    if len(anchors) == 1:
+        pairs = [(movers, anchors[0])]
+    elif len(anchors) == len(movers):
+        by_colour = {a.color: a for a in anchors if a.color}
+        if all(m.color in by_colour for m in movers) and len(by_colour) == len(anchors):
+            pairs = [([m], by_colour[m.color]) for m in movers]
+        else:
+            pairs = [([m], a) for m, a in zip(movers, anchors, strict=True)]
+    else:
+        return None
+    out: list[ReadGoal] = []
+    for group, anchor in pairs:
+        relation = _relation(prep, anchor, group, shape, verbs)
+        if relation is None:
+            return None
+        ordered = False
+        if relation in ("stack", "row"):
+            group, ordered = _ordered_objects(group, text)
+        out.append(ReadGoal(relation, tuple(m.name for m in group), anchor.name, ordered,
+                            step))
+    return out
+
+
+def _grouped(movers: list[Mention], shapes: list[tuple[int, str, bool]], words: list[str],
+             step: int, text: str) -> list[ReadGoal] | None:
+    """The arrangements of ``movers`` the shape words name, no anchor: one over all,
+    one per group where the words say so, or one per shape word ("a row from the
+    red blocks and a circle from the blue blocks")."""
+    relations = {r for _, r, _ in shapes}
+    if len(shapes) > 1 and len(relations) > 1:
+        positions = {m.name: _position(words, m) for m in movers}
+        groups: dict[int, list[Mention]] = {}
+        for m in movers:
+            before = [k for k, (p, _, _) in enumerate(shapes) if p <= positions[m.name]]
+            groups.setdefault(before[-1] if before else 0, []).append(m)
+        out = []
+        for k, group in groups.items():
+            out.extend(_grouped(group, [shapes[k]], words, step, text) or [])
+        return out or None
+    relation = shapes[0][1]
+    separate = any(p for _, _, p in shapes) or (bool(SEPARATE & set(words)) \
+        and len(movers) > 1 and all(m.count > 1 for m in movers))
+    groups_list = [[m] for m in movers] if separate and len(movers) > 1 else [movers]
+    out = []
+    for group in groups_list:
+        ordered = False
+        if relation in ("stack", "row"):
+            group, ordered = _ordered_objects(group, text)
+        out.append(ReadGoal(relation, tuple(m.name for m in group), None, ordered, step))
+    return out
+
+
+def _position(words: list[str], m: Mention) -> int:
+    """Where the words first name ``m`` (its kind word after its colour), else 0."""
+    for k, w in enumerate(words):
+        if kind_of(w)[0] == m.kind and (m.color is None or (k and words[k - 1] == m.color)):
+            return k
+    return 0
+
+
+__all__ = ["PREPOSITIONS", "ReadGoal", "parts_of", "read_goals"]

@@ -1,0 +1,170 @@
+"""The goals a proposal's words state (factask.gen.reading.clauses) and their grammar."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from factask.gen.compare import compare
+from factask.gen.first_choice import first_choice
+from factask.gen.reading import grounded
+from factask.gen.reading.capacity import layout_problem
+from factask.gen.reading.clauses import ReadGoal, parts_of, read_goals
+from factask.gen.reading.mentions import mentions
+from factask.graph.taskgraph import parse_graph
+from factask.vocabulary.kinds import kind_spec
+
+
+def goals(proposal: str) -> list[tuple]:
+    out = read_goals(proposal, mentions(proposal))
+    assert out is not None, proposal
+    return [(g.relation, g.objects, g.anchor, g.ordered, g.step) for g in out]
+
+
+@pytest.mark.parametrize(("proposal", "expected"), [
+    # gapping: one verb, two goals
+    ("Put the blue blocks in the blue bowl and the green blocks in the green bowl.",
+     [("inside", ("blue_blocks",), "blue_bowl", False, 0),
+      ("inside", ("green_blocks",), "green_bowl", False, 0)]),
+    # "ones" is the kind named last (not the zone after "in")
+    ("There are four red blocks and four blue blocks; put the red ones in the red zone "
+     "and the blue ones in the blue zone.",
+     [("in_zone", ("red_blocks",), "red_zone", False, 0),
+      ("in_zone", ("blue_blocks",), "blue_zone", False, 0)]),
+    # a count stated in another sentence, and "then" as a step
+    ("First put the cyan blocks in the container, then stack the pink blocks on the pallet. "
+     "There are two cyan blocks and three pink ones.",
+     [("inside", ("cyan_blocks",), "container", False, 0),
+      ("stack", ("pink_blocks",), "pallet", False, 1)]),
+    # two shape words, each over the objects named after it
+    ("Make a row from the red blocks and a circle from the blue blocks.",
+     [("row", ("red_blocks",), None, False, 0), ("circle", ("blue_blocks",), None, False, 0)]),
+    # "two towers": one per group
+    ("Make two towers, one from three maroon blocks and the other from three navy blocks.",
+     [("stack", ("maroon_blocks",), None, False, 0),
+      ("stack", ("navy_blocks",), None, False, 0)]),
+    # around X: X is the centre
+    ("Place the five yellow balls in a circle around the purple block.",
+     [("circle", ("yellow_balls",), "purple_block", False, 0)]),
+    # the order of a stack from the places the words give each colour
+    ("Build one tower: 2 purple blocks at the bottom and 3 yellow cylinders stacked on top.",
+     [("stack", ("purple_blocks", "yellow_cylinders"), None, True, 0)]),
+    # the order from a list after "the bottom", read again from a second sentence
+    ("Stack the red, blue and green cylinders on the stand. The bottom of the stack is the "
+     "blue cylinder, followed by the green one, then the red one.",
+     [("stack", ("blue_cylinder", "green_cylinder", "red_cylinder"), "stand", True, 0)]),
+    # ordinals after an anchored goal: the same goal, one step each
+    ("First put the orange block on the pallet, second the purple block, and third the "
+     "pink block.",
+     [("on", ("orange_block",), "pallet", False, 0), ("on", ("purple_block",), "pallet", False, 1),
+      ("on", ("pink_block",), "pallet", False, 2)]),
+    # anchors paired with their objects by colour
+    ("There are two balls (red, blue) and two cylinders of matching colours. Put each "
+     "ball on the cylinder of the same colour.",
+     [("on", ("red_ball",), "red_cylinder", False, 0),
+      ("on", ("blue_ball",), "blue_cylinder", False, 0)]),
+    # goals in a colour sequence
+    ("Put the blocks (red, green, blue) in the bowls of matching colour, in the sequence "
+     "blue, red, green.",
+     [("inside", ("red_block",), "red_bowl", False, 1),
+      ("inside", ("green_block",), "green_bowl", False, 2),
+      ("inside", ("blue_block",), "blue_bowl", False, 0)]),
+    # a fixture takes its object aligned; a pile is swept
+    ("insert the red ell into the red fixture", [("aligned", ("red_ell",), "red_fixture", False,
+                                                  0)]),
+    ("sweep the pile of small blocks into the green zone",
+     [("pile_in_zone", ("pile",), "green_zone", False, 0)]),
+])
+def test_the_goals_the_words_state(proposal: str, expected: list[tuple]) -> None:
+    assert goals(proposal) == expected
+
+
+@pytest.mark.parametrize("proposal", [
+    # an object the words name but give no goal: no reading (the shapes decide)
+    "Put the red block in the bowl and leave the blue block alone.",
+    # nothing moves
+    "The zone is green.",
+    # "the other" names no kind: the green block has no anchor
+    "Two cylinders stand on the table. Put the red block on one cylinder and the green "
+    "block on the other.",
+])
+def test_no_reading_where_the_words_leave_an_object_without_a_goal(proposal: str) -> None:
+    assert read_goals(proposal, mentions(proposal)) is None
+
+
+def test_a_list_after_then_goes_on_and_a_new_action_is_a_step() -> None:
+    assert [s for _, s in parts_of("stack red, then blue, then green")] == [0]
+    assert [s for _, s in parts_of("put the block in the bowl, then put the ball on it")] \
+        == [0, 1]
+    assert [s for _, s in parts_of("make a row of four blocks and after that a second row")] \
+        == [0, 1]
+
+
+def test_a_stated_goal_grows_its_anchor_to_fit() -> None:
+    proposal = "put the five blocks in the zone"
+    found = mentions(proposal)
+    goal = {"type": "in_zone", "objects": ["blocks"], "zone": "zone"}
+    assert layout_problem(goal, found) is not None  # the default zone is too small
+    sized = grounded.graph_mentions(found, proposal)
+    zone = next(m for m in sized if m.name == "zone")
+    assert zone.size is not None and zone.size[0] > kind_spec("zone").default_size[0]
+    assert layout_problem(goal, sized) is None
+    schema = grounded.compact_graph_schema(found, proposal)
+    graph = parse_graph(grounded.expand_graph(first_choice(schema), found, "t", proposal))
+    assert list(graph.variable("zone").size) == list(zone.size)
+
+
+def test_the_words_steps_become_the_factors_order() -> None:
+    proposal = "First put the cyan block in the container, then put the pink block on the pallet."
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    graph = parse_graph(grounded.expand_graph(first_choice(schema), found, "t", proposal))
+    first, second = graph.factors
+    assert first.goal.objects == ["cyan_block"] and second.after == [first.name]
+
+
+def test_steps_that_contradict_the_anchors_are_left_to_the_anchors() -> None:
+    # The ball goes in the bowl first, but the bowl's own goal is the anchor's: no cycle.
+    proposal = "drop the pink ball into the yellow bowl, then put the bowl in the green zone"
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    graph = parse_graph(grounded.expand_graph(first_choice(schema), found, "t", proposal))
+    graph.ensure_valid()
+
+
+def test_the_reading_only_graph_means_the_proposal() -> None:
+    proposal = "Put two blue blocks and three green ones into the brown container."
+    reference = {
+        "name": "r", "description": proposal,
+        "variables": [
+            {"name": "b", "description": "d", "kind": "block", "color": "blue", "count": 2},
+            {"name": "g", "description": "d", "kind": "block", "color": "green", "count": 3},
+            {"name": "c", "description": "d", "kind": "container", "color": "brown",
+             "size": [0.2, 0.2, 0.05]}],
+        "factors": [{"name": "f", "description": "d", "weight": 1.0,
+                     "goal": {"type": "inside", "objects": ["b", "g"], "container": "c"}}]}
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    graph = parse_graph(grounded.expand_graph(first_choice(schema), found, "t", proposal))
+    assert compare(graph, reference, proposal).equivalent
+
+
+_WORDS = ["put", "the", "red", "blue", "green", "block", "blocks", "ball", "bowl", "zone",
+          "in", "on", "into", "then", "and", "stack", "tower", "row", "circle", "around",
+          "pallet", "two", "three", "ones", "of", "each", ".", ",", "first", "bottom", "top",
+          "them", "it", "pile", "line", "along", "fixture", "insert", "another", "order"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.sampled_from(_WORDS), max_size=30).map(" ".join) | st.text(max_size=200))
+def test_any_text_gives_goals_over_its_own_objects_or_none(text: str) -> None:
+    found = mentions(text)
+    out = read_goals(text, found)
+    if out is None:
+        return
+    names = {m.name for m in found}
+    assert all(isinstance(g, ReadGoal) and g.objects and g.step >= 0 for g in out)
+    used = {n for g in out for n in (*g.objects, g.anchor) if n}
+    assert used == names  # every named object, nothing else
+    assert all(g.anchor not in g.objects for g in out)
