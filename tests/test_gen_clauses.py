@@ -10,7 +10,7 @@ from factask.gen.compare import compare
 from factask.gen.first_choice import first_choice
 from factask.gen.reading import grounded
 from factask.gen.reading.capacity import layout_problem
-from factask.gen.reading.clauses import ReadGoal, parts_of, read_goals
+from factask.gen.reading.clauses import ReadGoal, parts_of, read_goals, still_objects
 from factask.gen.reading.mentions import mentions
 from factask.graph.taskgraph import parse_graph
 from factask.vocabulary.kinds import kind_spec
@@ -80,9 +80,27 @@ def test_the_goals_the_words_state(proposal: str, expected: list[tuple]) -> None
     assert goals(proposal) == expected
 
 
+@pytest.mark.parametrize(("proposal", "expected", "still"), [
+    ("Put the red block in the bowl and leave the blue block alone.",
+     [("inside", ("red_block",), "bowl", False, 0)], {"blue_block"}),
+    ("Place the cyan block in the blue zone, not in the green zone.",
+     [("in_zone", ("cyan_block",), "blue_zone", False, 0)], {"green_zone"}),
+    ("Stack the two white boxes, but do not move the black box.",
+     [("stack", ("white_boxes",), None, False, 0)], {"black_box"}),
+    ("Put the green box on the pallet; the red and yellow boxes around it are not part of "
+     "the task.", [("on", ("green_box",), "pallet", False, 0)], {"red_box", "yellow_box"}),
+    ("Take the blue ball out of the bowl and put it on the stand.",
+     [("on", ("blue_ball",), "stand", False, 0)], {"bowl"}),
+    ("Without moving the red block, put the green block on the pallet.",
+     [("on", ("green_block",), "pallet", False, 0)], {"red_block"}),
+])
+def test_objects_the_words_keep_still_have_no_goal(proposal: str, expected: list[tuple],
+                                                    still: set[str]) -> None:
+    assert goals(proposal) == expected
+    assert still_objects(proposal, mentions(proposal)) == still
+
+
 @pytest.mark.parametrize("proposal", [
-    # an object the words name but give no goal: no reading (the shapes decide)
-    "Put the red block in the bowl and leave the blue block alone.",
     # nothing moves
     "The zone is green.",
     # "the other" names no kind: the green block has no anchor
@@ -166,5 +184,6 @@ def test_any_text_gives_goals_over_its_own_objects_or_none(text: str) -> None:
     names = {m.name for m in found}
     assert all(isinstance(g, ReadGoal) and g.objects and g.step >= 0 for g in out)
     used = {n for g in out for n in (*g.objects, g.anchor) if n}
-    assert used == names  # every named object, nothing else
+    still = still_objects(text, found)
+    assert used | still == names and not used & still  # every named object, once
     assert all(g.anchor not in g.objects for g in out)

@@ -57,6 +57,7 @@ from factask.gen.memory import SubtaskMemory
 from factask.gen.prompts import render, schema_skeleton
 from factask.gen.reading import grounded
 from factask.gen.reading.accounting import account, unread_summary
+from factask.gen.reading.clauses import still_objects
 from factask.gen.reading.mentions import grounding_feedback, mentions, mentions_text
 from factask.gen.results import APPROACHES, GenerationResult
 from factask.gen.steps import (
@@ -323,7 +324,8 @@ class Generator(StepRunner):
                           schema=self.schema_for_prompt(schema, lv))
 
         def expand(data: dict[str, Any]) -> dict[str, Any]:
-            problems = grounded.goal_problems([f["goal"] for f in data["factors"]], found)
+            problems = grounded.goal_problems([f["goal"] for f in data["factors"]], found,
+                                              still_objects(desc, found))
             if problems:
                 raise AnswerError("The goals do not make the proposal's task:\n"
                                   + "\n".join(f"- {p}" for p in problems))

@@ -35,6 +35,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 from factask.gen.reading.mentions import (
     MOVE_VERBS,
@@ -59,7 +60,7 @@ ACTION_VERBS = MOVE_VERBS | frozenset({
     "return", "hang", "fit", "slot", "center", "centre", "attach", "connect", "lean"})
 #: Verbs that keep an object where it is: what they govern gets no goal of its own.
 STILL_VERBS = frozenset({"leave", "keep", "ignore", "avoid", "skip", "remain", "stay",
-                         "stays", "remains", "untouched"})
+                         "stays", "remains", "untouched", "keeping", "leaving", "ignoring"})
 #: Words that begin a part that comes first: "first put ...".
 _FIRST = frozenset({"first", "firstly", "start"})
 #: Prepositions that make the phrase after them an anchor, by the relation they ask.
@@ -276,11 +277,45 @@ def read_goals(proposal: str, found: Sequence[Mention]) -> list[ReadGoal] | None
 
     Returns:
         The goals, in the words' order, each with its step; None when the words name
-        no goal, or the goals leave a named object unused, or one has no relation.
+        no goal, or the goals leave a named object unused (but those the words keep
+        still: :func:`still_objects`), or one has no relation.
     """
+    read = _read(proposal, tuple(found))
+    return list(read[0]) if read is not None else None
+
+
+def still_objects(proposal: str, found: Sequence[Mention]) -> frozenset[str]:
+    """The named objects the words keep where they are and give no goal: "leave the
+    blue cylinder where it is", "ignore the black block", "not on the blue one",
+    "the three blue blocks are only distractors", "take the ball out of the bowl".
+
+    Args:
+        proposal: The proposal (its description).
+        found: Its mentions.
+
+    Returns:
+        Their names (empty where the words state no goals).
+    """
+    read = _read(proposal, tuple(found))
+    return read[1] if read is not None else frozenset()
+
+
+#: Words that keep what follows them still, until the next action: "do not move", "without".
+NEGATIONS = frozenset({"not", "don", "dont", "never", "without", "except", "nor", "neither",
+                       "distractor", "distractors", "keeping"})
+#: Prepositions of where an object comes from: it is no anchor of a goal.
+SOURCES = frozenset({"from", "out"})
+#: Words that end a negation's reach: "..., just put the yellow block in the zone".
+_POSITIVE = frozenset({"just", "only", "instead", "rather", "but", "then"})
+
+
+@lru_cache(maxsize=256)
+def _read(proposal: str, found: tuple[Mention, ...]
+          ) -> tuple[tuple[ReadGoal, ...], frozenset[str]] | None:
     if not found:
         return None
     goals: list[ReadGoal] = []
+    still: set[str] = set()
     last: list[Mention] = []
     sequenced = False
     last_kind: str | None = None
@@ -293,7 +328,17 @@ def read_goals(proposal: str, found: Sequence[Mention]) -> list[ReadGoal] | None
         span = 0
         part_goals: list[ReadGoal] = []
         anchored_any = False
+        # A part that keeps objects still and moves nothing: "the red and yellow boxes
+        # around it are not part of the task", "the other cylinder should stay bare".
+        idle = bool((NEGATIONS | STILL_VERBS) & verbs) and not ACTION_VERBS & verbs
+        negated = False
         for i, w in enumerate(words):
+            if w in NEGATIONS or w in STILL_VERBS:
+                negated = True
+                continue
+            if negated and (w in _POSITIVE or (w in ACTION_VERBS and words[i - 1] not in
+                                               NEGATIONS | {"do", "to", "t"})):
+                negated = False
             if w in PRONOUNS:
                 refs = list(last)  # "... and put them on the pallet", "on top of it"
             elif kind_of(w)[0] is not None:
@@ -303,6 +348,9 @@ def read_goals(proposal: str, found: Sequence[Mention]) -> list[ReadGoal] | None
             if not refs:
                 continue
             prep = _anchor_prep(words, i)
+            if negated or idle or (_source(words, i) and not any(m.movable for m in refs)):
+                still.update(m.name for m in refs)
+                continue
             movers = [m for m in pending if m not in refs]
             if prep is None or not movers:
                 pending.extend(m for m in refs if m not in pending and m.movable)
@@ -340,7 +388,7 @@ def read_goals(proposal: str, found: Sequence[Mention]) -> list[ReadGoal] | None
             elif not anchored_any and not part_goals:
                 last = pending  # "three blocks are on the table": the objects, no goal
         for goal in part_goals:
-            _add(goals, goal)
+            _add(goals, goal, {m.name: m for m in found}, text)
     if not goals:
         return None
     if sequenced and len({g.step for g in goals}) == 1 and len(goals) > 1:
@@ -348,9 +396,10 @@ def read_goals(proposal: str, found: Sequence[Mention]) -> list[ReadGoal] | None
                  for k, g in enumerate(goals)]  # "first A, B" : in the order read
     goals = _in_colour_sequence(goals, proposal, found)
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
-    if any(m.name not in used for m in found):
+    still -= used  # moved or an anchor elsewhere: not still
+    if any(m.name not in used | still for m in found):
         return None
-    return goals
+    return tuple(goals), frozenset(still)
 
 
 #: Words that say the goals are done in an order the words then list.
@@ -381,16 +430,34 @@ def _in_colour_sequence(goals: list[ReadGoal], proposal: str,
             for g, c in zip(goals, mine, strict=True)]
 
 
-def _add(goals: list[ReadGoal], goal: ReadGoal) -> None:
+def _source(words: list[str], i: int) -> bool:
+    """Whether the kind word ``words[i]`` ends a phrase "from ..." / "out of ...": where
+    an object comes from."""
+    j = i - 1
+    while j >= 0 and words[j] != "of" and (words[j] in _LEAD or words[j] in COLOR_NAMES
+                                           or count_of(words[j])):
+        j -= 1
+    return j >= 0 and (words[j] == "from" or (words[j] == "of" and j and words[j - 1] == "out"))
+
+
+def _add(goals: list[ReadGoal], goal: ReadGoal, by_name: dict[str, Mention],
+         text: str) -> None:
     """Add ``goal``, or -- where an earlier goal of the same relation moves the same
-    objects ("stack them in the container. The bottom of the stack is red ...") --
-    refine that one: the words describe one goal twice."""
+    objects or more ("stack them in the container. The bottom of the stack is red
+    ...") -- refine that one with the order ``text`` (``goal``'s words) gives: the
+    words describe one goal twice."""
     for k, old in enumerate(goals):
-        if old.relation == goal.relation and set(old.objects) == set(goal.objects) \
+        if old.relation == goal.relation and set(goal.objects) <= set(old.objects) \
                 and goal.anchor in (None, old.anchor):
-            ordered = goal if goal.ordered else old
-            goals[k] = ReadGoal(old.relation, ordered.objects, old.anchor,
-                                old.ordered or goal.ordered, old.step)
+            if set(goal.objects) == set(old.objects) and goal.ordered:
+                goals[k] = ReadGoal(old.relation, goal.objects, old.anchor, True, old.step)
+            elif not old.ordered and old.relation in ("stack", "row"):
+                # "... The bottom of the tower is red, followed by blue, green": the
+                # words give the order of the whole goal named before.
+                movers, ordered = _ordered_objects([by_name[n] for n in old.objects], text)
+                if ordered:
+                    goals[k] = ReadGoal(old.relation, tuple(m.name for m in movers),
+                                        old.anchor, True, old.step)
             return
     goals.append(goal)
 
@@ -460,4 +527,4 @@ def _position(words: list[str], m: Mention) -> int:
     return 0
 
 
-__all__ = ["PREPOSITIONS", "ReadGoal", "parts_of", "read_goals"]
+__all__ = ["PREPOSITIONS", "ReadGoal", "parts_of", "read_goals", "still_objects"]

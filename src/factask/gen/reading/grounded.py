@@ -291,13 +291,17 @@ def goal_answer(variables: Sequence[StateVariable], text: str) -> Schema:
     return ss.obj({"goal": goal, "description": ss.text(GROUNDED_TEXT)})
 
 
-def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> list[str]:
+def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention],
+                  still: Collection[str] = ()) -> list[str]:
     """What makes a grounded graph's goals another (or no) task: a named object no
-    goal uses, a row, circle or stack of fewer than two objects.
+    goal uses (but those the words keep still), a row, circle or stack of fewer
+    than two objects.
 
     Args:
         goals: The answer's goals (JSON).
         found: The proposal's mentions.
+        still: The named objects the words keep where they are
+            (:func:`factask.gen.reading.clauses.still_objects`).
 
     Returns:
         One line per problem (empty: none).
@@ -316,7 +320,7 @@ def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention]) -> 
             out.append(f"factors.{i}.goal: a {kind} of {instances} object is no task; use "
                        "the relation the proposal asks for, over the objects it names")
     for m in found:
-        if m.name not in used:
+        if m.name not in used and m.name not in still:
             out.append(f"no goal uses {m.name} ({m.describe()}), which the proposal names: "
                        "every named object belongs in a goal (moved, or as the anchor)")
     return out

@@ -65,6 +65,14 @@ TRAILING_NAME = re.compile(r"^(.*\S)\s+([a-z0-9]+(?:-[a-z0-9]+)+)\s*$", re.DOTAL
 #: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
 #: pile, not objects of their own).
 PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
+    # An L-shaped marker on the table is a corner; "the corners of the pallet" are places
+    # on it, not objects.
+    (re.compile(r"\b(?:l|ell)\s*shaped?\s+(?:marker|mark|outline|corner)(s?)\b"), r"corner\1"),
+    (re.compile(r"\bcorners?\s+of\s+(?=(?:the|a|an|its|their|each)\s)"), "edge of "),
+    # "put the ball in the box of its colour": a box things go in is a container.
+    (re.compile(r"\b(in|into|inside|within)\s+((?:(?:the|a|an|its|their|each|every|one|"
+                r"same|matching|brown|large|big|small|open|empty|"
+                + "|".join(COLOR_NAMES) + r")\s+){0,3})box(es)?\b"), r"\1 \2container\3"),
     # "an L shape hole" is a hole (the words say its shape); any other L shape (with
     # or without a noun: block, piece, ...) is an ell.
     (re.compile(r"\b(?:l|ell)\s*shaped?\s+"
