@@ -32,9 +32,10 @@ reading could not account for is :mod:`factask.gen.reading.accounting`'s to say.
 
 from __future__ import annotations
 
+import itertools
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 from factask.gen.reading.mentions import (
@@ -50,7 +51,7 @@ from factask.vocabulary.palette import COLOR_NAMES
 
 #: Where a proposal passes from one part to the next; the second group says the next
 #: part comes after (a sequence word), not only beside it.
-_SPLIT = re.compile(r"([.;!?]|:\s)|(,?\s+(?:and\s+)?(?:then|after\s+that|afterwards|"
+_SPLIT = re.compile(r"([.;!?])|(,?\s+(?:and\s+)?(?:then|after\s+that|afterwards|"
                     r"next|finally|lastly|once\s+done)\b,?)")
 #: Verbs of an action: a part after "then" without one goes on the list before it.
 ACTION_VERBS = MOVE_VERBS | frozenset({
@@ -116,6 +117,8 @@ class ReadGoal:
         ordered: Whether the order of ``objects`` is the task's (a stack's bottom first).
         step: The part of the proposal it comes from, counted in sequence words:
             a goal comes after every goal of a lower step.
+        field: The anchor field ``anchor`` fills where the relation has several
+            (a row ``on`` other objects, not ``along`` them); None: any.
     """
 
     relation: str
@@ -123,6 +126,7 @@ class ReadGoal:
     anchor: str | None = None
     ordered: bool = False
     step: int = 0
+    field: str | None = None
 
 
 @dataclass
@@ -357,6 +361,13 @@ def _read(proposal: str, found: tuple[Mention, ...]
                 continue
             shapes = _shape_of(words, span, i)
             shape = shapes[-1][1] if shapes else None
+            below = [m for m in pending if m in refs]
+            if below and shapes and shapes[0][0] < i:
+                # "three grey blocks side by side ..., and three white blocks laid on each
+                # grey block": the anchor was arranged first, by the shape word before.
+                made = _grouped(below, shapes[:1], words, step, text)
+                part_goals.extend(made or [])
+                shape = shapes[-1][1] if len(shapes) > 1 else None
             made = _anchored(prep, refs, movers, shape, verbs, step, text)
             if made is None:
                 return None
@@ -374,8 +385,8 @@ def _read(proposal: str, found: tuple[Mention, ...]
             used = {n for g in (*goals, *part_goals) for n in (*g.objects, g.anchor) if n}
             pending = [m for m in pending if m.name not in used]  # named again: no goal
             for k, m in enumerate(pending, start=1):
-                part_goals.append(ReadGoal(model.relation, (m.name,), model.anchor, False,
-                                           model.step + (k if ordinal else 0)))
+                part_goals.append(replace(model, objects=(m.name,), ordered=False,
+                                          step=model.step + (k if ordinal else 0)))
             last, pending = pending, []
         if pending:
             shapes = _shape_of(words, 0, len(words))
@@ -392,9 +403,9 @@ def _read(proposal: str, found: tuple[Mention, ...]
     if not goals:
         return None
     if sequenced and len({g.step for g in goals}) == 1 and len(goals) > 1:
-        goals = [ReadGoal(g.relation, g.objects, g.anchor, g.ordered, k)
-                 for k, g in enumerate(goals)]  # "first A, B" : in the order read
+        goals = [replace(g, step=k) for k, g in enumerate(goals)]  # "first A, B": as read
     goals = _in_colour_sequence(goals, proposal, found)
+    goals = [g2 for g in goals for g2 in _layered(g, proposal, found)]
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
     still -= used  # moved or an anchor elsewhere: not still
     if any(m.name not in used | still for m in found):
@@ -426,8 +437,33 @@ def _in_colour_sequence(goals: list[ReadGoal], proposal: str,
     if len(listed) < len(mine) - 1:
         return goals
     listed += [c for c in mine if c not in listed and c is not None]
-    return [ReadGoal(g.relation, g.objects, g.anchor, g.ordered, listed.index(str(c)))
-            for g, c in zip(goals, mine, strict=True)]
+    return [replace(g, step=listed.index(str(c))) for g, c in zip(goals, mine, strict=True)]
+
+
+#: Words of a build in layers: each group of objects is a layer on the one below.
+LAYER_WORDS = frozenset({"pyramid", "wall", "layer", "layers", "course", "courses", "level",
+                         "levels", "tier", "tiers"})
+
+
+def _layered(goal: ReadGoal, proposal: str, found: Sequence[Mention]) -> list[ReadGoal]:
+    """A stack of groups the words build in layers ("a pyramid: the three green blocks
+    at the bottom, the two red blocks in the middle and the blue block on top") as one
+    row per group, each on the one below (the first along the anchor); any other goal
+    as it is."""
+    by_name = {m.name: m for m in found}
+    groups = [by_name[n] for n in goal.objects if n in by_name]
+    words = set(re.findall(r"[a-z]+", proposal.lower()))
+    if goal.relation != "stack" or len(groups) < 2 or not LAYER_WORDS & words \
+            or all(m.count == 1 for m in groups):
+        return [goal]
+    if not goal.ordered:
+        groups, ordered = _ordered_objects(groups, proposal.lower())
+        if not ordered:
+            return [goal]
+    out = [ReadGoal("row", (groups[0].name,), goal.anchor, False, goal.step, "along")]
+    out += [ReadGoal("row", (upper.name,), lower.name, False, goal.step, "on")
+            for lower, upper in itertools.pairwise(groups)]
+    return out
 
 
 def _source(words: list[str], i: int) -> bool:
@@ -450,14 +486,14 @@ def _add(goals: list[ReadGoal], goal: ReadGoal, by_name: dict[str, Mention],
         if old.relation == goal.relation and set(goal.objects) <= set(old.objects) \
                 and goal.anchor in (None, old.anchor):
             if set(goal.objects) == set(old.objects) and goal.ordered:
-                goals[k] = ReadGoal(old.relation, goal.objects, old.anchor, True, old.step)
+                goals[k] = replace(old, objects=goal.objects, ordered=True)
             elif not old.ordered and old.relation in ("stack", "row"):
                 # "... The bottom of the tower is red, followed by blue, green": the
                 # words give the order of the whole goal named before.
                 movers, ordered = _ordered_objects([by_name[n] for n in old.objects], text)
                 if ordered:
-                    goals[k] = ReadGoal(old.relation, tuple(m.name for m in movers),
-                                        old.anchor, True, old.step)
+                    goals[k] = replace(old, objects=tuple(m.name for m in movers),
+                                       ordered=True)
             return
     goals.append(goal)
 
@@ -482,11 +518,14 @@ def _anchored(prep: str, anchors: list[Mention], movers: list[Mention], shape: s
         relation = _relation(prep, anchor, group, shape, verbs)
         if relation is None:
             return None
-        ordered = False
+        ordered, field_ = False, None
+        if relation == "on" and anchor.movable and anchor.count > 1 \
+                and sum(m.count for m in group) > 1:
+            relation, field_ = "row", "on"  # "three white blocks, one on each grey block"
         if relation in ("stack", "row"):
             group, ordered = _ordered_objects(group, text)
         out.append(ReadGoal(relation, tuple(m.name for m in group), anchor.name, ordered,
-                            step))
+                            step, field_))
     return out
 
 

@@ -108,10 +108,11 @@ def pin(branch: Schema, objects: Sequence[str], anchors: Sequence[str],
         return []
     fields = [f for f in spec.anchor_fields if f in props]
     instances = sum(counts.get(o, 1) for o in objects)
-    if relation in GROUP_RELATIONS - {"stack"} and instances < 2:
-        return []
     out: list[Schema] = []
     for chosen in permutations(fields, len(anchors)):
+        if relation in GROUP_RELATIONS - {"stack"} and instances < 2 \
+                and not (relation == "row" and "on" in chosen):
+            continue  # a row of one is no row, but for the top of a pyramid (on others)
         new = dict(props)
         new["objects"] = _tuple([{"const": o} for o in objects])
         ok = True

@@ -61,6 +61,8 @@ def goal_schema(goal: ReadGoal, kinds: dict[str, str], counts: dict[str, int],
             continue
         for variant in pin(branch, list(goal.objects), anchors, counts):
             props = dict(variant["properties"])
+            if goal.field and goal.anchor and props.get(goal.field) != {"const": goal.anchor}:
+                continue  # the anchor in another field than the words say
             unstated = [f for f in fields if f in props and "const" not in props[f]]
             if any(not nullable(props[f]) for f in unstated):
                 continue  # an anchor the words do not give
