@@ -22,7 +22,8 @@ from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from factask.gen.reading.mentions import ALSO_KINDS, count_of, kind_of, words_of
+from factask.gen.reading.mentions import ALSO_KINDS
+from factask.gen.reading.words import count_of, kind_of, words_of
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import colour_of_word

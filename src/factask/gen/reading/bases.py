@@ -19,14 +19,8 @@ from collections.abc import Sequence
 
 import networkx as nx
 
-from factask.gen.reading.mentions import (
-    COLOUR_LIST_LEAD,
-    MODIFIERS,
-    NUMBER_WORDS,
-    Mention,
-    kind_of,
-    words_of,
-)
+from factask.gen.reading.mentions import COLOUR_LIST_LEAD, Mention
+from factask.gen.reading.words import MODIFIERS, NUMBER_WORDS, kind_of, words_of
 from factask.vocabulary.palette import COLOR_NAMES
 
 #: Words that put what comes before them onto or into what comes after.

@@ -38,14 +38,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
-from factask.gen.reading.mentions import (
-    MOVE_VERBS,
-    Mention,
-    count_of,
-    kind_of,
-    resolve_ones,
-    words_of,
-)
+from factask.gen.reading.mentions import MOVE_VERBS, Mention
+from factask.gen.reading.words import count_of, kind_of, resolve_ones, words_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
 

@@ -10,7 +10,7 @@ words whose meaning is known.
 
 from __future__ import annotations
 
-from factask.gen.reading.mentions import NUMBER_WORDS, plural_of
+from factask.gen.reading.words import NUMBER_WORDS, plural_of
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.variables import StateVariable
 

@@ -23,27 +23,19 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
+from factask.gen.reading.words import (
+    MODIFIERS,
+    NUMBER_WORDS,
+    OBJECT_LEAD,
+    WORD,
+    count_of,
+    kind_of,
+    plural_of,
+    words_of,
+)
 from factask.vocabulary.kinds import ASSET_KINDS, kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
 
-#: Words that name a kind, singular (a plural ``s``/``es`` is also read).
-KIND_WORDS: dict[str, str] = {
-    **{kind: kind for kind in ASSET_KINDS},
-    "cube": "block", "brick": "block", "sphere": "ball", "marble": "ball",
-    "cup": "bowl", "bin": "container", "tray": "container", "area": "zone",
-    "region": "zone", "target": "zone", "pillar": "cylinder", "can": "cylinder",
-    "basket": "container", "bucket": "container", "crate": "box", "carton": "box",
-    "package": "box", "parcel": "box", "disk": "cylinder", "disc": "cylinder",
-    "puck": "cylinder", "peg": "cylinder", "rod": "cylinder", "dish": "bowl",
-    "pot": "bowl", "orb": "ball", "pad": "zone", "mat": "zone", "platform": "pallet",
-    "plate": "stand", "hole": "fixture", "slot": "fixture", "socket": "fixture",
-    "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
-    "heap": "pile", "board": "kit", "silhouette": "fixture",
-    # A box with a hole in its side (one word: see HOLED_BOXES).
-    "holedbox": "holed_box",
-    # Objects of no stated shape are blocks: "pack the objects into the container".
-    "object": "block", "item": "block", "piece": "block", "shape": "block",
-}
 #: Other kinds an everyday word may as well mean: a graph whose coloured object is
 #: one of these is still the proposal's ("the red basket" may be a red bowl). The
 #: grounded answers use the word's kind in :data:`KIND_WORDS`.
@@ -61,56 +53,7 @@ ALSO_KINDS: dict[str, tuple[str, ...]] = {
 TASK_NAME = re.compile(r"^\s*([a-z0-9]+(?:-[a-z0-9]+)+)\s*:\s*(.*)$", re.DOTALL)
 #: A proposal that ends with a task name, as the generator reads one: ``description name``.
 TRAILING_NAME = re.compile(r"^(.*\S)\s+([a-z0-9]+(?:-[a-z0-9]+)+)\s*$", re.DOTALL)
-#: Phrases read as one kind word before the words are split: an L-shaped piece is an
-#: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
-#: pile, not objects of their own).
-PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
-    # An L-shaped marker on the table is a corner; "the corners of the pallet" are places
-    # on it, not objects.
-    (re.compile(r"\b(?:l|ell)\s*shaped?\s+(?:marker|mark|outline|corner)(s?)\b"), r"corner\1"),
-    (re.compile(r"\bcorners?\s+of\s+(?=(?:the|a|an|its|their|each)\s)"), "edge of "),
-    # "put the ball in the box of its colour": a box things go in is a container.
-    (re.compile(r"\b(in|into|inside|within)\s+((?:(?:the|a|an|its|their|each|every|one|"
-                r"same|matching|brown|large|big|small|open|empty|"
-                + "|".join(COLOR_NAMES) + r")\s+){0,3})box(es)?\b"), r"\1 \2container\3"),
-    # "an L shape hole" is a hole (the words say its shape); any other L shape (with
-    # or without a noun: block, piece, ...) is an ell.
-    (re.compile(r"\b(?:l|ell)\s*shaped?\s+"
-                r"(?=(?:hole|slot|fixture|socket|silhouette|cavity)s?\b)"), ""),
-    (re.compile(r"\b(?:l|ell)\s*shaped?(?:\s+(?:block|piece|object|part|shape|brick|cube|"
-                r"bar))?(s?)\b"), r"ell\1"),
-    # A cylinder on its side is a log: "a horizontal cylinder", "the cylinder lying on
-    # its side", "balance the cylinder horizontally on the blocks".
-    (re.compile(rf"\b(?:horizontal|lying|fallen)\s+((?:{'|'.join(COLOR_NAMES)})\s+)?"
-                r"cylinder(s?)\b"), r"\1log\2"),
-    (re.compile(r"\bcylinder(s?)\s+(?:(?:lying|laid|placed|put)\s+)?(?:on\s+(?:its|their)\s+"
-                r"sides?|horizontally|(?:lying|laid)\s+(?:down|flat))\b"), r"log\1"),
-    # "cylindrical blocks", "spherical objects": the adjective says the kind.
-    (re.compile(r"\bcylindrical\s+(?:block|object|piece|item|shape)(s?)\b"), r"cylinder\1"),
-    (re.compile(r"\bspherical\s+(?:block|object|piece|item|shape)(s?)\b"), r"ball\1"),
-    # "ell blocks", "ell pieces": the ell is the shape, the noun the object.
-    (re.compile(r"\bell\s+(?:block|piece|object|part|shape|brick|cube|bar)(s?)\b"),
-     r"ell\1"),
-    (re.compile(r"\b(?:pile|heap)\s+of\s+(?:(?:small|tiny|little)\s+)?"
-                rf"(?:({'|'.join(COLOR_NAMES)})\s+)?(?:(?:small|tiny|little)\s+)?[a-z]+"),
-     r"\1 pile"),
-)
-#: Count words (a digit string is read too).
-NUMBER_WORDS: dict[str, int] = {
-    "a": 1, "an": 1, "one": 1, "single": 1, "two": 2, "pair": 2, "three": 3, "four": 4,
-    "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10, "eleven": 11,
-    "twelve": 12, "dozen": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15,
-    "sixteen": 16,
-}
-#: Words that may stand between a count and its kind word without changing what is
-#: counted: "four differently colored blocks", "three small matching cubes".
-MODIFIERS = frozenset({
-    "different", "differently", "colored", "coloured", "color", "colour", "matching",
-    "corresponding", "identical", "distinct", "various", "similar", "same", "other",
-    "small", "smaller", "little", "tiny", "large", "larger", "big", "bigger", "tall",
-    "short", "wooden", "plastic", "solid", "empty", "separate", "individual", "more",
-    "random", "randomly", "placed", "scattered", "multicolored", "multicoloured",
-})
+
 #: Words that may stand between a plural kind word and the list of its colours that
 #: counts it: "blocks (red, blue, green)", "cylinders of different colors: red, ...".
 COLOUR_LIST_LEAD = frozenset({"of", "in", "with", "different", "differently", "colors",
@@ -134,10 +77,6 @@ MOVE_VERBS = frozenset({
     "shift", "take", "lay", "deliver", "rearrange", "align", "pack", "load", "drag",
     "swap", "nest", "raise", "stand", "line",
 })
-#: Words that may stand between a moving verb and its object: "pick up the two red
-#: bowls".
-OBJECT_LEAD = frozenset({"up", "the", "a", "an", "each", "every", "all", "both", "its",
-                         "their", "this", "that", "these", "those", "and", "or"})
 #: Kinds fixed by default that the robot can still carry (not flat markers).
 CARRIED_KINDS = frozenset(k for k, spec in ASSET_KINDS.items()
                           if not spec.movable and spec.collides)
@@ -162,8 +101,6 @@ MATCH_AFTER = frozenset({"coordinated", "matched", "matching", "corresponding",
 MATCH_REACH = 6
 #: Largest count read from a proposal (the graph model's count limit is larger).
 MAX_COUNT = 16
-
-_WORD = re.compile(r"[a-z0-9]+")
 
 
 @dataclass(frozen=True)
@@ -227,22 +164,6 @@ class Mention:
         return self.moved or kind_spec(self.kind).movable
 
 
-def kind_of(word: str) -> tuple[str | None, bool, str]:
-    """(kind, plural, singular word) of a word, or (None, False, word)."""
-    if word in KIND_WORDS:
-        return KIND_WORDS[word], False, word
-    for suffix in ("es", "s"):
-        stem = word[: -len(suffix)]
-        if word.endswith(suffix) and stem in KIND_WORDS:
-            return KIND_WORDS[stem], True, stem
-    return None, False, word
-
-
-def plural_of(stem: str) -> str:
-    """``red_block`` -> ``red_blocks``, ``box`` -> ``boxes``."""
-    return f"{stem}es" if stem.endswith(("s", "x", "z", "ch", "sh")) else f"{stem}s"
-
-
 def mentions(proposal: str) -> list[Mention]:
     """The objects ``proposal`` names, in order, each once.
 
@@ -283,7 +204,7 @@ def mentions(proposal: str) -> list[Mention]:
     _scan(words, found)
     _count_each(words, found)
     if name:
-        said = {kind_of(w)[2] for w in _WORD.findall(desc.replace("-", " "))}
+        said = {kind_of(w)[2] for w in WORD.findall(desc.replace("-", " "))}
         _scan([w for w in words_of(name) if kind_of(w)[2] not in said], found)
     matched = _matched_kinds(words)
     if matched is not None or colour_matched(name) or any(m.listed for m in found.values()):
@@ -296,7 +217,7 @@ def mentions(proposal: str) -> list[Mention]:
 def colour_matched(text: str) -> bool:
     """Whether ``text`` pairs objects by colour: "the bowl of the same colour",
     "zones correspondingly colored", "colour-coordinated", "sort by colour"."""
-    return _matched_kinds(_WORD.findall(text.lower().replace("-", " ").replace("_", " "))) \
+    return _matched_kinds(WORD.findall(text.lower().replace("-", " ").replace("_", " "))) \
         is not None
 
 
@@ -385,117 +306,6 @@ def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Men
         out.append(Mention(plural_of(stem) if count > 1 else stem, m.kind, colour,
                            min(count, MAX_COUNT), m.also, moved=m.moved))
     return out
-
-
-#: "a box with a small hole on one side": that box is a ``holed_box``; "the boxes have a
-#: hole in their sides" (a sentence of its own, after the boxes were named): every box.
-HOLED_BOXES = re.compile(
-    r"\bbox(es)?\s+(?:(?:each|all)\s+)?(?:(with|having)|ha(?:s|ve)|that\s+ha(?:s|ve))\s+"
-    r"(?:a|an|one)\s+(?:(?:small|little|round|square|tiny)\s+)*(?:hole|opening)s?"
-    r"(?:\s+(?:on|in|at)\s+(?:one\s+of\s+)?(?:its|their|the|a|one)\s+(?:[a-z]+\s+)?sides?)?")
-#: "the hole in the red box": the box (its hole is no object of its own).
-HOLE_OF_BOX = re.compile(r"\b(?:the\s+)?holes?\s+(?:in|of|on)\s+(?=(?:the|each|its|their|a)\s)")
-
-
-def words_of(text: str) -> list[str]:
-    """The words of ``text``, with :data:`PHRASES` read as their kind words."""
-    text = re.sub(r"\bgrey\b", "gray", text.replace("_", " ").replace("-", " "))
-    found = list(HOLED_BOXES.finditer(text))
-    if found:
-        every = any(m.group(2) is None for m in found)
-        text = HOLED_BOXES.sub(lambda m: f"holedbox{m.group(1) or ''}", text)
-        text = HOLE_OF_BOX.sub("", text)
-        if every:
-            text = re.sub(r"\bbox(es)?\b", r"holedbox\1", text)
-    for pattern, kind_word in PHRASES:
-        text = pattern.sub(kind_word, text)
-    return _resolve_ones(_verb_senses(_WORD.findall(text)))
-
-
-#: Kind words that are also verbs or other words ("three bowls stand in a row",
-#: "you can put ..."): read as the kind only after a word that starts or qualifies
-#: a noun phrase (:data:`NOUN_LEAD`).
-VERB_SENSES = frozenset({"stand", "stands", "can", "cans", "target", "targets", "pad",
-                         "plate", "line", "lines", "board", "shape", "shapes", "set"})
-#: Words after which such a word is the noun: articles, determiners, counts, colours,
-#: modifiers ("the stand", "three stands", "a square plate", "differently colored stands").
-NOUN_LEAD = frozenset({"the", "a", "an", "each", "every", "its", "their", "this", "that",
-                       "these", "those", "one", "own", "same", "another", "other", "any",
-                       "both", "all", "square", "round", "circular", "rectangular",
-                       "wooden", "marked", "target", "goal", "kitting", "insertion",
-                       "straight", "long", "short"}) | MODIFIERS
-#: Words before "a line" that make it a shape of objects: "in a straight line", "form a line".
-_ROW_LEAD = frozenset({"in", "into", "form", "forming", "make", "making", "one", "single"})
-
-
-def _line_is_row(words: list[str], i: int) -> bool:
-    """Whether ``words[i]`` (line, lined ...) is a shape, not an object: "line up the
-    blocks", "lined up", "in a (straight) line"."""
-    if words[i] in ("lined", "lining") or (i + 1 < len(words) and words[i + 1] == "up"):
-        return True
-    k = i - 1
-    while k >= 0 and words[k] in ("a", "straight", "single", "one", "long", "neat"):
-        k -= 1
-    return k < i - 1 and k >= 0 and words[k] in _ROW_LEAD
-
-
-def _verb_senses(words: list[str]) -> list[str]:
-    """``words`` with the kind words of :data:`VERB_SENSES` used as verbs renamed (so
-    they name no object) and "a line" of objects read as a row."""
-    out = list(words)
-    for i, w in enumerate(words):
-        before = words[i - 1] if i else ""
-        after = words[i + 1] if i + 1 < len(words) else ""
-        if w in ("line", "lines", "lined", "lining") and _line_is_row(words, i):
-            out[i] = "row"
-            continue
-        if w not in VERB_SENSES:
-            continue
-        noun = before in NOUN_LEAD or before in COLOR_NAMES or bool(count_of(before)) \
-            or kind_of(after)[0] is not None
-        if not noun:
-            out[i] = f"{w}ing" if not w.endswith("s") else f"{w[:-1]}ing"
-    return out
-
-
-#: Prepositions after which a kind word names where objects go, not what moves.
-_PLACE_PREPOSITIONS = frozenset({"in", "into", "inside", "within", "on", "onto", "atop",
-                                 "upon", "along", "around", "to", "near", "beside"})
-
-
-def _after_preposition(words: list[str], i: int) -> bool:
-    """Whether the kind word ``words[i]`` ends a phrase a place preposition governs."""
-    j = i - 1
-    while j >= 0 and (words[j] in OBJECT_LEAD or words[j] in COLOR_NAMES
-                      or words[j] in MODIFIERS or count_of(words[j]) or words[j] == "top"):
-        j -= 1
-    return j >= 0 and words[j] in _PLACE_PREPOSITIONS
-
-
-def _resolve_ones(words: list[str]) -> list[str]:
-    return resolve_ones(words)[0]
-
-
-def resolve_ones(words: list[str], last: str | None = None) -> tuple[list[str], str | None]:
-    """"two blue blocks and three green ones": ``ones`` after a colour is the kind last
-    named (``blocks``), so the group is read like any other.
-
-    Args:
-        words: The words (as :func:`words_of` gives them).
-        last: The kind word named last before them (a sentence before), if any.
-
-    Returns:
-        The words with such ``one`` / ``ones`` replaced, and the kind word named last.
-    """
-    out = list(words)
-    for i, w in enumerate(words):
-        kind, _plural, singular = kind_of(w)
-        if kind is not None and not _after_preposition(words, i):
-            last = singular  # "the red ones in the red zone": the objects, not the zone
-        elif w in ("one", "ones") and last and i and words[i - 1] in COLOR_NAMES \
-                and not (i + 1 < len(words) and kind_of(words[i + 1])[0] is not None):
-            out[i] = plural_of(last) if w == "ones" else last
-    return out, last
 
 
 def _scan(words: list[str], found: dict[str, Mention]) -> None:
@@ -609,11 +419,6 @@ def _moved_at(words: list[str], j: int) -> bool:
     return k >= 0 and words[k] in MOVE_VERBS
 
 
-def count_of(word: str) -> int:
-    """The count a word says (``3`` for ``three`` or ``3``), else 0."""
-    return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
-
-
 def _is_adjunct(word: str) -> bool:
     """Whether ``word`` may be a noun used as an adjective before a kind word: not a
     function word, count, colour or kind word itself."""
@@ -689,6 +494,6 @@ def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
             f"for each (with this kind and colour):\n{lines}")
 
 
-__all__ = ["ALSO_KINDS", "KIND_WORDS", "MAX_MENTIONS", "MAX_SPLIT_MENTIONS", "Mention",
+__all__ = ["ALSO_KINDS", "MAX_MENTIONS", "MAX_SPLIT_MENTIONS", "Mention",
            "colour_matched", "grounding_feedback", "mentions",
            "mentions_text", "missing_mentions"]
