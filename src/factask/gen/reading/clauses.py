@@ -46,16 +46,20 @@ from factask.vocabulary.palette import COLOR_NAMES
 #: Where a proposal passes from one part to the next; the second group says the next
 #: part comes after (a sequence word), not only beside it.
 _SPLIT = re.compile(r"([.;!?])|(,?\s+(?:and\s+)?(?:then|after\s+that|afterwards|"
-                    r"next|finally|lastly|once\s+done)\b,?)")
+                    r"next(?!\s+to\b)|finally|lastly|once\s+done)\b,?)")
 #: Verbs of an action: a part after "then" without one goes on the list before it.
 ACTION_VERBS = MOVE_VERBS | frozenset({
     "build", "make", "form", "create", "construct", "repeat", "do", "sweep", "fill",
     "cover", "rest", "use", "complete", "finish", "sort", "group", "surround",
     "encircle", "balance", "assemble", "organize", "organise", "gather", "collect",
-    "return", "hang", "fit", "slot", "center", "centre", "attach", "connect", "lean"})
+    "return", "hang", "fit", "slot", "center", "centre", "attach", "connect", "lean",
+    "standup", "lineup"})
 #: Verbs that keep an object where it is: what they govern gets no goal of its own.
 STILL_VERBS = frozenset({"leave", "keep", "ignore", "avoid", "skip", "remain", "stay",
                          "stays", "remains", "untouched", "keeping", "leaving", "ignoring"})
+#: Verbs that say how things are, not what to do: "the ball is in the left bowl".
+STATE_VERBS = frozenset({"is", "are", "sits", "sit", "lies", "lie", "starts", "start",
+                         "holds", "hold", "rests", "contains", "standing", "was", "were"})
 #: Words that begin a part that comes first: "first put ...".
 _FIRST = frozenset({"first", "firstly", "start"})
 #: Prepositions that make the phrase after them an anchor, by the relation they ask.
@@ -63,6 +67,7 @@ PREPOSITIONS: dict[str, str] = {
     "in": "in", "into": "in", "inside": "in", "within": "in", "to": "in",
     "on": "on", "onto": "on", "atop": "on", "upon": "on", "over": "on", "across": "on",
     "along": "along", "around": "around", "encircling": "around", "surrounding": "around",
+    "beside": "beside", "next": "beside", "alongside": "beside",
 }
 #: Words that may stand between a preposition and the kind word it governs.
 _LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "own", "this",
@@ -130,9 +135,13 @@ class _Part:
     goals: list[ReadGoal] = field(default_factory=list)
 
 
+#: "Before you put A, place B": B's clause comes first.
+_BEFORE = re.compile(r"(^|[.;!?]\s*)before\s+([^,.;!?]+),\s*([^.;!?]+)")
+
+
 def parts_of(proposal: str) -> list[tuple[str, int]]:
     """The proposal's parts, each with its step (raised by each sequence word)."""
-    text = proposal.lower()
+    text = _BEFORE.sub(r"\1\3, then \2", proposal.lower())
     for pattern, repl in _SHAPE_PHRASES:
         text = pattern.sub(repl, text)
     out: list[tuple[str, int]] = []
@@ -177,6 +186,8 @@ def _anchor_prep(words: list[str], i: int) -> str | None:
     j = i - 1
     while j >= 0 and (words[j] in _LEAD or words[j] in COLOR_NAMES or count_of(words[j])):
         j -= 1
+    if j >= 1 and words[j] == "to" and words[j - 1] in ("next", "close"):
+        return "beside"  # "next to the blue block"
     return PREPOSITIONS.get(words[j]) if j >= 0 else None
 
 
@@ -191,6 +202,8 @@ def _relation(prep: str, anchor: Mention, movers: Sequence[Mention], shape: str 
         return shape
     if all(m.kind == "pile" for m in movers):
         return "pile_in_zone" if kind == "zone" else None
+    if prep == "beside":
+        return "row" if anchor.movable else None  # "the red block next to the blue one"
     if kind == "zone":
         return "in_zone"
     if kind in ("fixture", "kit") or (verbs & {"insert", "fit"} and kind != "container"):
@@ -329,6 +342,9 @@ def _read(proposal: str, found: tuple[Mention, ...]
         # A part that keeps objects still and moves nothing: "the red and yellow boxes
         # around it are not part of the task", "the other cylinder should stay bare".
         idle = bool((NEGATIONS | STILL_VERBS) & verbs) and not ACTION_VERBS & verbs
+        # "The red block sits on top of the yellow cylinder": the scene, no goal.
+        described = bool(STATE_VERBS & verbs) and not (ACTION_VERBS | SHAPES.keys()) & verbs
+        described_subject = False
         negated = False
         for i, w in enumerate(words):
             if w in NEGATIONS or w in STILL_VERBS:
@@ -350,6 +366,14 @@ def _read(proposal: str, found: tuple[Mention, ...]
                 still.update(m.name for m in refs)
                 continue
             movers = [m for m in pending if m not in refs]
+            if described:
+                # The scene's objects: kept still unless a goal uses them; what the part
+                # is about first is what "it" means next.
+                still.update(m.name for m in refs)
+                if not described_subject:
+                    last = [m for m in refs if m.movable] or last
+                    described_subject = True
+                continue
             if prep is None or not movers:
                 pending.extend(m for m in refs if m not in pending and m.movable)
                 continue
@@ -513,6 +537,10 @@ def _anchored(prep: str, anchors: list[Mention], movers: list[Mention], shape: s
         if relation is None:
             return None
         ordered, field_ = False, None
+        if prep == "beside" and relation == "row":
+            out.append(ReadGoal("row", (anchor.name, *(m.name for m in group)), None, False,
+                                step))
+            continue
         if relation == "on" and anchor.movable and anchor.count > 1 \
                 and sum(m.count for m in group) > 1:
             relation, field_ = "row", "on"  # "three white blocks, one on each grey block"

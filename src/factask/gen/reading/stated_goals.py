@@ -70,6 +70,13 @@ def goal_schema(goal: ReadGoal, kinds: dict[str, str], counts: dict[str, int],
                 props[f] = {"type": "null"}
             if "ordered" in props:
                 props["ordered"] = {"const": goal.ordered}
+            if "mode" in props and goal.anchor:
+                # Into a corner marker: corner to corner; into a box's hole: the hole.
+                mode = {"corner": "corner", "holed_box": "hole"}.get(kinds[goal.anchor],
+                                                                      "center")
+                if mode not in props["mode"].get("enum", [mode]):
+                    continue
+                props["mode"] = {"const": mode}
             out = {**variant, "properties": props}
             if out not in variants:
                 variants.append(out)

@@ -159,7 +159,7 @@ def words_of(text: str) -> list[str]:
 #: "you can put ..."): read as the kind only after a word that starts or qualifies
 #: a noun phrase (:data:`NOUN_LEAD`).
 VERB_SENSES = frozenset({"stand", "stands", "can", "cans", "target", "targets", "pad",
-                         "plate", "line", "lines", "board", "shape", "shapes", "set"})
+                         "plate", "line", "lines", "board", "shape", "shapes"})
 #: Words after which such a word is the noun: articles, determiners, counts, colours,
 #: modifiers ("the stand", "three stands", "a square plate", "differently colored stands").
 NOUN_LEAD = frozenset({"the", "a", "an", "each", "every", "its", "their", "this", "that",
@@ -184,7 +184,8 @@ def _line_is_row(words: list[str], i: int) -> bool:
 
 def _verb_senses(words: list[str]) -> list[str]:
     """``words`` with the kind words of :data:`VERB_SENSES` used as verbs renamed (so
-    they name no object) and "a line" of objects read as a row."""
+    they name no object: ``standup`` where it is an order, ``standing`` where it says
+    how things are) and "a line" of objects read as a row."""
     out = list(words)
     for i, w in enumerate(words):
         before = words[i - 1] if i else ""
@@ -197,7 +198,11 @@ def _verb_senses(words: list[str]) -> list[str]:
         noun = before in NOUN_LEAD or before in COLOR_NAMES or bool(count_of(before)) \
             or kind_of(after)[0] is not None
         if not noun:
-            out[i] = f"{w}ing" if not w.endswith("s") else f"{w[:-1]}ing"
+            # An order ("stand the box on the pallet", "then stand ...") or a state
+            # ("three bowls stand in a row"): the readers tell them apart by these.
+            ordered = before in ("", "then", "and", "please", "to", "you", "first", "now")
+            stem = w[:-1] if w.endswith("s") else w
+            out[i] = f"{stem}up" if ordered else f"{stem}ing"
     return out
 
 
