@@ -54,6 +54,9 @@ def goals(proposal: str) -> list[tuple]:
     ("Stack the red, blue and green cylinders on the stand. The bottom of the stack is the "
      "blue cylinder, followed by the green one, then the red one.",
      [("stack", ("blue_cylinder", "green_cylinder", "red_cylinder"), "stand", True, 0)]),
+    # "in that order" points back at the colours named before it
+    ("Stack the red, green and blue blocks into a tower in that order.",
+     [("stack", ("red_block", "green_block", "blue_block"), None, True, 0)]),
     # ordinals after an anchored goal: the same goal, one step each
     ("First put the orange block on the pallet, second the purple block, and third the "
      "pink block.",

@@ -246,6 +246,9 @@ def _ordered_objects(movers: list[Mention], text: str) -> tuple[list[Mention], b
     for w in words[cue:]:
         if w in colours and w not in seen:
             seen.append(w)
+    if len(seen) < len(colours) - 1 and _BACK_ORDER.search(text):
+        # "the red, green and blue blocks ... in that order": the colours named before
+        seen = [w for k, w in enumerate(words) if w in colours and w not in words[:k]]
     if len(seen) < len(colours) - 1:
         return movers, False
     seen += [c for c in colours if c not in seen]  # the one the words leave last
@@ -255,6 +258,9 @@ def _ordered_objects(movers: list[Mention], text: str) -> tuple[list[Mention], b
     return sorted(movers, key=lambda m: order.index(str(m.color))), True
 
 
+#: An order word that points back at the colours named before it.
+_BACK_ORDER = re.compile(r"\b(?:in\s+(?:that|this|the\s+same|the\s+given)\s+order|"
+                         r"respectively|in\s+the\s+order\s+(?:given|named|listed))\b")
 #: Words that give a place in an order: the bottom (first) to the top (last).
 _PLACES: dict[str, float] = {
     "bottom": 0, "base": 0, "lowest": 0, "first": 0, "start": 0, "starting": 0,
