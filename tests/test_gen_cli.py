@@ -104,3 +104,12 @@ def test_benchmark_takes_comma_lists_and_prints_json(tmp_path) -> None:
     bad = runner.invoke(app, ["benchmark", "-a", "one-shot,[bold]x[/bold]",
                               "-o", str(tmp_path / "b")])
     assert bad.exit_code == 2 and "[bold]x[/bold]" in bad.output
+
+
+def test_generate_help_names_the_default_approach_it_takes() -> None:
+    from factask.cli import gen_cmds
+    from factask.gen.results import DEFAULT_APPROACH
+
+    assert gen_cmds._DEFAULT_APPROACH_HELP.startswith(f"default {DEFAULT_APPROACH}:")
+    res = runner.invoke(app, ["generate", "--help"])
+    assert f"default {DEFAULT_APPROACH}" in " ".join(res.output.split())

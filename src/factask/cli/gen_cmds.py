@@ -23,6 +23,9 @@ console = make_console(highlight=False)
 err_console = make_console(stderr=True, highlight=False)
 
 _APPROACH_HELP = "one-shot (baseline), variables-first (approach 1) or subtasks-first (approach 2)"
+# The default is factask.gen.results.DEFAULT_APPROACH, resolved when the command runs (the
+# generation modules are not imported for --help); test_gen_cli checks this text names it.
+_DEFAULT_APPROACH_HELP = "default one-shot: the best faithful rate measured (docs/generation.md)"
 
 
 #: Exit status of a run that cannot work as configured (key, model, quota, context).
@@ -109,7 +112,8 @@ def _step_printer(say: Console) -> Any:
 @app.command()
 def generate(
     proposal: str = typer.Argument(..., help="Task proposal: 'task-name: description' or text."),
-    approach: str = typer.Option("variables-first", "--approach", "-a", help=_APPROACH_HELP),
+    approach: str = typer.Option(None, "--approach", "-a", show_default=False,
+                                 help=f"{_APPROACH_HELP}; {_DEFAULT_APPROACH_HELP}"),
     model: str = typer.Option(None, "--model", "-m", help=_MODEL_HELP),
     api_base: str = typer.Option(None, "--api-base", help="API base URL ($FACTASK_API_BASE)."),
     out: Path = typer.Option(None, "--out", "-o", help="Graph file (default <task>.json)."),
@@ -143,7 +147,9 @@ def generate(
 
     from rich.markup import escape
 
-    chosen = _approaches([approach], allow_all=False)
+    from factask.gen.results import DEFAULT_APPROACH
+
+    chosen = _approaches([approach or DEFAULT_APPROACH], allow_all=False)
     if len(chosen) != 1:
         _fail(f"--approach {approach}: generate takes one approach (benchmark takes several)")
     approach = chosen[0]

@@ -21,13 +21,14 @@ from factask.gen.llm import LLMClient, LLMConfig, LLMError, LLMFatalError, Respo
 from factask.gen.local import DEFAULT_LOCAL_MODEL, LocalLlamaServer
 from factask.gen.loopback import LoopbackServer, ScriptedResponder
 from factask.gen.memory import SubtaskMemory
-from factask.gen.results import APPROACHES, AttemptRecord, GenerationResult
+from factask.gen.results import APPROACHES, DEFAULT_APPROACH, AttemptRecord, GenerationResult
 from factask.gen.session import open_client
 from factask.gen.strategies import Generator, generate
 from factask.gen.verify import LEVELS, Verifier, VerifyOutcome
 
 __all__ = [
     "APPROACHES",
+    "DEFAULT_APPROACH",
     "DEFAULT_LOCAL_MODEL",
     "LEVELS",
     "AttemptRecord",

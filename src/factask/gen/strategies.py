@@ -59,7 +59,7 @@ from factask.gen.reading import grounded
 from factask.gen.reading.accounting import account, unread_summary
 from factask.gen.reading.clauses import still_objects
 from factask.gen.reading.mentions import grounding_feedback, mentions, mentions_text
-from factask.gen.results import APPROACHES, GenerationResult
+from factask.gen.results import APPROACHES, DEFAULT_APPROACH, GenerationResult
 from factask.gen.steps import (
     Abort,
     Evaluation,
@@ -170,7 +170,7 @@ class Generator(StepRunner):
         self.grounded = grounded
 
     # ------------------------------------------------------------------ API
-    def generate(self, proposal: str, approach: str = "variables-first",
+    def generate(self, proposal: str, approach: str = DEFAULT_APPROACH,
                  name: str | None = None, description: str | None = None) -> GenerationResult:
         """Generate and verify a task from a proposal.
 
