@@ -73,6 +73,9 @@ def goals(proposal: str) -> list[tuple]:
      [("inside", ("red_block",), "red_bowl", False, 1),
       ("inside", ("green_block",), "green_bowl", False, 2),
       ("inside", ("blue_block",), "blue_bowl", False, 0)]),
+    # "fill X with Y": Y goes into X
+    ("Fill the green bowl with three red balls and a single yellow ball.",
+     [("inside", ("red_balls", "yellow_ball"), "green_bowl", False, 0)]),
     # a fixture takes its object aligned; a pile is swept
     ("insert the red ell into the red fixture", [("aligned", ("red_ell",), "red_fixture", False,
                                                   0)]),
@@ -134,6 +137,15 @@ def test_a_stated_goal_grows_its_anchor_to_fit() -> None:
     schema = grounded.compact_graph_schema(found, proposal)
     graph = parse_graph(grounded.expand_graph(first_choice(schema), found, "t", proposal))
     assert list(graph.variable("zone").size) == list(zone.size)
+
+
+def test_goals_that_share_an_anchor_grow_it_for_all_they_put_there() -> None:
+    proposal = "First put the red block in the bowl, then the blue block."
+    found = mentions(proposal)
+    both = {"type": "inside", "objects": ["red_block", "blue_block"], "container": "bowl"}
+    assert layout_problem(both, found) is not None  # a default bowl holds one block
+    sized = grounded.graph_mentions(found, proposal)
+    assert layout_problem(both, sized) is None
 
 
 def test_the_words_steps_become_the_factors_order() -> None:

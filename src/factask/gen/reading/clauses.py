@@ -139,9 +139,15 @@ class _Part:
 _BEFORE = re.compile(r"(^|[.;!?]\s*)before\s+([^,.;!?]+),\s*([^.;!?]+)")
 
 
+#: "Fill the bowl with the balls": the balls go into the bowl.
+_FILL = re.compile(r"\b(?:fill|load)\s+((?:the|a|an|each|every)\s+[^,.;!?]*?)\s+with\s+"
+                   r"([^,.;!?]+)")
+
+
 def parts_of(proposal: str) -> list[tuple[str, int]]:
     """The proposal's parts, each with its step (raised by each sequence word)."""
     text = _BEFORE.sub(r"\1\3, then \2", proposal.lower())
+    text = _FILL.sub(r"put \2 into \1", text)
     for pattern, repl in _SHAPE_PHRASES:
         text = pattern.sub(repl, text)
     out: list[tuple[str, int]] = []

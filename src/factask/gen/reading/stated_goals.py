@@ -19,11 +19,12 @@ lists when the answer is expanded (:func:`after_lists`).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Collection, Sequence
 from dataclasses import replace
 from typing import Any
 
-from factask.gen.reading.capacity import layout_problem
+from factask.gen.reading.capacity import goals_problem, layout_problem
 from factask.gen.reading.clauses import ReadGoal
 from factask.gen.reading.cover import nullable, pin
 from factask.gen.reading.mentions import Mention
@@ -107,8 +108,9 @@ _HOLDING = frozenset({"inside", "in_zone", "on", "stack", "pile_in_zone"})
 
 
 def fit_sizes(goals: Sequence[ReadGoal], found: Sequence[Mention]) -> list[Mention]:
-    """``found`` with each fixed anchor of a stated goal made large enough (in x and y,
-    by :data:`GROWTH` per try) for what that goal puts in or on it.
+    """``found`` with each fixed anchor of the stated goals made large enough (in x and
+    y, by :data:`GROWTH` per try) for everything those goals put in or on it, together
+    ("three red balls and the yellow ball into the green bowl": four balls).
 
     Args:
         goals: The stated goals.
@@ -119,21 +121,28 @@ def fit_sizes(goals: Sequence[ReadGoal], found: Sequence[Mention]) -> list[Menti
     """
     out = list(found)
     index = {m.name: i for i, m in enumerate(out)}
+    sharing: dict[str, list[dict[str, Any]]] = {}
     for goal in goals:
-        if goal.relation not in _HOLDING or goal.anchor not in index:
-            continue
-        k = index[goal.anchor]
+        if goal.relation in _HOLDING and goal.anchor in index:
+            sharing.setdefault(goal.anchor, []).append(
+                {"type": goal.relation, "objects": list(goal.objects),
+                 _anchor_field(goal.relation): goal.anchor})
+    for name, data in sharing.items():
+        k = index[name]
         anchor = out[k]
         if anchor.movable or not kind_spec(anchor.kind).region:
             continue
-        data = {"type": goal.relation, "objects": list(goal.objects),
-                _anchor_field(goal.relation): goal.anchor}
+        if len({d["type"] for d in data}) == 1:
+            # Goals of one relation on one anchor hold all their objects at once: laid
+            # out as one goal (the joint search may run out of time, which proves nothing).
+            data = [{**data[0], "objects": [o for d in data for o in d["objects"]]}]
         sx, sy, sz = anchor.size or kind_spec(anchor.kind).default_size
         for _ in range(MAX_GROWTH_STEPS + 1):
-            problem = layout_problem(data, out)
+            problem = layout_problem(data[0], out) if len(data) == 1 \
+                else goals_problem(data, out)
             if problem is None:
                 break
-            if "do not fit" not in problem or min(sx, sy) * GROWTH > MAX_GROWN_SIDE:
+            if not _ROOM.search(problem) or min(sx, sy) * GROWTH > MAX_GROWN_SIDE:
                 out[k] = anchor  # another problem, or no size on the table fits
                 break
             sx, sy = round(sx * GROWTH, 3), round(sy * GROWTH, 3)
@@ -141,6 +150,10 @@ def fit_sizes(goals: Sequence[ReadGoal], found: Sequence[Mention]) -> list[Menti
         else:
             out[k] = anchor  # no size fits: the default, and the check says why
     return out
+
+
+#: The layout problems that more room on the anchor solves.
+_ROOM = re.compile(r"do not fit|no free spot|collides")
 
 
 def _anchor_field(relation: str) -> str:
