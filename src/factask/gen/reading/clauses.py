@@ -39,6 +39,7 @@ from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 from factask.gen.reading.mentions import MOVE_VERBS, Mention
+from factask.gen.reading.orders import PLACES, ordered_by_words
 from factask.gen.reading.words import count_of, kind_of, resolve_ones, words_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
@@ -93,10 +94,6 @@ PLURAL_SHAPES = frozenset({"towers", "stacks", "rows", "circles", "rings", "colu
 #: Words that say a group goes into an arrangement of its own ("and the yellow ones into
 #: another", "two separate stacks").
 SEPARATE = frozenset({"another", "separate", "two", "three", "four", "each", "own"})
-#: Words that say the objects of an arrangement are listed in their order.
-ORDER_WORDS = frozenset({"order", "sequence", "bottom", "followed", "then", "next",
-                         "first", "second", "third", "starting", "start", "base",
-                         "sequentially", "ordered", "top", "left", "right"})
 #: Phrases that name a shape with words of relation: "side by side", "on top of each other".
 _SHAPE_PHRASES = (
     (re.compile(r"\bside\s+by\s+side\b|\bnext\s+to\s+each\s+other\b|\bin\s+a\s+row\b"),
@@ -235,62 +232,6 @@ def _shape_of(words: list[str], lo: int, hi: int) -> list[tuple[int, str, bool]]
     return out
 
 
-def _ordered_objects(movers: list[Mention], text: str) -> tuple[list[Mention], bool]:
-    """The movers in the order the words give their colours, and whether the words
-    order them (an order word, and distinct colours named after it)."""
-    colours = [m.color for m in movers]
-    if len(movers) < 2 or None in colours or len(set(colours)) < len(colours):
-        return movers, False
-    words = re.findall(r"[a-z]+", text.replace("grey", "gray"))
-    cue = next((k for k, w in enumerate(words) if w in ORDER_WORDS), None)
-    if cue is None:
-        return movers, False
-    placed = _positions(text, colours)
-    if placed is not None:
-        return sorted(movers, key=lambda m: placed[str(m.color)]), True
-    seen: list[str] = []
-    for w in words[cue:]:
-        if w in colours and w not in seen:
-            seen.append(w)
-    if len(seen) < len(colours) - 1 and _BACK_ORDER.search(text):
-        # "the red, green and blue blocks ... in that order": the colours named before
-        seen = [w for k, w in enumerate(words) if w in colours and w not in words[:k]]
-    if len(seen) < len(colours) - 1:
-        return movers, False
-    seen += [c for c in colours if c not in seen]  # the one the words leave last
-    tail = words[cue:]
-    top_first = "top" in tail and ("bottom" not in tail or tail.index("top") < tail.index("bottom"))
-    order = list(reversed(seen)) if top_first else seen  # "from the top: red, ..."
-    return sorted(movers, key=lambda m: order.index(str(m.color))), True
-
-
-#: An order word that points back at the colours named before it.
-_BACK_ORDER = re.compile(r"\b(?:in\s+(?:that|this|the\s+same|the\s+given)\s+order|"
-                         r"respectively|in\s+the\s+order\s+(?:given|named|listed))\b")
-#: Words that give a place in an order: the bottom (first) to the top (last).
-_PLACES: dict[str, float] = {
-    "bottom": 0, "base": 0, "lowest": 0, "first": 0, "start": 0, "starting": 0,
-    "begin": 0, "beginning": 0, "leftmost": 0, "second": 1, "middle": 1.5, "third": 2,
-    "fourth": 3, "fifth": 4, "top": 99, "last": 99, "highest": 99, "final": 99,
-    "rightmost": 99, "end": 99, "uppermost": 99,
-}
-
-
-def _positions(text: str, colours: Sequence[str | None]) -> dict[str, float] | None:
-    """Each colour's place where every colour is named in a phrase that gives one
-    ("2 purple blocks at the bottom and 3 yellow cylinders on top"), else None."""
-    out: dict[str, float] = {}
-    for chunk in re.split(r"[,;:]|\band\b|\bthen\b|\bfollowed\b", text.replace("grey", "gray")):
-        words = re.findall(r"[a-z]+", chunk)
-        places = [_PLACES[w] for w in words if w in _PLACES]
-        named = [w for w in words if w in colours]
-        if len(places) == 1 and len(set(named)) == 1 and named[0] not in out:
-            out[named[0]] = places[0]
-    if set(out) != {c for c in colours if c}:
-        return None
-    return out if len(set(out.values())) == len(out) else None
-
-
 def read_goals(proposal: str, found: Sequence[Mention]) -> list[ReadGoal] | None:
     """The goals the proposal's words state over its mentions, or None.
 
@@ -411,7 +352,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
             # "First put the orange block on the pallet, second the purple block": the
             # same goal for each object named after it, in the words' order.
             model = part_goals[-1]
-            ordinal = bool(set(words) & _PLACES.keys())
+            ordinal = bool(set(words) & PLACES.keys())
             used = {n for g in (*goals, *part_goals) for n in (*g.objects, g.anchor) if n}
             pending = [m for m in pending if m.name not in used]  # named again: no goal
             for k, m in enumerate(pending, start=1):
@@ -487,7 +428,7 @@ def _layered(goal: ReadGoal, proposal: str, found: Sequence[Mention]) -> list[Re
             or all(m.count == 1 for m in groups):
         return [goal]
     if not goal.ordered:
-        groups, ordered = _ordered_objects(groups, proposal.lower())
+        groups, ordered = ordered_by_words(groups, proposal.lower())
         if not ordered:
             return [goal]
     out = [ReadGoal("row", (groups[0].name,), goal.anchor, False, goal.step, "along")]
@@ -520,7 +461,7 @@ def _add(goals: list[ReadGoal], goal: ReadGoal, by_name: dict[str, Mention],
             elif not old.ordered and old.relation in ("stack", "row"):
                 # "... The bottom of the tower is red, followed by blue, green": the
                 # words give the order of the whole goal named before.
-                movers, ordered = _ordered_objects([by_name[n] for n in old.objects], text)
+                movers, ordered = ordered_by_words([by_name[n] for n in old.objects], text)
                 if ordered:
                     goals[k] = replace(old, objects=tuple(m.name for m in movers),
                                        ordered=True)
@@ -557,7 +498,7 @@ def _anchored(prep: str, anchors: list[Mention], movers: list[Mention], shape: s
                 and sum(m.count for m in group) > 1:
             relation, field_ = "row", "on"  # "three white blocks, one on each grey block"
         if relation in ("stack", "row"):
-            group, ordered = _ordered_objects(group, text)
+            group, ordered = ordered_by_words(group, text)
         out.append(ReadGoal(relation, tuple(m.name for m in group), anchor.name, ordered,
                             step, field_))
     return out
@@ -587,7 +528,7 @@ def _grouped(movers: list[Mention], shapes: list[tuple[int, str, bool]], words: 
     for group in groups_list:
         ordered = False
         if relation in ("stack", "row"):
-            group, ordered = _ordered_objects(group, text)
+            group, ordered = ordered_by_words(group, text)
         out.append(ReadGoal(relation, tuple(m.name for m in group), None, ordered, step))
     return out
 

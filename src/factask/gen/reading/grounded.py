@@ -54,7 +54,13 @@ from factask.gen.reading.relation_schemas import (
     narrow_all_modes,
     relation_over,
 )
-from factask.gen.reading.stated_goals import after_lists, fit_sizes, matches, stated_factors
+from factask.gen.reading.stated_goals import (
+    after_lists,
+    defaults_first,
+    fit_sizes,
+    matches,
+    stated_factors,
+)
 from factask.graph.factors import SubtaskFactor
 from factask.graph.order import dependency_graph, in_listed_order
 from factask.graph.taskgraph import TaskGraph
@@ -381,6 +387,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
         # reading, the model writes only the numbers the words leave open.
         factors = stated_factors(reading, kinds, counts, moved)
         factors = factors and prune(factors, fit_sizes(reading, found), order)
+        factors = factors and defaults_first(factors)
     if cover and factors is None:
         movers = [m.name for m in movable(found)]
         fixed = [m.name for m in found if m.name not in movers]

@@ -160,6 +160,26 @@ def _anchor_field(relation: str) -> str:
     return next(iter(RELATION_TYPES[relation].anchor_fields))
 
 
+def defaults_first(factors: Schema) -> Schema:
+    """``factors`` (a tuple of pinned goals) with each number the words leave open
+    offering the relation's default (``null``: sized to the objects, a circle's radius
+    to how many they are) before the listed lengths -- the first choice of a grammar
+    is the default, not the smallest length."""
+    for item in factors.get("prefixItems", []):
+        goal = item.get("properties", {}).get("goal", {})
+        for branch in goal.get("anyOf", [goal]):
+            props = branch.get("properties", {})
+            relation = props.get("type", {}).get("const")
+            anchors = RELATION_TYPES[relation].anchor_fields if relation in RELATION_TYPES \
+                else {}
+            for name, value in props.items():
+                options = value.get("anyOf", []) if isinstance(value, dict) else []
+                if name not in anchors and any(o.get("type") == "null" for o in options):
+                    props[name] = {"anyOf": sorted(options,
+                                                   key=lambda o: o.get("type") != "null")}
+    return factors
+
+
 def after_lists(goals: Sequence[ReadGoal], names: Sequence[str]) -> list[list[str]] | None:
     """Each factor's ``after``: the factors of the steps before its own.
 
@@ -183,4 +203,4 @@ def matches(goals: Sequence[ReadGoal], answered: Sequence[dict[str, Any]]) -> bo
         for g, a in zip(goals, answered, strict=True))
 
 
-__all__ = ["after_lists", "fit_sizes", "goal_schema", "matches", "stated_factors"]
+__all__ = ["after_lists", "defaults_first", "fit_sizes", "goal_schema", "matches", "stated_factors"]
