@@ -75,7 +75,8 @@ def without_names(field: Schema, banned: Collection[str]) -> Schema | None:
     return options[0] if len(options) == 1 else {"anyOf": options}
 
 
-def _tuple(items: Sequence[Schema]) -> Schema:
+def tuple_schema(items: Sequence[Schema]) -> Schema:
+    """An array of exactly ``items``, in order (a JSON Schema tuple)."""
     return {"type": "array", "prefixItems": list(items), "items": False,
             "minItems": len(items), "maxItems": len(items)}
 
@@ -114,7 +115,7 @@ def pin(branch: Schema, objects: Sequence[str], anchors: Sequence[str],
                 and not (relation == "row" and "on" in chosen):
             continue  # a row of one is no row, but for the top of a pyramid (on others)
         new = dict(props)
-        new["objects"] = _tuple([{"const": o} for o in objects])
+        new["objects"] = tuple_schema([{"const": o} for o in objects])
         ok = True
         for field, anchor in zip(chosen, anchors, strict=True):
             if anchor in objects or anchor not in names_of(props[field]):
@@ -173,7 +174,7 @@ def group_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Seque
         anchors = [*fixed, *([base] if base else [])]
         goal = _goal(branches, [(objects, anchors)], counts) if objects else None
         if goal is not None:
-            out.append(_tuple([goal]))
+            out.append(tuple_schema([goal]))
     return out
 
 
@@ -213,7 +214,7 @@ def each_shapes(branches: Sequence[Schema], movers: Sequence[str], fixed: Sequen
                 cache[key] = _goal(branches, uses, counts)
             items.append(cache[key])
         if all(item is not None for item in items):
-            out.append(_tuple([i for i in items if i is not None]))
+            out.append(tuple_schema([i for i in items if i is not None]))
     return out
 
 
@@ -243,7 +244,7 @@ def per_anchor_shapes(branches: Sequence[Schema], movers: Sequence[str],
     items = [_goal(branches, [(movers, [f])], counts) for f in fixed]
     if any(item is None for item in items):
         return []
-    return [_tuple([i for i in items if i is not None])]
+    return [tuple_schema([i for i in items if i is not None])]
 
 
 def covering_factors(branches: Sequence[Schema], movers: Sequence[str],
@@ -373,5 +374,6 @@ __all__ = [
     "paired_in_order",
     "per_anchor_shapes",
     "pin",
+    "tuple_schema",
     "used_names",
 ]

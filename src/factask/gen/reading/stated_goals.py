@@ -26,18 +26,13 @@ from typing import Any
 
 from factask.gen.reading.capacity import goals_problem, layout_problem
 from factask.gen.reading.clauses import ReadGoal
-from factask.gen.reading.cover import nullable, pin
+from factask.gen.reading.cover import nullable, pin, tuple_schema
 from factask.gen.reading.mentions import Mention
 from factask.gen.reading.relation_schemas import relation_over
 from factask.relations import RELATION_TYPES
 from factask.vocabulary.kinds import kind_spec
 
 Schema = dict[str, Any]
-
-
-def _tuple(items: Sequence[Schema]) -> Schema:
-    return {"type": "array", "prefixItems": list(items), "items": False,
-            "minItems": len(items), "maxItems": len(items)}
 
 
 def goal_schema(goal: ReadGoal, kinds: dict[str, str], counts: dict[str, int],
@@ -95,7 +90,7 @@ def stated_factors(goals: Sequence[ReadGoal], kinds: dict[str, str], counts: dic
     items = [goal_schema(g, kinds, counts, moved) for g in goals]
     if not items or any(i is None for i in items):
         return None
-    return _tuple([i for i in items if i is not None])
+    return tuple_schema([i for i in items if i is not None])
 
 
 #: Growth of an anchor's footprint per try, and the most tries.
