@@ -18,6 +18,10 @@ from factask.gen.reading.mentions import mentions
 from factask.vocabulary.palette import COLOR_NAMES
 
 PROPOSAL = "put the yellow cylinder and the red block in the blue zone"
+#: The same objects where the words state no goal ("using" is no relation): the
+#: steps are the object outline's (where they state every goal the outline is the
+#: reading's: test_gen_stated_steps.py).
+UNSTATED = "tidy up the yellow cylinder and the red block using the blue zone"
 FOUR = "put the red block, the green block, the blue block and the yellow block on the pallet"
 
 
@@ -108,7 +112,7 @@ def test_a_design_must_use_its_subtask_object() -> None:
     assert len(problems) == 1 and "red_block" in problems[0]
 
 
-def _run(script: dict, proposal: str = PROPOSAL):
+def _run(script: dict, proposal: str = UNSTATED):
     from factask.gen import Generator, LLMClient, LLMConfig, Verifier
     from factask.gen.loopback import LoopbackServer, ScriptedResponder
 

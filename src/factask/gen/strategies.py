@@ -25,6 +25,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from factask.gen import grounded_subtasks as gs
+from factask.gen import stated_steps
 from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.schemas import (
     AnswerError,
@@ -253,8 +254,10 @@ class Generator(StepRunner):
         return evaluate
 
     def _verify_assembled(self, task: str, desc: str, graph: TaskGraph | None,
-                          problem: str | None) -> None:
-        """Check the assembled graph; repair it with the model if the check fails."""
+                          problem: str | None, grounded_repair: bool = False) -> None:
+        """Check the assembled graph; repair it with the model if the check fails
+        (``grounded_repair``: in the grounded one-shot's grammar, where the words
+        decide the objects and goals, as one-shot's own repairs are)."""
         step = "assembly"
         if graph is not None and problem is None:
             found = graph_problems(graph)
@@ -278,7 +281,10 @@ class Generator(StepRunner):
             self.finish(best_graph, best_level, f"assembly: {problem}")
             return
         shown = graph.to_json(indent=None) if graph is not None else "{}"
-        schema = ss.graph_schema(task)
+        found = mentions(f"{desc} {task}")
+        schema = grounded.compact_graph_schema(found, desc) if grounded_repair \
+            else ss.graph_schema(task)
+        expand = self._expand_compact(task, desc, found) if grounded_repair else None
 
         def prompt(lv: PromptLevel) -> str:
             return render("assembly", task_name=task, task_description=desc, graph=shown,
@@ -286,7 +292,7 @@ class Generator(StepRunner):
 
         try:
             out = self.ask(step, prompt, schema, "task_graph",
-                           self._evaluate_graph(task, desc, schema), first_attempt=1)
+                           self._evaluate_graph(task, desc, schema, expand), first_attempt=1)
         except LLMRequestError as exc:  # keep the assembled graph and its level
             self.finish(best_graph, best_level, f"assembly: {problem}\n(then the LLM "
                         f"request was rejected: {exc})")
@@ -296,6 +302,20 @@ class Generator(StepRunner):
         self.finish(best_graph, best_level, None if out.ok else f"assembly: {out.feedback}")
 
     # ------------------------------------------------------------- one-shot
+    @staticmethod
+    def _expand_compact(task: str, desc: str,
+                        found: list[Any]) -> Callable[[dict[str, Any]], dict[str, Any]]:
+        """A grounded one-shot answer -> the whole graph's data (its goals checked
+        against the proposal's objects first)."""
+        def expand(data: dict[str, Any]) -> dict[str, Any]:
+            problems = grounded.goal_problems([f["goal"] for f in data["factors"]], found,
+                                              still_objects(desc, found))
+            if problems:
+                raise AnswerError("The goals do not make the proposal's task:\n"
+                                  + "\n".join(f"- {p}" for p in problems))
+            return grounded.expand_graph(data, found, task, desc)
+        return expand
+
     def _one_shot(self, task: str, desc: str) -> None:
         query = f"{task} {desc}"
         found = mentions(f"{desc} {task}")
@@ -323,24 +343,29 @@ class Generator(StepRunner):
                           examples=self.examples(query, ("tasks", "memory"), lv.examples),
                           schema=self.schema_for_prompt(schema, lv))
 
-        def expand(data: dict[str, Any]) -> dict[str, Any]:
-            problems = grounded.goal_problems([f["goal"] for f in data["factors"]], found,
-                                              still_objects(desc, found))
-            if problems:
-                raise AnswerError("The goals do not make the proposal's task:\n"
-                                  + "\n".join(f"- {p}" for p in problems))
-            return grounded.expand_graph(data, found, task, desc)
-
         out = self.ask("one_shot", prompt, schema, "task_graph",
                        self._evaluate_graph(task, desc, schema,
-                                            expand if compact else None))
+                                            self._expand_compact(task, desc, found)
+                                            if compact else None))
         self.finish(out.value, out.level, None if out.ok else f"one_shot: {out.feedback}")
         if out.ok and out.value is not None:
             for f in out.value.factors:
                 self.remember(extract_fragment(out.value, f.name), task)
 
     # ------------------------------------------------------ variables-first
+    def _stated(self, task: str, desc: str) -> stated_steps.StatedTask | None:
+        """The task the words state, where grounding applies (None: none)."""
+        found = mentions(f"{desc} {task}")
+        if not (self.grounded and grounded.applies(found)):
+            return None
+        return stated_steps.stated_task(found, desc)
+
     def _variables_first(self, task: str, desc: str) -> None:
+        stated = self._stated(task, desc)
+        if stated is not None:  # the words decide the objects and goals: ask the rest
+            self._verify_assembled(task, desc, *stated_steps.variables_first(
+                self, task, desc, stated), grounded_repair=True)
+            return
         query = f"{task} {desc}"
         variables = self._ask_variables(task, desc, query)
         by_name = {v.name: v for v in variables}
@@ -456,6 +481,11 @@ class Generator(StepRunner):
 
     # ------------------------------------------------------- subtasks-first
     def _subtasks_first(self, task: str, desc: str) -> None:
+        stated = self._stated(task, desc)
+        if stated is not None:  # the words decide the objects and goals: ask the rest
+            self._verify_assembled(task, desc, *stated_steps.subtasks_first(
+                self, task, desc, stated), grounded_repair=True)
+            return
         found = mentions(f"{desc} {task}")
         if self.grounded and grounded.applies(found):  # the named objects are constants
             self._assemble(task, desc, gs.design_fragments(self, task, desc, found), found)

@@ -28,8 +28,10 @@ Each relation's goal schema over the named objects is built in
 
 from __future__ import annotations
 
+import copy
 import re
 from collections.abc import Collection, Sequence
+from functools import lru_cache
 from itertools import product
 from typing import Any
 
@@ -340,6 +342,37 @@ def graph_mentions(found: Sequence[Mention], proposal: str) -> list[Mention]:
     return fit_sizes(stated, found) if stated else list(found)
 
 
+def stated_schema(found: Sequence[Mention], proposal: str) -> Schema | None:
+    """The ``factors`` schema of the goals the words state, or None.
+
+    Where the words state every goal (:func:`factask.gen.reading.clauses.read_goals`)
+    and each can be written and laid out, the grammar is that reading: a tuple of
+    one pinned goal per stated goal, the model writing only the numbers the words
+    leave open (the relation's default first).
+
+    Args:
+        found: The proposal's mentions.
+        proposal: The proposal.
+
+    Returns:
+        A tuple schema (``prefixItems``: one ``{"goal": ...}`` per stated goal, in
+        the reading's order), or None where there is no such reading.
+    """
+    return copy.deepcopy(_stated_schema(tuple(found), proposal))  # callers narrow it
+
+
+@lru_cache(maxsize=64)
+def _stated_schema(found: tuple[Mention, ...], proposal: str) -> Schema | None:
+    # Cached: the layout checks of prune() take seconds, and each approach asks twice.
+    reading = read_goals(proposal, found)
+    if not reading:
+        return None
+    kinds = {m.name: m.kind for m in found}
+    factors = stated_factors(reading, kinds, {m.name: m.count for m in found}, _moved(found))
+    factors = factors and prune(factors, fit_sizes(reading, found), base_order(found, proposal))
+    return factors and defaults_first(factors)
+
+
 def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
                          cover: bool = True, stated: bool = True) -> Schema:
     """A whole graph's *decisions* only (one-shot with a grounded proposal).
@@ -379,15 +412,8 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     if goal is None:
         raise InvalidValueError("no goal relation fits the named objects alone "
                                 "(check applies() first)")
-    factors: Schema | None = None
     order = base_order(found, proposal)  # goals build on earlier objects only: no cycle
-    reading = read_goals(proposal, found) if proposal and stated else None
-    if reading:
-        # The words state every goal (factask.gen.reading.clauses): the grammar is that
-        # reading, the model writes only the numbers the words leave open.
-        factors = stated_factors(reading, kinds, counts, moved)
-        factors = factors and prune(factors, fit_sizes(reading, found), order)
-        factors = factors and defaults_first(factors)
+    factors = stated_schema(found, proposal) if proposal and stated else None
     if cover and factors is None:
         movers = [m.name for m in movable(found)]
         fixed = [m.name for m in found if m.name not in movers]
@@ -527,6 +553,6 @@ def plan_bound(variables: Sequence[StateVariable]) -> int:
 __all__ = ["COORDINATE_RELATIONS", "GROUNDED_TEXT", "GROUP_RELATIONS", "GROUP_WORDS", "MAX_EXTRA",
            "OBJECT_KINDS", "RELATION_WORDS", "applies", "compact_example", "compact_examples",
            "compact_graph_schema", "expand_graph", "factor_names", "goal_answer", "goal_problems",
-           "graph_mentions",
-           "graph_schema", "grounded_variables", "group_named", "mention_variable", "movable",
-           "named_relations", "plan_bound", "relation_over", "variables_answer"]
+           "graph_mentions", "graph_schema", "grounded_variables", "group_named",
+           "mention_variable", "movable", "named_relations", "plan_bound", "relation_over",
+           "stated_schema", "variables_answer"]
