@@ -40,6 +40,24 @@ def goals(proposal: str) -> list[tuple]:
     # two shape words, each over the objects named after it
     ("Make a row from the red blocks and a circle from the blue blocks.",
      [("row", ("red_blocks",), None, False, 0), ("circle", ("blue_blocks",), None, False, 0)]),
+    # one shape word after each group: an arrangement each
+    ("Put the five red blocks in a circle, and put the five blue blocks in a circle.",
+     [("circle", ("red_blocks",), None, False, 0), ("circle", ("blue_blocks",), None, False, 0)]),
+    # "align X with Y": Y is the anchor
+    ("Align the red ell with the red fixture, then align the blue ell with the blue fixture.",
+     [("aligned", ("red_ell",), "red_fixture", False, 0),
+      ("aligned", ("blue_ell",), "blue_fixture", False, 1)]),
+    # into a corner marker: corner to corner; along it: a row
+    ("Put the brown box into the green corner.",
+     [("aligned", ("brown_box",), "green_corner", False, 0)]),
+    ("Put the red block and the blue block in a row along the corner.",
+     [("row", ("red_block", "blue_block"), "corner", False, 0)]),
+    # six pairs: twelve objects named
+    ("Put the red ball into the red zone, the blue ball into the blue zone, the green ball "
+     "into the green zone, the yellow ball into the yellow zone, the orange ball into the "
+     "orange zone and the purple ball into the purple zone.",
+     [("in_zone", (f"{c}_ball",), f"{c}_zone", False, 0)
+      for c in ("red", "blue", "green", "yellow", "orange", "purple")]),
     # "two towers": one per group
     ("Make two towers, one from three maroon blocks and the other from three navy blocks.",
      [("stack", ("maroon_blocks",), None, False, 0),
@@ -202,3 +220,14 @@ def test_any_text_gives_goals_over_its_own_objects_or_none(text: str) -> None:
     still = still_objects(text, found)
     assert used | still == names and not used & still  # every named object, once
     assert all(g.anchor not in g.objects for g in out)
+
+
+def test_a_fixed_object_of_a_kind_that_moves_is_a_fixed_variable() -> None:
+    proposal = "Put the red ball in the red zone; leave the three fixed gray boxes where they are."
+    found = mentions(proposal)
+    boxes = next(m for m in found if m.kind == "box")
+    assert boxes.pinned and not boxes.movable and boxes.as_variable()["fixed"] is True
+    assert still_objects(proposal, found) == {"gray_boxes"}
+    loose = next(m for m in mentions("Put the red ball in the red zone; leave the gray box.")
+                 if m.kind == "box")
+    assert not loose.pinned and loose.movable

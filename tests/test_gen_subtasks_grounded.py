@@ -20,7 +20,7 @@ from factask.vocabulary.palette import COLOR_NAMES
 PROPOSAL = "put the yellow cylinder and the red block in the blue zone"
 #: The same objects where the words state no goal ("using" is no relation): the
 #: steps are the object outline's (where they state every goal the outline is the
-#: reading's: test_gen_stated_steps.py).
+#: reading.s: test_gen_grounded_steps.py).
 UNSTATED = "tidy up the yellow cylinder and the red block using the blue zone"
 FOUR = "put the red block, the green block, the blue block and the yellow block on the pallet"
 
@@ -112,11 +112,17 @@ def test_a_design_must_use_its_subtask_object() -> None:
     assert len(problems) == 1 and "red_block" in problems[0]
 
 
-def _run(script: dict, proposal: str = UNSTATED):
-    from factask.gen import Generator, LLMClient, LLMConfig, Verifier
+def _run(script: dict, proposal: str = PROPOSAL):
+    from factask.gen import Generator, LLMClient, LLMConfig, Verifier, grounded_steps
     from factask.gen.loopback import LoopbackServer, ScriptedResponder
 
-    with LoopbackServer(ScriptedResponder(script)) as server:
+    # The object outline is the fallback where the grounded one-shot grammar's goals
+    # are a plain array (no shape fits the named objects: many of them, or large
+    # ones); here it is forced on a small proposal, whose grammar has shapes
+    # (those steps: test_gen_grounded_steps.py).
+    with pytest.MonkeyPatch.context() as patch, \
+            LoopbackServer(ScriptedResponder(script)) as server:
+        patch.setattr(grounded_steps, "grounded_task", lambda found, proposal: None)
         client = LLMClient(LLMConfig(model="openai/scripted", api_base=server.url,
                                      num_retries=0, timeout=30))
         return Generator(client, Verifier(episodes=1), max_repairs=0,

@@ -25,7 +25,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from factask.gen import grounded_subtasks as gs
-from factask.gen import stated_steps
+from factask.gen import grounded_steps
 from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.schemas import (
     AnswerError,
@@ -353,18 +353,19 @@ class Generator(StepRunner):
                 self.remember(extract_fragment(out.value, f.name), task)
 
     # ------------------------------------------------------ variables-first
-    def _stated(self, task: str, desc: str) -> stated_steps.StatedTask | None:
-        """The task the words state, where grounding applies (None: none)."""
+    def _shaped(self, task: str, desc: str) -> grounded_steps.GroundedTask | None:
+        """The grounded one-shot grammar in pieces, where grounding applies and its
+        goals are a list of fixed length (None: the general steps)."""
         found = mentions(f"{desc} {task}")
         if not (self.grounded and grounded.applies(found)):
             return None
-        return stated_steps.stated_task(found, desc)
+        return grounded_steps.grounded_task(found, desc)
 
     def _variables_first(self, task: str, desc: str) -> None:
-        stated = self._stated(task, desc)
-        if stated is not None:  # the words decide the objects and goals: ask the rest
-            self._verify_assembled(task, desc, *stated_steps.variables_first(
-                self, task, desc, stated), grounded_repair=True)
+        shaped = self._shaped(task, desc)
+        if shaped is not None:  # the one-shot grammar's decisions, piece by piece
+            self._verify_assembled(task, desc, *grounded_steps.variables_first(
+                self, task, desc, shaped), grounded_repair=True)
             return
         query = f"{task} {desc}"
         variables = self._ask_variables(task, desc, query)
@@ -481,10 +482,10 @@ class Generator(StepRunner):
 
     # ------------------------------------------------------- subtasks-first
     def _subtasks_first(self, task: str, desc: str) -> None:
-        stated = self._stated(task, desc)
-        if stated is not None:  # the words decide the objects and goals: ask the rest
-            self._verify_assembled(task, desc, *stated_steps.subtasks_first(
-                self, task, desc, stated), grounded_repair=True)
+        shaped = self._shaped(task, desc)
+        if shaped is not None:  # the one-shot grammar's decisions, piece by piece
+            self._verify_assembled(task, desc, *grounded_steps.subtasks_first(
+                self, task, desc, shaped), grounded_repair=True)
             return
         found = mentions(f"{desc} {task}")
         if self.grounded and grounded.applies(found):  # the named objects are constants

@@ -151,8 +151,10 @@ class _Facts:
                        | {sum(v.count for v in movable), len(graph.factors)})
         self.movable_instances = sum(v.count for v in movable)
         self.relations = {f.goal.type for f in graph.factors}
+        # An order between goals, or within one (a stack or row "in that order").
         self.ordered = graph.dependency_graph().number_of_edges() > 0 or any(
-            f.milestone for f in graph.factors)
+            f.milestone or (getattr(f.goal, "ordered", False) and len(f.goal.objects) > 1)
+            for f in graph.factors)
         self.kind_colours: dict[str, set[str]] = {}
         for v in graph.variables:
             self.kind_colours.setdefault(v.kind, set()).add(str(v.color))
@@ -207,8 +209,8 @@ def _judge(words: list[str], k: int, facts: _Facts) -> tuple[str, bool, str] | N
                 f"{n} objects of one kind, colour or variable" if n in facts.counts else
                 f"no variable, kind or colour counts {n}")
     if w in ORDINALS:
-        return ("order", facts.ordered, "the goals are ordered" if facts.ordered else
-                "no goal is ordered after another")
+        return ("order", facts.ordered, "the goals or a goal's objects are ordered"
+                if facts.ordered else "no goal is ordered, nor a goal's objects")
     if w in SIDES:
         if w in ("corner", "corners") and ("corner" in facts.kinds or "corner" in facts.modes):
             return ("side", True, "a corner object or a corner alignment")

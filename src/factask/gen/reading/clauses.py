@@ -191,7 +191,14 @@ def _anchor_prep(words: list[str], i: int) -> str | None:
         j -= 1
     if j >= 1 and words[j] == "to" and words[j - 1] in ("next", "close"):
         return "beside"  # "next to the blue block"
+    if j >= 1 and words[j] == "with" and _ALIGN_VERBS & set(words[:j]):
+        return "in"  # "align the red ell with the red fixture": the fixture is the anchor
     return PREPOSITIONS.get(words[j]) if j >= 0 else None
+
+
+#: Verbs after which "with" names the anchor ("align the ell with the fixture"), not a
+#: companion ("fill the bowl with blocks").
+_ALIGN_VERBS = frozenset({"align", "aligned", "aligning", "aligns"})
 
 
 def _relation(prep: str, anchor: Mention, movers: Sequence[Mention], shape: str | None,
@@ -209,12 +216,15 @@ def _relation(prep: str, anchor: Mention, movers: Sequence[Mention], shape: str 
         return "row" if anchor.movable else None  # "the red block next to the blue one"
     if kind == "zone":
         return "in_zone"
-    if kind in ("fixture", "kit") or (verbs & {"insert", "fit"} and kind != "container"):
+    if kind in ("fixture", "kit") or (verbs & ({"insert", "fit"} | _ALIGN_VERBS)
+                                      and kind != "container"):
         return "aligned"
     if prep == "along":
         return "row"
     if prep == "around":
         return "circle"
+    if kind == "corner":
+        return "aligned"  # "into the green corner": corner to corner
     if spec.receptacle and (prep == "in" or not spec.support):
         return "inside"
     if spec.support or anchor.movable:
@@ -510,16 +520,29 @@ def _grouped(movers: list[Mention], shapes: list[tuple[int, str, bool]], words: 
     one per group where the words say so, or one per shape word ("a row from the
     red blocks and a circle from the blue blocks")."""
     relations = {r for _, r, _ in shapes}
-    if len(shapes) > 1 and len(relations) > 1:
+    if len(shapes) > 1:
         positions = {m.name: _position(words, m) for m in movers}
+        # The shape word names its group before it ("a row from the red blocks") or
+        # after it ("put the red blocks in a circle, and the blue blocks in a circle"):
+        # the way the first one does.
+        first = min(positions.values(), default=0)
+        shape_first = shapes[0][0] < first
         groups: dict[int, list[Mention]] = {}
         for m in movers:
-            before = [k for k, (p, _, _) in enumerate(shapes) if p <= positions[m.name]]
-            groups.setdefault(before[-1] if before else 0, []).append(m)
-        out = []
-        for k, group in groups.items():
-            out.extend(_grouped(group, [shapes[k]], words, step, text) or [])
-        return out or None
+            if shape_first:
+                near = [k for k, (p, _, _) in enumerate(shapes) if p <= positions[m.name]]
+                k = near[-1] if near else 0
+            else:
+                near = [k for k, (p, _, _) in enumerate(shapes) if p > positions[m.name]]
+                k = near[0] if near else len(shapes) - 1
+            groups.setdefault(k, []).append(m)
+        # Shape words of one relation name one group each only where each has its own
+        # ("the tower ... the tower" may be the same one twice).
+        if len(relations) > 1 or len(groups) == len(shapes):
+            out = []
+            for k, group in sorted(groups.items()):
+                out.extend(_grouped(group, [shapes[k]], words, step, text) or [])
+            return out or None
     relation = shapes[0][1]
     separate = any(p for _, _, p in shapes) or (bool(SEPARATE & set(words)) \
         and len(movers) > 1 and all(m.count > 1 for m in movers))

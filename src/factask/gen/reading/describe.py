@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from factask.gen.reading.words import NUMBER_WORDS, plural_of
 from factask.graph.taskgraph import TaskGraph
+from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.variables import StateVariable
 
 #: Numbers written as words, the reader's own count words (a larger count: digits).
@@ -26,6 +27,8 @@ def noun(v: StateVariable, definite: bool = True) -> str:
     kind = _KIND_WORDS.get(v.kind, v.kind)
     head, _, tail = kind.partition(" ")
     colour = f"{v.color} " if v.color else ""
+    if v.is_fixed and kind_spec(v.kind).movable:
+        colour = f"fixed {colour}"  # an obstacle: "the three fixed gray boxes"
     if v.count > 1:
         count = _NUMBERS.get(v.count, str(v.count))
         words = f"{count} {colour}{plural_of(head)}"
@@ -46,25 +49,30 @@ def _goal_words(graph: TaskGraph, name: str) -> str:
         return " and ".join(anchors.get(field, []))
 
     t = goal.type
+    # An order the goal keeps is said, as a proposal would say it.
+    in_order = ", in that order" if getattr(goal, "ordered", False) and \
+        len(goal.objects) > 1 else ""
     if t in ("in_zone", "inside"):
         return f"put {movers} into {anchor('zone' if t == 'in_zone' else 'container')}"
     if t == "on":
         return f"put {movers} onto {anchor('support')}"
     if t == "stack":
         base = f" onto {anchor('base')}" if anchors.get("base") else ""
-        return f"stack {movers} into a tower{base}"
+        bottom = ", from the bottom up" if in_order else ""
+        return f"stack {movers} into a tower{base}{bottom}{in_order}"
     if t == "row":
         on = f" onto {anchor('on')}" if anchors.get("on") else ""
         along = f" along {anchor('along')}" if anchors.get("along") else ""
-        return f"put {movers} in a row{along}{on}"
+        return f"put {movers} in a row{along}{on}{in_order}"
     if t == "circle":
         centre = f" around {anchor('center')}" if anchors.get("center") else ""
         return f"put {movers} in a circle{centre}"
     if t == "aligned":
         if goal.mode == "hole":
             return f"put {movers} aligned through the hole of {anchor('reference')}"
-        mode = " into its corner" if goal.mode == "corner" else ""
-        return f"put {movers} aligned with {anchor('reference')}{mode}"
+        if goal.mode == "corner":
+            return f"put {movers} into {anchor('reference')}"
+        return f"align {movers} with {anchor('reference')}"
     if t == "pile_in_zone":
         return f"sweep {movers} into {anchor('zone')}"
     if t == "rope_along":
@@ -78,8 +86,9 @@ def _goal_words(graph: TaskGraph, name: str) -> str:
 
 def describe(graph: TaskGraph) -> str:
     """``graph`` as a proposal: its goals in order, joined by ``then`` where the graph
-    orders them and ``and`` where it does not; objects no goal names are listed first
-    ("with the yellow ball on the table"), so every object is in the words.
+    orders them and ``and`` where it does not; objects no goal names are left where
+    they are ("; leave the yellow ball where they are"), so every object is in the
+    words.
 
     Args:
         graph: A valid task graph.
@@ -97,6 +106,21 @@ def describe(graph: TaskGraph) -> str:
             words = (", then " if joined else ", and ") + words
         parts.append(words)
     named = {n for f in graph.factors for n in f.goal.variable_names()}
-    others = [noun(v) for v in graph.variables if v.name not in named]
-    extra = f"with {' and '.join(others)} on the table, " if others else ""
-    return extra + "".join(parts)
+    others = _together([v for v in graph.variables if v.name not in named])
+    where = "where it is" if len(others) == 1 and others[0][1] == 1 else "where they are"
+    still = f"; leave {' and '.join(p for p, _ in others)} {where}" if others else ""
+    return "".join(parts) + still
+
+
+def _together(variables: list[StateVariable]) -> list[tuple[str, int]]:
+    """Noun phrases of objects no goal names, the alike ones counted together
+    ("the three gray boxes", not "the gray box and the gray box and ..."), each with
+    how many it names."""
+    alike: dict[tuple[str, str | None], list[StateVariable]] = {}
+    for v in variables:
+        alike.setdefault((v.kind, v.color), []).append(v)
+    out = []
+    for group in alike.values():
+        total = sum(v.count for v in group)
+        out.append((noun(group[0].model_copy(update={"count": total})), total))
+    return out

@@ -80,8 +80,12 @@ MOVE_VERBS = frozenset({
 #: Kinds fixed by default that the robot can still carry (not flat markers).
 CARRIED_KINDS = frozenset(k for k, spec in ASSET_KINDS.items()
                           if not spec.movable and spec.collides)
-#: Most mentions listed (a proposal is a sentence or two, not an inventory).
-MAX_MENTIONS = 8
+#: Words that fix an object of a kind that moves by default, just before its colour or
+#: kind word: "the three fixed gray boxes" (an obstacle bolted to the table).
+PINNED_WORDS = frozenset({"fixed", "immovable", "static", "bolted", "stationary"})
+#: Most mentions listed (a proposal is a sentence or two, not an inventory; six balls
+#: into six zones is twelve, the most variables a graph schema takes).
+MAX_MENTIONS = 12
 #: Most mentions after groups are split by colour (six balls into six zones of
 #: their colours: twelve; the graph schemas take twelve variables).
 MAX_SPLIT_MENTIONS = 12
@@ -123,6 +127,8 @@ class Mention:
         listed: The colours listed right after an uncoloured group ("blocks of
             different colors (red, blue, green)"), each with its count where the
             list gives one ("(two red, two blue)"; 0: not given).
+        pinned: The words fix an object whose kind moves by default ("the three
+            fixed gray boxes": obstacles, :data:`PINNED_WORDS`).
     """
 
     name: str
@@ -134,6 +140,7 @@ class Mention:
     moved: bool = False
     counted: bool = False
     size: tuple[float, float, float] | None = None
+    pinned: bool = False
 
     def describe(self) -> str:
         """``red_blocks: kind block, colour red, count 3`` (``, moved`` for a bowl or
@@ -144,6 +151,8 @@ class Mention:
         parts.append(f"count {self.count}")
         if self.moved:
             parts.append("moved (not fixed)")
+        if self.pinned:
+            parts.append("fixed (not moved)")
         return f"{self.name}: {', '.join(parts)}"
 
     def as_variable(self, initial: dict[str, Any] | None = None) -> dict[str, Any]:
@@ -156,12 +165,14 @@ class Mention:
                                "initial": initial or {"type": "table"}}
         if self.moved:
             out["fixed"] = False
+        if self.pinned:
+            out["fixed"] = True
         return out
 
     @property
     def movable(self) -> bool:
         """Whether the robot moves it: its kind moves, or the words move it."""
-        return self.moved or kind_spec(self.kind).movable
+        return self.moved or (kind_spec(self.kind).movable and not self.pinned)
 
 
 def mentions(proposal: str) -> list[Mention]:
@@ -304,7 +315,7 @@ def _colour_parts(m: Mention, palette: list[str], matched: set[str]) -> list[Men
     for colour, count in zip(colours, counts, strict=True):
         stem = f"{colour}_{m.kind}"
         out.append(Mention(plural_of(stem) if count > 1 else stem, m.kind, colour,
-                           min(count, MAX_COUNT), m.also, moved=m.moved))
+                           min(count, MAX_COUNT), m.also, moved=m.moved, pinned=m.pinned))
     return out
 
 
@@ -329,6 +340,7 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                     j -= 1
             j -= 1
         moved = kind in CARRIED_KINDS and _moved_at(words, j)
+        pinned = kind_spec(kind).movable and bool(PINNED_WORDS & set(words[max(j - 1, 0):j + 1]))
         if earlier and (not colors or any(m.color is None and m.count > 1
                                            for m in earlier)):
             if moved:  # "... then put the bowl in the green zone"
@@ -368,11 +380,13 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                 again = stem if stem in found else plural_of(stem)
                 if moved:
                     found[again] = replace(found[again], moved=True)
+                if pinned:
+                    found[again] = replace(found[again], pinned=True)
                 if counted and not found[again].counted:
                     _recount(found, again, count)  # "... there are five yellow balls"
                 continue
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()),
-                                  listed, moved, counted)
+                                  listed, moved, counted, pinned=pinned)
             if len(found) >= MAX_MENTIONS:
                 return
 
@@ -494,6 +508,6 @@ def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
             f"for each (with this kind and colour):\n{lines}")
 
 
-__all__ = ["ALSO_KINDS", "MAX_MENTIONS", "MAX_SPLIT_MENTIONS", "Mention",
+__all__ = ["ALSO_KINDS", "MAX_MENTIONS", "MAX_SPLIT_MENTIONS", "PINNED_WORDS", "Mention",
            "colour_matched", "grounding_feedback", "mentions",
            "mentions_text", "missing_mentions"]

@@ -1,5 +1,5 @@
-"""Variables-first and subtasks-first where the words state every goal
-(factask.gen.stated_steps; issue 34, part 4: the factorized approaches mean the
+"""Variables-first and subtasks-first in the grounded one-shot grammar's pieces
+(factask.gen.grounded_steps; issue 34, part 4: the factorized approaches mean the
 proposal where one-shot does)."""
 
 from __future__ import annotations
@@ -13,9 +13,11 @@ from factask.gen import Generator, LLMClient, LLMConfig, Verifier
 from factask.gen.answers.step_schemas import schema_problems
 from factask.gen.compare import compare
 from factask.gen.first_choice import FirstChoiceResponder
+from factask.gen.grounded_steps import grounded_task
 from factask.gen.loopback import LoopbackServer, ScriptedResponder
+from factask.gen.reading import grounded
+from factask.gen.reading.clauses import read_goals
 from factask.gen.reading.mentions import mentions
-from factask.gen.stated_steps import stated_task
 
 PROPOSAL = "put the red block in the green bowl, then put the blue block on the red block"
 INSIDE = {"type": "inside", "objects": ["red_block"], "container": "green_bowl"}
@@ -39,13 +41,13 @@ def _generate(responder, proposal: str, approach: str, verifier: Verifier | None
                          grounded=True).generate(proposal, approach)
 
 
-def test_the_stated_task_pins_one_subtask_per_stated_goal() -> None:
-    stated = stated_task(mentions(PROPOSAL), PROPOSAL)
-    assert stated is not None
-    assert stated.names == ("inside_red_block", "on_blue_block")
-    assert stated.objects_of(0) == ["red_block", "green_bowl"]
-    assert stated.objects_of(1) == ["blue_block", "red_block"]
-    goal = {"type": "object", "properties": {"goal": stated.goal_schemas[0]}}
+def test_the_stated_reading_is_one_shape_of_one_subtask_per_stated_goal() -> None:
+    shaped = grounded_task(mentions(PROPOSAL), PROPOSAL)
+    assert shaped is not None and shaped.stated and len(shaped.shapes) == 1
+    shape = shaped.shapes[0]
+    assert shape.names == ("inside_red_block", "on_blue_block")
+    assert shape.objects == (("red_block", "green_bowl"), ("blue_block", "red_block"))
+    goal = {"type": "object", "properties": {"goal": shape.goal_schemas[0]}}
     assert schema_problems({"goal": INSIDE}, goal) == []
     # Another relation, object or anchor than the words state is outside the grammar.
     for wrong in ({**INSIDE, "container": "red_block"}, {**INSIDE, "objects": ["blue_block"]},
@@ -53,12 +55,8 @@ def test_the_stated_task_pins_one_subtask_per_stated_goal() -> None:
         assert schema_problems({"goal": wrong}, goal), wrong
 
 
-@pytest.mark.parametrize("proposal", [
-    "tidy up the yellow cylinder and the red block using the blue zone",  # no relation read
-    "build something nice",  # nothing named
-])
-def test_no_stated_task_where_the_words_do_not_state_every_goal(proposal) -> None:
-    assert stated_task(mentions(proposal), proposal) is None
+def test_no_grounded_task_where_the_proposal_names_nothing_movable() -> None:
+    assert grounded_task(mentions("build something nice"), "build something nice") is None
 
 
 VARIABLES_FIRST = {
@@ -118,18 +116,21 @@ def test_subtasks_first_asks_an_outline_then_each_goal() -> None:
     assert result.graph.factors[1].after == ["inside_red_block"]
 
 
-def _stated_proposals(limit: int) -> list[str]:
+def _shaped_proposals(limit: int, stated: bool) -> list[str]:
+    # Chosen by the words alone (the layout checks behind grounded_task() run against
+    # a clock: xdist's workers must collect the same list).
     out = []
     for task in json.loads(SET.read_text()):
         text = task["description"]
-        if stated_task(mentions(f"{text} {task['name']}"), text) is not None:
+        found = mentions(f"{text} {task['name']}")
+        if grounded.applies(found) and (read_goals(text, found) is not None) == stated:
             out.append(f"{task['name']}: {text}")
         if len(out) == limit:
             break
     return out
 
 
-@pytest.mark.parametrize("proposal", _stated_proposals(6))
+@pytest.mark.parametrize("proposal", _shaped_proposals(5, True) + _shaped_proposals(3, False))
 def test_the_reader_writes_the_same_task_with_every_approach(proposal) -> None:
     """Piece by piece, the factorized approaches ask what one-shot asks at once."""
     graphs = {a: _generate(FirstChoiceResponder(), proposal, a, _SyntaxOnly()).graph
@@ -139,3 +140,28 @@ def test_the_reader_writes_the_same_task_with_every_approach(proposal) -> None:
         assert graphs[approach] is not None, approach
         same = compare(graphs[approach], graphs["one-shot"])
         assert same.equivalent, (approach, same.differences)
+
+
+def test_without_a_reading_the_plan_chooses_among_the_grammars_shapes() -> None:
+    """No goal stated ("using" is no relation): the plan picks one of the one-shot
+    grammar's shapes, and the goals follow the shape the plan chose."""
+    proposal = "tidy up the yellow cylinder and the red block using the blue zone"
+    shaped = grounded_task(mentions(proposal), proposal)
+    assert shaped is not None and not shaped.stated and len(shaped.shapes) > 1
+    one = next(s for s in shaped.shapes if len(s.names) == 1)
+    assert one.names == ("in_zone_yellow_cylinder",)
+    # One goal for both objects: the plan that lists one subtask closes the others.
+    script = {
+        "variables": [json.dumps({"variables": [
+            {"name": "yellow_cylinder", "initial": {"type": "table"}},
+            {"name": "red_block", "initial": {"type": "table"}}]})],
+        "subtask_plan": [json.dumps({"subtasks": [
+            {"name": "in_zone_yellow_cylinder", "description": "both in the zone",
+             "variables": list(one.objects[0])}]})],
+        "subtask_goal:in_zone_yellow_cylinder": [json.dumps({"goal": {
+            "type": "in_zone", "objects": ["yellow_cylinder", "red_block"],
+            "zone": "blue_zone"}, "description": ""})],
+    }
+    result = _generate(ScriptedResponder(script), proposal, "variables-first", _SyntaxOnly())
+    assert result.level_reached == "syntax", result.failure
+    assert [f.goal.objects for f in result.graph.factors] == [["yellow_cylinder", "red_block"]]
