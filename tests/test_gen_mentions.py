@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import re
 
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -295,3 +296,22 @@ def test_under_a_matching_phrase_an_uncoloured_object_is_the_group_of_its_colour
                   "ball") == [("red_container", "container", "red", 1),
                               ("green_container", "container", "green", 1),
                               ("red_ball", "ball", "red", 1), ("green_ball", "ball", "green", 1)]
+
+
+@pytest.mark.parametrize(("proposal", "expected"), [
+    # a total stated after the group
+    ("Move all the grey cylinders, four in total, into the container.",
+     [("gray_cylinders", 4), ("container", 1)]),
+    ("Put the blocks in the bowl, six in all.", [("blocks", 6), ("bowl", 1)]),
+    # several shapes of one size each: a group per shape
+    ("Build 2 towers of 3 cylinders each.", [("cylinders", 3), ("cylinders_2", 3)]),
+    ("Make three columns of three cubes each.",
+     [("blocks", 3), ("blocks_2", 3), ("blocks_3", 3)]),
+    # "that stands": a verb; a kitting plate: the kit
+    ("Put the three boxes on the grey pallet that stands at the centre of the table.",
+     [("boxes", 3), ("gray_pallet", 1)]),
+    ("Set 5 violet blocks and 4 lime blocks down on the kitting plate.",
+     [("violet_blocks", 5), ("lime_blocks", 4), ("kit", 1)]),
+])
+def test_counts_groups_and_compound_kinds_stated_around_a_group(proposal, expected) -> None:
+    assert [(m.name, m.count) for m in mentions(proposal)] == expected

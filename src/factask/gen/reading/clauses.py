@@ -216,8 +216,9 @@ def _relation(prep: str, anchor: Mention, movers: Sequence[Mention], shape: str 
         return "row" if anchor.movable else None  # "the red block next to the blue one"
     if kind == "zone":
         return "in_zone"
-    if kind in ("fixture", "kit") or (verbs & ({"insert", "fit"} | _ALIGN_VERBS)
-                                      and kind != "container"):
+    # Into a fixture or a kit: shape into its place; "on the kitting plate": on it.
+    if kind == "fixture" or (kind == "kit" and prep != "on") or (
+            verbs & ({"insert", "fit"} | _ALIGN_VERBS) and kind != "container"):
         return "aligned"
     if prep == "along":
         return "row"

@@ -214,6 +214,8 @@ def mentions(proposal: str) -> list[Mention]:
     words = words_of(desc)
     _scan(words, found)
     _count_each(words, found)
+    _count_in_total(words, found)
+    _split_per_shape(words, found)
     if name:
         said = {kind_of(w)[2] for w in WORD.findall(desc.replace("-", " "))}
         _scan([w for w in words_of(name) if kind_of(w)[2] not in said], found)
@@ -416,6 +418,67 @@ def _count_each(words: list[str], found: dict[str, Mention]) -> None:
         for name, m in list(found.items()):
             if n and m.color and not m.counted and m.count > 1 and kind in (None, m.kind):
                 _recount(found, name, min(n, MAX_COUNT))
+
+
+#: Words after a count that make it the total of a group named before: "four in
+#: total", "six in all", "five altogether".
+_TOTAL = (("in", "total"), ("in", "all"), ("altogether",))
+
+
+def _count_in_total(words: list[str], found: dict[str, Mention]) -> None:
+    """Give an uncounted group the total stated after it ("all the grey cylinders,
+    four in total": four)."""
+    for i in range(1, len(words)):
+        n = count_of(words[i])
+        if not n or not any(tuple(words[i + 1:i + 1 + len(t)]) == t for t in _TOTAL):
+            continue
+        j = i - 1
+        while j >= 0 and (kind_of(words[j])[0] is None or not kind_of(words[j])[1]):
+            j -= 1  # back to the plural kind word the total is of
+        if j < 0:
+            continue
+        kind, colour = kind_of(words[j])[0], words[j - 1] if j else None
+        for name, m in list(found.items()):
+            if m.kind == kind and not m.counted and (
+                    colour not in COLOR_NAMES or m.color == colour):
+                _recount(found, name, min(n, MAX_COUNT))
+                break
+
+
+#: Plural shape words a group may be built into, several of one size each.
+_GROUP_SHAPES = frozenset({"towers", "stacks", "columns", "rows", "lines", "circles", "rings",
+                           "piles"})
+#: Most groups one phrase splits a mention into ("two towers of three blocks").
+_MOST_GROUPS = 4
+
+
+def _split_per_shape(words: list[str], found: dict[str, Mention]) -> None:
+    """"Two towers of three cylinders (each)": the cylinders are two groups of three,
+    one per tower -- a mention each (``cylinders``, ``cylinders_2``), so each shape
+    has objects of its own."""
+    for i in range(len(words) - 3):
+        k = count_of(words[i])
+        if not 2 <= k <= _MOST_GROUPS or words[i + 1] not in _GROUP_SHAPES \
+                or words[i + 2] != "of":
+            continue
+        n = count_of(words[i + 3])
+        j = i + 4 if n else i + 3
+        colour = words[j] if j < len(words) and words[j] in COLOR_NAMES else None
+        j += 1 if colour else 0
+        kind = kind_of(words[j])[0] if j < len(words) else None
+        group = next((name for name, m in found.items() if m.kind == kind
+                      and m.color == colour and (not n or m.count == n)), None)
+        if group is None or len(found) + k - 1 > MAX_SPLIT_MENTIONS:
+            continue
+        first = found[group]
+        items: list[tuple[str, Mention]] = []
+        for name, m in found.items():
+            items.append((name, m))
+            if name == group:
+                items += [(f"{name}_{g}", replace(first, name=f"{name}_{g}"))
+                          for g in range(2, k + 1)]
+        found.clear()
+        found.update(items)
 
 
 def _named(stem: str, names: Collection[str]) -> bool:

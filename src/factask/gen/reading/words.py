@@ -63,6 +63,8 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
     # "ell blocks", "ell pieces": the ell is the shape, the noun the object.
     (re.compile(r"\bell\s+(?:block|piece|object|part|shape|brick|cube|bar)(s?)\b"),
      r"ell\1"),
+    # A kitting plate, board or tray holds a kit's shapes: the kit.
+    (re.compile(r"\bkitting\s+(?:plate|board|tray|mat|base)(s?)\b"), r"kit\1"),
     (re.compile(r"\b(?:pile|heap)\s+of\s+(?:(?:small|tiny|little)\s+)?"
                 rf"(?:({'|'.join(COLOR_NAMES)})\s+)?(?:(?:small|tiny|little)\s+)?[a-z]+"),
      r"\1 pile"),
@@ -167,6 +169,8 @@ NOUN_LEAD = frozenset({"the", "a", "an", "each", "every", "its", "their", "this"
                        "both", "all", "square", "round", "circular", "rectangular",
                        "wooden", "marked", "target", "goal", "kitting", "insertion",
                        "straight", "long", "short"}) | MODIFIERS
+#: Relative pronouns: "that stands", "which lines" are verbs ("that stand" may be a noun).
+_RELATIVE = frozenset({"that", "which", "who"})
 #: Words before "a line" that make it a shape of objects: "in a straight line", "form a line".
 _ROW_LEAD = frozenset({"in", "into", "form", "forming", "make", "making", "one", "single"})
 
@@ -197,6 +201,9 @@ def _verb_senses(words: list[str]) -> list[str]:
             continue
         noun = before in NOUN_LEAD or before in COLOR_NAMES or bool(count_of(before)) \
             or kind_of(after)[0] is not None
+        if before in _RELATIVE and w.endswith("s"):
+            noun = False  # "the pallet that stands at the centre": a verb
+
         if not noun:
             # An order ("stand the box on the pallet", "then stand ...") or a state
             # ("three bowls stand in a row"): the readers tell them apart by these.
