@@ -307,6 +307,12 @@ def test_under_a_matching_phrase_an_uncoloured_object_is_the_group_of_its_colour
     ("Build 2 towers of 3 cylinders each.", [("cylinders", 3), ("cylinders_2", 3)]),
     ("Make three columns of three cubes each.",
      [("blocks", 3), ("blocks_2", 3), ("blocks_3", 3)]),
+    # colours listed on their own under a matching phrase: every uncoloured group's
+    ("Fit every ell into the fixture of its color; the ells and the fixtures are red and "
+     "blue.", [("red_ell", 1), ("blue_ell", 1), ("red_fixture", 1), ("blue_fixture", 1)]),
+    # ... but not again where a group's own list gives them
+    ("Stack blocks of three different colors (red, blue, green) on the pallet.",
+     [("red_block", 1), ("blue_block", 1), ("green_block", 1), ("pallet", 1)]),
     # "that stands": a verb; a kitting plate: the kit
     ("Put the three boxes on the grey pallet that stands at the centre of the table.",
      [("boxes", 3), ("gray_pallet", 1)]),

@@ -24,8 +24,8 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from factask.gen import grounded_subtasks as gs
 from factask.gen import grounded_steps
+from factask.gen import grounded_subtasks as gs
 from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.schemas import (
     AnswerError,

@@ -144,8 +144,15 @@ class _Facts:
             per_kind_colour[(v.kind, str(v.color))] += v.count
             per_colour[str(v.color)] += v.count
             variables_per_kind[v.kind] += 1
+        # Alike objects no goal names, counted together ("leave the two blue blocks").
+        named = {n for f in graph.factors for n in f.goal.variable_names()}
+        idle: Counter[tuple[str, str]] = Counter()
+        for v in graph.variables:
+            if v.name not in named:
+                idle[(v.kind, str(v.color))] += v.count
         movable = [v for v in graph.variables if not v.is_fixed]
         self.counts = ({v.count for v in graph.variables} | set(per_kind.values())
+                       | set(idle.values())
                        | set(per_kind_colour.values()) | set(per_colour.values())
                        | set(variables_per_kind.values())
                        | {sum(v.count for v in movable), len(graph.factors)})

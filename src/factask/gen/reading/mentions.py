@@ -220,6 +220,8 @@ def mentions(proposal: str) -> list[Mention]:
         said = {kind_of(w)[2] for w in WORD.findall(desc.replace("-", " "))}
         _scan([w for w in words_of(name) if kind_of(w)[2] not in said], found)
     matched = _matched_kinds(words)
+    if matched is not None or colour_matched(desc) or colour_matched(name):
+        _list_free_colours(words, found)
     if matched is not None or colour_matched(name) or any(m.listed for m in found.values()):
         # A group whose colours the words list ("blocks of different colours (red,
         # blue, green)") is one object per colour, paired by colour or not.
@@ -501,6 +503,34 @@ def _is_adjunct(word: str) -> bool:
     function word, count, colour or kind word itself."""
     return (word not in FUNCTION_WORDS and not count_of(word) and word not in COLOR_NAMES
             and kind_of(word)[0] is None and word.isalpha())
+
+
+def _list_free_colours(words: list[str], found: dict[str, Mention]) -> None:
+    """Colours listed on their own, of no kind word ("the balls and bowls are red,
+    green and blue", "... matches its colour: yellow, purple and orange"): under a
+    matching phrase, the colours of every group named without one."""
+    if any(m.listed for m in found.values()):
+        return  # the words list a group's colours already ("blocks (red, blue)")
+    free: list[str] = []
+    k = 0
+    while k < len(words):
+        run: list[str] = []
+        j = k
+        while j < len(words) and (words[j] in COLOR_NAMES or (words[j] in ("and", "or")
+                                                              and run)):
+            if words[j] in COLOR_NAMES:
+                run.append(words[j])
+            j += 1
+        attached = j < len(words) and kind_of(words[j])[0] is not None
+        if len(set(run)) >= 2 and not attached:
+            free = list(dict.fromkeys(run))
+            break
+        k = j + 1 if j > k else k + 1
+    if not free:
+        return
+    for name, m in list(found.items()):
+        if m.color is None and not m.listed:
+            found[name] = replace(m, listed=tuple((c, 0) for c in free))
 
 
 def _listed_colours(words: list[str], start: int) -> tuple[tuple[str, int], ...]:
