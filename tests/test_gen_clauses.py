@@ -40,6 +40,14 @@ def goals(proposal: str) -> list[tuple]:
     # two shape words, each over the objects named after it
     ("Make a row from the red blocks and a circle from the blue blocks.",
      [("row", ("red_blocks",), None, False, 0), ("circle", ("blue_blocks",), None, False, 0)]),
+    # one goal over objects the words put in one at a time, in a colour order
+    ("Put the balls in the container one at a time in this order: black, white, gold.",
+     [("inside", ("black_ball",), "container", False, 0),
+      ("inside", ("white_ball",), "container", False, 1),
+      ("inside", ("gold_ball",), "container", False, 2)]),
+    # ... and one goal where no order is given
+    ("Put the red, green and blue blocks in the bowl.",
+     [("inside", ("red_block", "green_block", "blue_block"), "bowl", False, 0)]),
     # one shape word after each group: an arrangement each
     ("Put the five red blocks in a circle, and put the five blue blocks in a circle.",
      [("circle", ("red_blocks",), None, False, 0), ("circle", ("blue_blocks",), None, False, 0)]),

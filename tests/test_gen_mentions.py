@@ -313,6 +313,11 @@ def test_under_a_matching_phrase_an_uncoloured_object_is_the_group_of_its_colour
     # ... but not again where a group's own list gives them
     ("Stack blocks of three different colors (red, blue, green) on the pallet.",
      [("red_block", 1), ("blue_block", 1), ("green_block", 1), ("pallet", 1)]),
+    # a colour list after an order word: the moved group's colours; "N of them"
+    ("Put the balls in the container one at a time in this order: black, white, gold.",
+     [("black_ball", 1), ("white_ball", 1), ("gold_ball", 1), ("container", 1)]),
+    ("Move the two balls into the container and leave the cylinders where they are; "
+     "there are three of them.", [("balls", 2), ("container", 1), ("cylinders", 3)]),
     # "that stands": a verb; a kitting plate: the kit
     ("Put the three boxes on the grey pallet that stands at the centre of the table.",
      [("boxes", 3), ("gray_pallet", 1)]),

@@ -395,6 +395,8 @@ def _read(proposal: str, found: tuple[Mention, ...]
     return tuple(goals), frozenset(still)
 
 
+#: Relations whose objects may be placed one at a time, each a goal of its own.
+_ONE_BY_ONE = frozenset({"inside", "in_zone", "on", "aligned"})
 #: Words that say the goals are done in an order the words then list.
 _SEQUENCE_WORDS = frozenset({"sequence", "order", "sequentially", "sequential"})
 
@@ -404,6 +406,13 @@ def _in_colour_sequence(goals: list[ReadGoal], proposal: str,
     """Goals of one step, each moving one colour, put in the colour order the words
     list after a sequence word ("... in a specific color sequence: red, blue, green")."""
     colour = {m.name: m.color for m in found}
+    if len(goals) == 1 and goals[0].relation in _ONE_BY_ONE and len(goals[0].objects) > 1:
+        # "put the balls in the container in this order: black, white, gold": one goal
+        # per object, ordered below (where the words list their colours).
+        goals = [replace(goals[0], objects=(o,)) for o in goals[0].objects]
+        split = _in_colour_sequence(goals, proposal, found)
+        return split if len({g.step for g in split}) == len(split) else \
+            [replace(goals[0], objects=tuple(o for g in goals for o in g.objects))]
     mine = [colour.get(g.objects[0]) if len(g.objects) == 1 else None for g in goals]
     if len(goals) < 2 or len({g.step for g in goals}) > 1 or None in mine \
             or len(set(mine)) < len(mine):

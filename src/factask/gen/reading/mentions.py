@@ -222,6 +222,8 @@ def mentions(proposal: str) -> list[Mention]:
     matched = _matched_kinds(words)
     if matched is not None or colour_matched(desc) or colour_matched(name):
         _list_free_colours(words, found)
+    else:
+        _list_free_colours(words, found, ordered=True)
     if matched is not None or colour_matched(name) or any(m.listed for m in found.values()):
         # A group whose colours the words list ("blocks of different colours (red,
         # blue, green)") is one object per colour, paired by colour or not.
@@ -422,9 +424,11 @@ def _count_each(words: list[str], found: dict[str, Mention]) -> None:
                 _recount(found, name, min(n, MAX_COUNT))
 
 
+#: Words right before a colour list that make it an order: "in this order: black, ...".
+_ORDER_CUES = frozenset({"order", "sequence"})
 #: Words after a count that make it the total of a group named before: "four in
-#: total", "six in all", "five altogether".
-_TOTAL = (("in", "total"), ("in", "all"), ("altogether",))
+#: total", "six in all", "five altogether", "there are three of them".
+_TOTAL = (("in", "total"), ("in", "all"), ("altogether",), ("of", "them"))
 
 
 def _count_in_total(words: list[str], found: dict[str, Mention]) -> None:
@@ -433,7 +437,7 @@ def _count_in_total(words: list[str], found: dict[str, Mention]) -> None:
     for i in range(1, len(words)):
         n = count_of(words[i])
         if not n or not any(tuple(words[i + 1:i + 1 + len(t)]) == t for t in _TOTAL):
-            continue
+            continue  # "four in total", "there are three of them"
         j = i - 1
         while j >= 0 and (kind_of(words[j])[0] is None or not kind_of(words[j])[1]):
             j -= 1  # back to the plural kind word the total is of
@@ -505,10 +509,13 @@ def _is_adjunct(word: str) -> bool:
             and kind_of(word)[0] is None and word.isalpha())
 
 
-def _list_free_colours(words: list[str], found: dict[str, Mention]) -> None:
+def _list_free_colours(words: list[str], found: dict[str, Mention],
+                       ordered: bool = False) -> None:
     """Colours listed on their own, of no kind word ("the balls and bowls are red,
     green and blue", "... matches its colour: yellow, purple and orange"): under a
-    matching phrase, the colours of every group named without one."""
+    matching phrase, the colours of every group named without one; ``ordered``:
+    only a list right after an order word ("put the balls in the container in this
+    order: black, white, gold"), the colours of the plural movable groups."""
     if any(m.listed for m in found.values()):
         return  # the words list a group's colours already ("blocks (red, blue)")
     free: list[str] = []
@@ -522,14 +529,16 @@ def _list_free_colours(words: list[str], found: dict[str, Mention]) -> None:
                 run.append(words[j])
             j += 1
         attached = j < len(words) and kind_of(words[j])[0] is not None
-        if len(set(run)) >= 2 and not attached:
+        after_order = k and words[k - 1] in _ORDER_CUES
+        if len(set(run)) >= 2 and not attached and (after_order or not ordered):
             free = list(dict.fromkeys(run))
             break
         k = j + 1 if j > k else k + 1
     if not free:
         return
     for name, m in list(found.items()):
-        if m.color is None and not m.listed:
+        if m.color is None and not m.listed and (
+                not ordered or (m.movable and (not m.counted or m.count >= len(free)))):
             found[name] = replace(m, listed=tuple((c, 0) for c in free))
 
 
