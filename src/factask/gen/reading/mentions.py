@@ -23,6 +23,15 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
+from factask.gen.reading.group_counts import (
+    MAX_COUNT,
+    MAX_SPLIT_MENTIONS,
+    count_each,
+    count_in_total,
+    list_free_colours,
+    recount,
+    split_per_shape,
+)
 from factask.gen.reading.words import (
     MODIFIERS,
     NUMBER_WORDS,
@@ -86,9 +95,6 @@ PINNED_WORDS = frozenset({"fixed", "immovable", "static", "bolted", "stationary"
 #: Most mentions listed (a proposal is a sentence or two, not an inventory; six balls
 #: into six zones is twelve, the most variables a graph schema takes).
 MAX_MENTIONS = 12
-#: Most mentions after groups are split by colour (six balls into six zones of
-#: their colours: twelve; the graph schemas take twelve variables).
-MAX_SPLIT_MENTIONS = 12
 #: Words of colour, qualified by a matching word in a matching phrase.
 COLOUR_WORDS = frozenset({"color", "colour", "colors", "colours", "colored", "coloured"})
 #: Words before a colour word that pair by colour: "of the same colour", "matching
@@ -103,8 +109,6 @@ MATCH_AFTER = frozenset({"coordinated", "matched", "matching", "corresponding",
 #: How many words back a matching phrase looks for the kind it qualifies ("the
 #: containers of the matching color": 4).
 MATCH_REACH = 6
-#: Largest count read from a proposal (the graph model's count limit is larger).
-MAX_COUNT = 16
 
 
 @dataclass(frozen=True)
@@ -213,17 +217,17 @@ def mentions(proposal: str) -> list[Mention]:
     found: dict[str, Mention] = {}
     words = words_of(desc)
     _scan(words, found)
-    _count_each(words, found)
-    _count_in_total(words, found)
-    _split_per_shape(words, found)
+    count_each(words, found)
+    count_in_total(words, found)
+    split_per_shape(words, found)
     if name:
         said = {kind_of(w)[2] for w in WORD.findall(desc.replace("-", " "))}
         _scan([w for w in words_of(name) if kind_of(w)[2] not in said], found)
     matched = _matched_kinds(words)
     if matched is not None or colour_matched(desc) or colour_matched(name):
-        _list_free_colours(words, found)
+        list_free_colours(words, found)
     else:
-        _list_free_colours(words, found, ordered=True)
+        list_free_colours(words, found, ordered=True)
     if matched is not None or colour_matched(name) or any(m.listed for m in found.values()):
         # A group whose colours the words list ("blocks of different colours (red,
         # blue, green)") is one object per colour, paired by colour or not.
@@ -389,102 +393,12 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                 if pinned:
                     found[again] = replace(found[again], pinned=True)
                 if counted and not found[again].counted:
-                    _recount(found, again, count)  # "... there are five yellow balls"
+                    recount(found, again, count)  # "... there are five yellow balls"
                 continue
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()),
                                   listed, moved, counted, pinned=pinned)
             if len(found) >= MAX_MENTIONS:
                 return
-
-
-def _recount(found: dict[str, Mention], name: str, count: int) -> None:
-    """Give the mention ``name`` the count a later phrase states, renamed to match
-    (``yellow_balls`` of 2 read, 5 stated), in its place in the order."""
-    old = found[name]
-    stem = f"{old.color}_{old.kind}" if old.color else old.kind
-    new = replace(old, name=plural_of(stem) if count > 1 else stem, count=count, counted=True)
-    items = [(new.name, new) if k == name else (k, m) for k, m in found.items()]
-    found.clear()
-    found.update(items)
-
-
-def _count_each(words: list[str], found: dict[str, Mention]) -> None:
-    """Give the coloured groups whose count the words did not state the count of "N
-    of each" ("the red blocks and the blue blocks; there are three of each", "two
-    blocks of each colour": only blocks)."""
-    for i in range(len(words) - 2):
-        if words[i + 1:i + 3] == ["of", "each"]:
-            n, kind = count_of(words[i]), None
-        elif i + 3 < len(words) and words[i + 2:i + 4] == ["of", "each"]:
-            n, kind = count_of(words[i]), kind_of(words[i + 1])[0]
-        else:
-            continue
-        for name, m in list(found.items()):
-            if n and m.color and not m.counted and m.count > 1 and kind in (None, m.kind):
-                _recount(found, name, min(n, MAX_COUNT))
-
-
-#: Words right before a colour list that make it an order: "in this order: black, ...".
-_ORDER_CUES = frozenset({"order", "sequence"})
-#: Words after a count that make it the total of a group named before: "four in
-#: total", "six in all", "five altogether", "there are three of them".
-_TOTAL = (("in", "total"), ("in", "all"), ("altogether",), ("of", "them"))
-
-
-def _count_in_total(words: list[str], found: dict[str, Mention]) -> None:
-    """Give an uncounted group the total stated after it ("all the grey cylinders,
-    four in total": four)."""
-    for i in range(1, len(words)):
-        n = count_of(words[i])
-        if not n or not any(tuple(words[i + 1:i + 1 + len(t)]) == t for t in _TOTAL):
-            continue  # "four in total", "there are three of them"
-        j = i - 1
-        while j >= 0 and (kind_of(words[j])[0] is None or not kind_of(words[j])[1]):
-            j -= 1  # back to the plural kind word the total is of
-        if j < 0:
-            continue
-        kind, colour = kind_of(words[j])[0], words[j - 1] if j else None
-        for name, m in list(found.items()):
-            if m.kind == kind and not m.counted and (
-                    colour not in COLOR_NAMES or m.color == colour):
-                _recount(found, name, min(n, MAX_COUNT))
-                break
-
-
-#: Plural shape words a group may be built into, several of one size each.
-_GROUP_SHAPES = frozenset({"towers", "stacks", "columns", "rows", "lines", "circles", "rings",
-                           "piles"})
-#: Most groups one phrase splits a mention into ("two towers of three blocks").
-_MOST_GROUPS = 4
-
-
-def _split_per_shape(words: list[str], found: dict[str, Mention]) -> None:
-    """"Two towers of three cylinders (each)": the cylinders are two groups of three,
-    one per tower -- a mention each (``cylinders``, ``cylinders_2``), so each shape
-    has objects of its own."""
-    for i in range(len(words) - 3):
-        k = count_of(words[i])
-        if not 2 <= k <= _MOST_GROUPS or words[i + 1] not in _GROUP_SHAPES \
-                or words[i + 2] != "of":
-            continue
-        n = count_of(words[i + 3])
-        j = i + 4 if n else i + 3
-        colour = words[j] if j < len(words) and words[j] in COLOR_NAMES else None
-        j += 1 if colour else 0
-        kind = kind_of(words[j])[0] if j < len(words) else None
-        group = next((name for name, m in found.items() if m.kind == kind
-                      and m.color == colour and (not n or m.count == n)), None)
-        if group is None or len(found) + k - 1 > MAX_SPLIT_MENTIONS:
-            continue
-        first = found[group]
-        items: list[tuple[str, Mention]] = []
-        for name, m in found.items():
-            items.append((name, m))
-            if name == group:
-                items += [(f"{name}_{g}", replace(first, name=f"{name}_{g}"))
-                          for g in range(2, k + 1)]
-        found.clear()
-        found.update(items)
 
 
 def _named(stem: str, names: Collection[str]) -> bool:
@@ -507,39 +421,6 @@ def _is_adjunct(word: str) -> bool:
     function word, count, colour or kind word itself."""
     return (word not in FUNCTION_WORDS and not count_of(word) and word not in COLOR_NAMES
             and kind_of(word)[0] is None and word.isalpha())
-
-
-def _list_free_colours(words: list[str], found: dict[str, Mention],
-                       ordered: bool = False) -> None:
-    """Colours listed on their own, of no kind word ("the balls and bowls are red,
-    green and blue", "... matches its colour: yellow, purple and orange"): under a
-    matching phrase, the colours of every group named without one; ``ordered``:
-    only a list right after an order word ("put the balls in the container in this
-    order: black, white, gold"), the colours of the plural movable groups."""
-    if any(m.listed for m in found.values()):
-        return  # the words list a group's colours already ("blocks (red, blue)")
-    free: list[str] = []
-    k = 0
-    while k < len(words):
-        run: list[str] = []
-        j = k
-        while j < len(words) and (words[j] in COLOR_NAMES or (words[j] in ("and", "or")
-                                                              and run)):
-            if words[j] in COLOR_NAMES:
-                run.append(words[j])
-            j += 1
-        attached = j < len(words) and kind_of(words[j])[0] is not None
-        after_order = k and words[k - 1] in _ORDER_CUES
-        if len(set(run)) >= 2 and not attached and (after_order or not ordered):
-            free = list(dict.fromkeys(run))
-            break
-        k = j + 1 if j > k else k + 1
-    if not free:
-        return
-    for name, m in list(found.items()):
-        if m.color is None and not m.listed and (
-                not ordered or (m.movable and (not m.counted or m.count >= len(free)))):
-            found[name] = replace(m, listed=tuple((c, 0) for c in free))
 
 
 def _listed_colours(words: list[str], start: int) -> tuple[tuple[str, int], ...]:
