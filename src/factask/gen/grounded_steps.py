@@ -316,10 +316,7 @@ def _ask_starts(runner: StepRunner, task: str, desc: str,
                                   + format_problems(problems))
         return starts, "syntax", None
 
-    out = runner.ask("variables", prompt, schema, "variables_answer", evaluate)
-    if not out.ok:
-        raise Abort(f"variables: {out.feedback}")
-    return list(out.value)
+    return list(runner.ask_or_abort("variables", prompt, schema, "variables_answer", evaluate))
 
 
 def _subtask_items(shape: Shape, with_variables: bool) -> Schema:
@@ -364,10 +361,7 @@ def _ask_subtasks(runner: StepRunner, task: str, desc: str, task_: GroundedTask,
         return (data, [s.description for s in answer.subtasks]), "syntax", None
 
     step = "subtask_plan" if plan else "subtask_outline"
-    out = runner.ask(step, prompt, schema, step, evaluate)
-    if not out.ok:
-        raise Abort(f"{step}: {out.feedback}")
-    data, descriptions = out.value
+    data, descriptions = runner.ask_or_abort(step, prompt, schema, step, evaluate)
     chosen = [s for s in task_.shapes if not schema_problems(data["subtasks"],
                                                              _subtask_items(s, plan))]
     return chosen, descriptions

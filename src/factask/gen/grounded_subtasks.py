@@ -53,7 +53,7 @@ from factask.gen.prompts import render, schema_skeleton
 from factask.gen.reading import grounded
 from factask.gen.reading.cover import must_use, used_names
 from factask.gen.reading.mentions import Mention, mentions_text
-from factask.gen.steps import Abort, Evaluation, StepRunner, read_strict
+from factask.gen.steps import Evaluation, StepRunner, read_strict
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.names import slugify
 from factask.vocabulary.variables import StateVariable
@@ -235,10 +235,7 @@ def ask_outline(runner: StepRunner, task: str, desc: str,
     def evaluate(text: str) -> Evaluation:
         return read_outline(read_strict(text, schema), found), "syntax", None
 
-    out = runner.ask("subtask_outline", prompt, schema, "subtask_outline", evaluate)
-    if not out.ok:
-        raise Abort(f"subtask_outline: {out.feedback}")
-    return out.value
+    return runner.ask_or_abort("subtask_outline", prompt, schema, "subtask_outline", evaluate)
 
 
 def design_fragments(runner: StepRunner, task: str, desc: str,

@@ -319,6 +319,19 @@ class StepRunner:
                                   f"({type(exc).__name__}: {exc}). Send a simpler, valid "
                                   "answer following the schema.")
 
+    def ask_or_abort(self, step: str, prompt: PromptBuilder, schema: Mapping[str, Any],
+                     schema_name: str, evaluate: Callable[[str], Evaluation]) -> Any:
+        """:meth:`ask` for a step the approach cannot go on without (variables, a plan,
+        an outline): its artefact.
+
+        Raises:
+            Abort: the step did not pass (naming the step and its last feedback).
+        """
+        out = self.ask(step, prompt, schema, schema_name, evaluate)
+        if not out.ok:
+            raise Abort(f"{step}: {out.feedback}")
+        return out.value
+
     # ------------------------------------------------------------ finishing
     def finish(self, graph: TaskGraph | None, level: Level, failure: str | None) -> None:
         """Set the result's graph, level and (short of completion) failure."""

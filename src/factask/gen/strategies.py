@@ -446,10 +446,7 @@ class Generator(StepRunner):
                 return None, "none", lacking
             return answer.variables, "syntax", None
 
-        out = self.ask("variables", prompt, schema, "variables_answer", evaluate)
-        if not out.ok:
-            raise Abort(f"variables: {out.feedback}")
-        return list(out.value)
+        return list(self.ask_or_abort("variables", prompt, schema, "variables_answer", evaluate))
 
     def _ask_plan(self, task: str, desc: str, query: str,
                   variables: list[StateVariable]) -> SubtaskPlan:
@@ -475,10 +472,7 @@ class Generator(StepRunner):
                                       + format_problems(problems))
             return plan, "syntax", None
 
-        out = self.ask("subtask_plan", prompt, schema, "subtask_plan", evaluate)
-        if not out.ok:
-            raise Abort(f"subtask_plan: {out.feedback}")
-        return out.value
+        return self.ask_or_abort("subtask_plan", prompt, schema, "subtask_plan", evaluate)
 
     # ------------------------------------------------------- subtasks-first
     def _subtasks_first(self, task: str, desc: str) -> None:
@@ -571,10 +565,7 @@ class Generator(StepRunner):
                 s.model_copy(update={"name": n}) for s, n in zip(outline.subtasks, labels,
                                                                   strict=True)]}), "syntax", None
 
-        out = self.ask("subtask_outline", prompt, schema, "subtask_outline", evaluate)
-        if not out.ok:
-            raise Abort(f"subtask_outline: {out.feedback}")
-        return out.value
+        return self.ask_or_abort("subtask_outline", prompt, schema, "subtask_outline", evaluate)
 
 
 def generate(proposal: str, approach: str, client: LLMClient, verifier: Verifier | None = None,
