@@ -146,10 +146,10 @@ class _Facts:
             variables_per_kind[v.kind] += 1
         # Alike objects no goal names, counted together ("leave the two blue blocks").
         named = {n for f in graph.factors for n in f.goal.variable_names()}
-        idle: Counter[tuple[str, str]] = Counter()
+        idle: Counter[tuple[str, str, bool]] = Counter()
         for v in graph.variables:
             if v.name not in named:
-                idle[(v.kind, str(v.color))] += v.count
+                idle[(v.kind, str(v.color), v.is_fixed)] += v.count  # as describe() counts
         movable = [v for v in graph.variables if not v.is_fixed]
         self.counts = ({v.count for v in graph.variables} | set(per_kind.values())
                        | set(idle.values())

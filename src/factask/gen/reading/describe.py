@@ -116,9 +116,9 @@ def _together(variables: list[StateVariable]) -> list[tuple[str, int]]:
     """Noun phrases of objects no goal names, the alike ones counted together
     ("the three gray boxes", not "the gray box and the gray box and ..."), each with
     how many it names."""
-    alike: dict[tuple[str, str | None], list[StateVariable]] = {}
+    alike: dict[tuple[str, str | None, bool], list[StateVariable]] = {}
     for v in variables:
-        alike.setdefault((v.kind, v.color), []).append(v)
+        alike.setdefault((v.kind, v.color, v.is_fixed), []).append(v)  # "fixed" is said
     out = []
     for group in alike.values():
         total = sum(v.count for v in group)
