@@ -118,7 +118,7 @@ def test_a_goal_may_name_only_the_declared_variables(good: str, other: str) -> N
 
 @given(st.text(max_size=60))
 def test_strings_with_control_characters_quotes_or_backslashes_are_refused(text: str) -> None:
-    answer = {"subtasks": [{"name": "place_it", "description": text}]}
+    answer = {"subtasks": [{"name": "place_it", "description": text, "after": []}]}
     ok = not schema_problems(answer, SCHEMAS["subtask_outline"])
     assert ok == all(" " <= c <= "~" and c not in "\"\\" for c in text)
 
@@ -240,7 +240,7 @@ def test_llama_grammar_numbers_are_round_values_within_the_bounds(step: str) -> 
 
 def test_a_size_taller_than_the_workspace_breaks_the_variables_schema() -> None:
     variable = {"name": "zone", "description": "x", "kind": "zone", "size": [0.3, 0.3, 0.75],
-                "color": "green", "count": 1, "initial": {"type": "table"}}
+                "color": "green", "count": 1, "fixed": None, "initial": {"type": "table"}}
     problems = schema_problems({"variables": [variable]}, SCHEMAS["variables"])
     assert problems == ["variables.0.size.2: 0.75 is greater than the maximum of 0.3"]
 

@@ -64,14 +64,17 @@ def _approaches(given: list[str], allow_all: bool) -> list[str]:
 def _session(model: str | None, api_base: str | None, cache: Path | None,
              max_repairs: int, episodes: int, memory: Path | None, robot: str,
              temperature: float | None, response_format: str | None = None,
-             seed: int | None = None, on_step: Any = None) -> Iterator[Generator]:
+             seed: int | None = None, on_step: Any = None,
+             references: Any = None) -> Iterator[Generator]:
     """The generator for a command: client (the local server started and stopped
     around the command), verifier, memory. A configuration that cannot work exits
-    with one line and status 2."""
+    with one line and status 2. ``references``: a callable giving the reference
+    graphs by task name, called only for a reference model (``local/reference``)."""
     check_robot(robot)
     from factask.gen.llm import LLMConfig, LLMConfigError, LLMFatalError, ResponseCache
     from factask.gen.local import LocalModelError
     from factask.gen.memory import SubtaskMemory
+    from factask.gen.reference_model import ReferenceModelError, is_reference_model
     from factask.gen.session import open_client
     from factask.gen.strategies import Generator as _Generator
     from factask.gen.verify import Verifier
@@ -83,15 +86,26 @@ def _session(model: str | None, api_base: str | None, cache: Path | None,
         _fail(str(exc))
     cache_dir = cache or (Path(os.environ["FACTASK_CACHE"]) if os.environ.get("FACTASK_CACHE")
                           else None)
+    graphs = references() if references is not None and is_reference_model(config.model) \
+        else None
     try:
-        with open_client(config, ResponseCache(cache_dir) if cache_dir else None) as client:
+        with open_client(config, ResponseCache(cache_dir) if cache_dir else None,
+                         references=graphs) as client:
             verifier = Verifier(episodes=episodes, robot=robot)
             yield _Generator(client, verifier, SubtaskMemory.from_env(memory), max_repairs,
                              on_step)
     except LLMFatalError as exc:
         _fail(exc.line())
-    except (LocalModelError, LLMConfigError) as exc:
+    except (LocalModelError, LLMConfigError, ReferenceModelError) as exc:
         _fail(str(exc))
+
+
+def _library_graphs() -> dict[str, Any]:
+    """The library's graphs by name: the references ``local/reference`` answers from
+    in ``factask generate``."""
+    from factask.library import get_task, task_names
+
+    return {n: get_task(n) for n in task_names()}
 
 
 def _step_printer(say: Console) -> Any:
@@ -155,7 +169,7 @@ def generate(
     approach = chosen[0]
     say = err_console if as_json else console
     with _session(model, api_base, cache, max_repairs, episodes, memory, robot, temperature,
-                  response_format, seed, _step_printer(say)) as gen:
+                  response_format, seed, _step_printer(say), _library_graphs) as gen:
         say.print(f"[bold]generate[/bold] ({approach}, {escape(gen.client.config.model)}, "
                   f"structured output: {gen.client.form}): {escape(proposal)}")
         result = gen.generate(proposal, approach)
@@ -233,6 +247,7 @@ def benchmark(
         finished_pairs,
         load_tasks,
         read_results,
+        reference_graph,
         research_sample,
         run_benchmark,
         summary_table,
@@ -258,8 +273,11 @@ def benchmark(
     if already:
         say.print(f"resuming {out}: {already} of {total} pair(s) already finished")
     ran = {"pairs": 0, "sent": 0}
+    def references() -> dict[str, Any]:
+        return {t.name: g for t in task_list if (g := reference_graph(t)) is not None}
+
     with _session(model, api_base, cache_dir, max_repairs, episodes, memory, robot,
-                  temperature, response_format, seed) as gen, \
+                  temperature, response_format, seed, None, references) as gen, \
             Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
                      console=say) as progress:
         bar = progress.add_task("benchmark", total=total, completed=already)

@@ -34,6 +34,8 @@ ANSWER_TOKENS: dict[str, int] = {
     "one_shot": 1200, "assembly": 1200, "variables": 640, "subtask_plan": 400,
     "subtask_goal": 160, "subtask_outline": 280, "subtask_design": 520,
 }
+#: max_tokens of every step for a remote model (a bound on a runaway answer only).
+REMOTE_ANSWER_TOKENS = 4096
 #: Feedback longer than this (characters) is cut before it goes back.
 MAX_FEEDBACK_CHARS = 2500
 #: Temperatures of a step's attempts after the first (the first uses the config's).
@@ -64,9 +66,12 @@ PROMPT_LEVELS: tuple[PromptLevel, ...] = (
 )
 
 
-def answer_tokens(step: str, cap: int | None = None) -> int:
-    """``max_tokens`` of a step's request (``step`` may carry ``:subtask``)."""
-    wanted = ANSWER_TOKENS.get(step.split(":", 1)[0], 800)
+def answer_tokens(step: str, cap: int | None = None, local: bool = True) -> int:
+    """``max_tokens`` of a step's request (``step`` may carry ``:subtask``): sized to
+    the answer for the local model (each token is CPU time), :data:`REMOTE_ANSWER_TOKENS`
+    for a remote one (billed by the tokens it writes, and a capable model writes the
+    schema's fields and longer texts: a 20-object graph is about 1,500 tokens)."""
+    wanted = ANSWER_TOKENS.get(step.split(":", 1)[0], 800) if local else REMOTE_ANSWER_TOKENS
     return min(wanted, cap) if cap else wanted
 
 

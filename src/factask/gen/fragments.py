@@ -8,8 +8,8 @@ with a message for the model.
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable, Sequence
-from typing import Any
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any, TypeVar
 
 from pydantic import ValidationError
 
@@ -17,12 +17,15 @@ from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.schemas import (
     AnswerError,
     GoalAnswer,
+    OutlinedSubtask,
+    PlannedSubtask,
     SubtaskDesign,
     SubtaskPlan,
     format_problems,
 )
 from factask.gen.steps import Abort, Evaluation, PromptBuilder, StepRunner
 from factask.graph.factors import SubtaskFactor
+from factask.graph.order import in_listed_order
 from factask.graph.taskgraph import TaskGraph, graph_problems, problems_from_pydantic
 from factask.vocabulary.errors import GraphValidationError, Problem
 from factask.vocabulary.names import unique_name
@@ -78,10 +81,10 @@ def check_goal_scope(answer: GoalAnswer, subtask: str, scope: list[str],
 
 
 def make_factor(name: str, description: str, goal: Any, scope: list[str] | None,
-                 initial_setup: str = "") -> SubtaskFactor:
+                 initial_setup: str = "", after: Sequence[str] = ()) -> SubtaskFactor:
     data: dict[str, Any] = {"name": name, "description": description,
                             "goal": goal.model_dump(mode="python", exclude_none=True),
-                            "initial_setup": initial_setup}
+                            "initial_setup": initial_setup, "after": list(after)}
     if scope is not None:
         data["scope"] = scope
     try:
@@ -92,30 +95,95 @@ def make_factor(name: str, description: str, goal: Any, scope: list[str] | None,
                           problems) from None
 
 
-def fragment(task: str, factor: SubtaskFactor, variables: list[StateVariable]) -> TaskGraph:
-    """The single-factor fragment (weight 1) with its variables, valid as a whole.
+def prerequisites(factor: SubtaskFactor, variables: Sequence[StateVariable],
+                  earlier: Sequence[SubtaskFactor]) -> list[SubtaskFactor]:
+    """The earlier subtasks ``factor`` builds on: those that move one of its variables,
+    and, in turn, those that move one of theirs, in their order.
+
+    A subtask after others finds the objects they moved where they left them (the
+    pyramid's middle layer rests on the bottom layer; the third Hanoi move takes the
+    small disk from the goal stand; the fifth finds the start stand empty), so it is
+    checked with them, not from the task's start alone.
+    """
+    needed = {v.name for v in variables}
+    chosen: list[SubtaskFactor] = []
+    for f in reversed(earlier):
+        if needed & set(f.goal.objects):
+            chosen.append(f)
+            needed |= set(f.scope_names)
+    return chosen[::-1]
+
+
+def fragment(task: str, factor: SubtaskFactor, variables: list[StateVariable],
+             earlier: Sequence[SubtaskFactor] = (),
+             pool: Mapping[str, StateVariable] | None = None) -> TaskGraph:
+    """The graph that checks one subtask: its factor with its variables, after the
+    earlier subtasks it builds on (:func:`prerequisites`), valid as a whole.
+
+    Args:
+        task: The task's name.
+        factor: The subtask's factor.
+        variables: Its variables.
+        earlier: The subtasks before it, in order (none: it is checked alone).
+        pool: Every variable by name (for the earlier subtasks' variables).
+
+    Returns:
+        The fragment (one factor of weight 1 when nothing earlier is needed).
 
     Raises:
         AnswerError: the fragment has problems (each naming its node).
     """
+    before = prerequisites(factor, variables, earlier)
+    if before:
+        names = {f.name for f in before}
+        pool = dict(pool or {})
+        have = {v.name for v in variables}
+        extra = dict.fromkeys(n for f in before for n in f.scope_names
+                              if n in pool and n not in have)
+        variables = closure(list(variables) + [pool[n] for n in extra], pool)
+        factors = in_listed_order([
+            f.model_copy(update={"weight": 1.0 / (len(before) + 1), "milestone": False,
+                                 "after": [a for a in f.after if a in names]})
+            for f in [*before, factor]])
+    else:
+        factors = [factor.model_copy(update={"weight": 1.0, "after": []})]
     name = f"{task}-{factor.name.replace('_', '-')}"[:100]
     graph = TaskGraph(name=name, description=factor.description, variables=variables,
-                      factors=[factor.model_copy(update={"weight": 1.0, "after": []})])
+                      factors=factors)
     try:
         graph.ensure_valid()
     except GraphValidationError as exc:
-        raise AnswerError(f"The subtask is not valid on its own ({len(exc.problems)} "
+        alone = "on its own" if not before else \
+            f"after the subtasks it builds on ({', '.join(f.name for f in before)})"
+        raise AnswerError(f"The subtask is not valid {alone} ({len(exc.problems)} "
                           f"problem(s)):\n{format_problems(exc.problems)}",
                           exc.problems) from None
     return graph
 
 
+def own_fragment(piece: TaskGraph, factor: str) -> TaskGraph:
+    """The one-factor fragment of ``factor`` from a :func:`fragment` (the same graph
+    when it is already one): what subtasks-first merges and the memory keeps."""
+    if len(piece.factors) == 1:
+        return piece
+    own = next(f for f in piece.factors if f.name == factor)
+    keep = set(own.scope_names)
+    variables = [v for v in piece.variables if v.name in keep]
+    pool = {v.name: v for v in piece.variables}
+    return TaskGraph(name=piece.name, description=piece.description,
+                     variables=closure(variables, pool),
+                     factors=[own.model_copy(update={"weight": 1.0, "after": [],
+                                                     "milestone": False})])
+
+
 def checked_fragment(runner: StepRunner, task: str, factor: SubtaskFactor,
-                     variables: list[StateVariable]) -> Evaluation:
-    """The factor's fragment (:func:`fragment`) through the verification ladder."""
-    piece = fragment(task, factor, variables)
+                     variables: list[StateVariable], earlier: Sequence[SubtaskFactor] = (),
+                     pool: Mapping[str, StateVariable] | None = None) -> Evaluation:
+    """The factor's fragment (:func:`fragment`) through the verification ladder; the
+    artefact is its own one-factor fragment (:func:`own_fragment`)."""
+    piece = fragment(task, factor, variables, earlier, pool)
     outcome = runner.verifier.check(piece)
-    return piece, outcome.level, outcome.feedback
+    return own_fragment(piece, factor.name), outcome.level, outcome.feedback
 
 
 def ask_design(runner: StepRunner, task: str, subtask: str, prompt: PromptBuilder,
@@ -170,6 +238,59 @@ def distinct_names(names: Sequence[str], taken: Iterable[str] = ()) -> list[str]
     return [unique_name(n, used) for n in names]
 
 
+Listed = TypeVar("Listed", PlannedSubtask, OutlinedSubtask)
+
+
+def relabelled(subtasks: Sequence[Listed], taken: Iterable[str] = ()) -> list[Listed]:
+    """A plan's or outline's subtasks under :func:`distinct_names`, each ``after``
+    following the name its subtask now has (a repeated name: its first holder)."""
+    labels = distinct_names([s.name for s in subtasks], taken)
+    now: dict[str, str] = {}
+    for s, label in zip(subtasks, labels, strict=True):
+        now.setdefault(s.name, label)
+    return [s.model_copy(update={"name": label, "after": [now.get(a, a) for a in s.after]})
+            for s, label in zip(subtasks, labels, strict=True)]
+
+
+def order_problems(subtasks: Sequence[PlannedSubtask | OutlinedSubtask]) -> list[Problem]:
+    """Each subtask's ``after`` names only subtasks listed before it (the list is the
+    order they are done in, so a later or unknown name is a mistake)."""
+    problems: list[Problem] = []
+    earlier: list[str] = []
+    for s in subtasks:
+        for a in s.after:
+            if a not in earlier:
+                problems.append(Problem(
+                    s.name, "after", f"{a!r} is not a subtask listed before it",
+                    f"name only earlier subtasks ({', '.join(earlier)})" if earlier
+                    else "leave `after` empty for the first subtask"))
+        earlier.append(s.name)
+    return problems
+
+
+def as_planned(factors: Sequence[SubtaskFactor],
+               subtasks: Sequence[PlannedSubtask | OutlinedSubtask]) -> list[SubtaskFactor]:
+    """The factors in the order the plan gives: each ``after`` its subtask's ``after``
+    (names of factors that exist), then the listing's order for objects moved more
+    than once (:func:`factask.graph.order.in_listed_order`).
+
+    Args:
+        factors: One factor per subtask, named as the subtasks, in the listed order.
+        subtasks: The plan's or outline's subtasks.
+
+    Returns:
+        Copies of the factors.
+    """
+    wanted = {s.name: s.after for s in subtasks}
+    names = {f.name for f in factors}
+    out = []
+    for f in factors:
+        extra = [a for a in wanted.get(f.name, ()) if a in names and a != f.name]
+        out.append(f.model_copy(update={"after": list(dict.fromkeys([*f.after, *extra]))})
+                   if extra else f)
+    return in_listed_order(out)
+
+
 def without_repeats(variables: Sequence[StateVariable],
                     named: Iterable[str] = ()) -> list[StateVariable]:
     """The variables with repeats of an earlier one's name dropped where that loses
@@ -216,4 +337,4 @@ def plan_problems(plan: SubtaskPlan, variables: list[StateVariable]) -> list[Pro
         if kinds and not ss.goal_schema(kinds)["anyOf"]:
             problems.append(Problem(s.name, "variables", "no goal relation can move any of "
                                     "these variables", "add the object the subtask moves"))
-    return problems
+    return problems + order_problems(plan.subtasks)

@@ -31,6 +31,11 @@ _STEP_RE = re.compile(r"^Step:\s*(?P<step>[a-z_]+)(?:\s+\(subtask\s+`(?P<sub>[a-
                       re.MULTILINE)
 
 
+class CutReply(str):
+    """A reply the responder cut at the request's ``max_tokens``: served with
+    ``finish_reason: "length"``, as a provider reports an answer it stopped."""
+
+
 class ScriptExhaustedError(FactaskError):
     """The scripted responder has no reply for a request."""
 
@@ -159,8 +164,8 @@ def _handler_class(server: LoopbackServer) -> type[BaseHTTPRequestHandler]:
                 "model": request.get("model", "scripted"),
                 "choices": [{
                     "index": 0,
-                    "message": {"role": "assistant", "content": text},
-                    "finish_reason": "stop",
+                    "message": {"role": "assistant", "content": str(text)},
+                    "finish_reason": "length" if isinstance(text, CutReply) else "stop",
                 }],
                 # Word counts stand in for tokens: deterministic and good enough
                 # to check that usage is recorded.

@@ -10,16 +10,21 @@ from __future__ import annotations
 
 import signal
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import replace
 from types import FrameType
+from typing import TYPE_CHECKING
 
 from factask.gen.first_choice import READER_MODEL, FirstChoiceResponder
 from factask.gen.llm import LLMClient, LLMConfig, ResponseCache, import_litellm
 from factask.gen.llm_errors import LLMAuthError, fix_for, provider_of
 from factask.gen.local import LocalLlamaServer, check_local_model
 from factask.gen.loopback import LoopbackServer
+from factask.gen.reference_model import ReferenceResponder, is_reference_model, noise_of
+
+if TYPE_CHECKING:
+    from factask.graph.taskgraph import TaskGraph
 
 #: The slowest generation speed planned for on a busy 2-core CPU: measured 0.2-3 s
 #: per token with a grammar at load average 5-7; a request's timeout leaves room
@@ -73,15 +78,20 @@ def preflight(config: LLMConfig) -> None:
 
 @contextmanager
 def open_client(config: LLMConfig, cache: ResponseCache | None = None,
-                startup_timeout: float = 90.0) -> Iterator[LLMClient]:
+                startup_timeout: float = 90.0,
+                references: Mapping[str, TaskGraph] | None = None) -> Iterator[LLMClient]:
     """An LLM client for ``config``; for a local model, with its server running.
 
     Args:
         config: How to reach the model (``local/...``: the packaged local model;
             ``local/reader``: no model, the first choice of each step's schema,
-            :mod:`factask.gen.first_choice`).
+            :mod:`factask.gen.first_choice`; ``local/reference`` and
+            ``local/noisy-reference[:RATE]``: each step answered from the task's
+            reference graph, on the path remote models take,
+            :mod:`factask.gen.reference_model`).
         cache: Disk cache, or None.
         startup_timeout: Seconds the local server may take to answer.
+        references: The reference graphs by task name (reference models only).
 
     Yields:
         The client.
@@ -96,6 +106,14 @@ def open_client(config: LLMConfig, cache: ResponseCache | None = None,
             yield LLMClient(replace(config, api_base=reader.url, response_format="json_schema"),
                             cache,
                             wire_model="openai/reader")  # no context: prompts of any size
+        return
+    if is_reference_model(config.model):  # a capable model's answers, from references
+        responder = ReferenceResponder(references or {}, noise_of(config.model),
+                                       config.seed or 0)
+        with LoopbackServer(responder) as reference:
+            # a remote model's path: not local (so not grounded), the schema sent
+            yield LLMClient(replace(config, model="openai/reference", api_base=reference.url,
+                                    response_format="json_schema"), cache)
         return
     preflight(config)
     if not config.is_local:

@@ -23,7 +23,7 @@ from factask.gen.answers.examples import (
     template_examples,
 )
 from factask.gen.answers.schemas import AnswerError, read_json, several_objects_note
-from factask.gen.answers.step_schemas import empty_choices, schema_problems
+from factask.gen.answers.step_schemas import empty_choices, schema_problems, with_empty_fields
 from factask.gen.conversation import (
     RETRY_TEMPERATURES,
     Budget,
@@ -84,6 +84,7 @@ def read_strict(text: str, schema: Mapping[str, Any],
     data, count = read_json(text)
     if overrides:
         data = {**data, **overrides}
+    data = with_empty_fields(data, schema)  # a left-out "none" is not a mistake
     problems = schema_problems(data, schema)
     if problems:
         lines = "\n".join(f"- {p}" for p in problems)
@@ -173,8 +174,9 @@ class StepRunner:
                         int(getattr(config, "seed", 0)))
 
     def _max_tokens(self, step: str) -> int:
-        return answer_tokens(step, getattr(getattr(self.client, "config", None),
-                                           "max_tokens", None))
+        config = getattr(self.client, "config", None)
+        return answer_tokens(step, getattr(config, "max_tokens", None),
+                             local=bool(getattr(config, "is_local", True)))
 
     # -------------------------------------------------------------- prompts
     def schema_for_prompt(self, schema: Mapping[str, Any], level: PromptLevel) -> str:

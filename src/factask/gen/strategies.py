@@ -19,7 +19,7 @@ the step refers to them) and runs as a conversation (:class:`~factask.gen.steps.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from pydantic import ValidationError
@@ -30,6 +30,7 @@ from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.schemas import (
     AnswerError,
     GoalAnswer,
+    OutlinedSubtask,
     SubtaskDesign,
     SubtaskOutline,
     SubtaskPlan,
@@ -40,16 +41,19 @@ from factask.gen.answers.schemas import (
 )
 from factask.gen.conversation import PromptLevel
 from factask.gen.fragments import (
+    as_planned,
     ask_design,
     check_goal_scope,
     checked_fragment,
     closure,
-    distinct_names,
     earlier_text,
     fragment,
     make_factor,
     merge_problems,
+    order_problems,
+    own_fragment,
     plan_problems,
+    relabelled,
     vars_json,
     without_repeats,
 )
@@ -71,7 +75,6 @@ from factask.gen.steps import (
 )
 from factask.gen.verify import Level, Verifier, at_least, level_index
 from factask.graph.factors import SubtaskFactor
-from factask.graph.order import in_listed_order
 from factask.graph.taskgraph import TaskGraph, graph_problems, problems_from_pydantic
 from factask.graph.templates import compose, extract_fragment
 from factask.vocabulary.errors import CompositionError, FactaskError
@@ -375,6 +378,7 @@ class Generator(StepRunner):
         for sub in plan.subtasks:
             scope_vars = closure([by_name[n] for n in sub.variables], by_name)
             planned = [by_name[n] for n in sub.variables]
+            before = list(factors)
             schema = grounded.goal_answer(planned, f"{desc} {sub.description}") \
                 if self.grounded else ss.goal_answer(_kinds(planned))
 
@@ -390,15 +394,17 @@ class Generator(StepRunner):
                     schema=self.schema_for_prompt(schema, lv))
 
             def evaluate(text: str, sub: Any = sub, scope_vars: Any = scope_vars,
-                         schema: Any = schema) -> Evaluation:
+                         schema: Any = schema, before: Any = before) -> Evaluation:
                 answer = validate_answer(read_strict(text, schema), GoalAnswer)
                 check_goal_scope(answer, sub.name, list(sub.variables), by_name)
                 factor = make_factor(sub.name, answer.description or sub.description,
                                      answer.goal, scope=list(sub.variables),
-                                     initial_setup=sub.initial_setup)
-                piece = fragment(task, factor, scope_vars)
+                                     initial_setup=sub.initial_setup,
+                                     after=sub.after)
+                piece = fragment(task, factor, scope_vars, before, by_name)
                 outcome = self.verifier.check(piece)
-                return (factor, piece), outcome.level, outcome.feedback
+                return (factor, own_fragment(piece, factor.name)), outcome.level, \
+                    outcome.feedback
 
             out = self.ask(f"subtask_goal:{sub.name}", prompt, schema, "goal_answer", evaluate)
             if out.value is None:
@@ -416,8 +422,8 @@ class Generator(StepRunner):
             # sequences the subtasks that move the same object (earlier ones
             # become milestones, as in Ravens' goal queue).
             graph = TaskGraph(name=task, description=desc, variables=variables,
-                              factors=in_listed_order([f.model_copy(update={"weight": 1.0 / n})
-                                                       for f in factors]))
+                              factors=as_planned([f.model_copy(update={"weight": 1.0 / n})
+                                                  for f in factors], plan.subtasks))
         except ValidationError as exc:
             problem = format_problems(problems_from_pydantic(exc, {}))
         self._verify_assembled(task, desc, graph, problem)
@@ -462,10 +468,7 @@ class Generator(StepRunner):
 
         def evaluate(text: str) -> Evaluation:
             plan = validate_answer(read_strict(text, schema), SubtaskPlan)
-            labels = distinct_names([s.name for s in plan.subtasks], names)
-            plan = plan.model_copy(update={"subtasks": [
-                s.model_copy(update={"name": n}) for s, n in zip(plan.subtasks, labels,
-                                                                  strict=True)]})
+            plan = plan.model_copy(update={"subtasks": relabelled(plan.subtasks, names)})
             problems = plan_problems(plan, variables)
             if problems:
                 return None, "none", ("The subtask plan has problems:\n"
@@ -485,17 +488,20 @@ class Generator(StepRunner):
         if self.grounded and grounded.applies(found):  # the named objects are constants
             self._assemble(task, desc, gs.design_fragments(self, task, desc, found), found)
         else:
-            self._assemble(task, desc, self._subtask_fragments(task, desc), None)
+            outline = self._ask_outline(task, desc, f"{task} {desc}")
+            self._assemble(task, desc, self._subtask_fragments(task, desc, outline), None,
+                           outline.subtasks)
 
-    def _subtask_fragments(self, task: str, desc: str) -> list[TaskGraph]:
-        query = f"{task} {desc}"
-        outline = self._ask_outline(task, desc, query)
+    def _subtask_fragments(self, task: str, desc: str,
+                           outline: SubtaskOutline) -> list[TaskGraph]:
         outline_text = "; ".join(f"`{s.name}`: {s.description}" for s in outline.subtasks)
         defined: dict[str, tuple[StateVariable, str]] = {}  # name -> (variable, subtask)
         fragments: list[TaskGraph] = []
         earlier: list[dict[str, Any]] = []
+        done: list[SubtaskFactor] = []  # the factors so far, with the outline's `after`
         for sub in outline.subtasks:
             schema = ss.subtask_design(list(defined))
+            before = list(done)
 
             def prompt(lv: PromptLevel, sub: Any = sub, schema: Any = schema) -> str:
                 return render(
@@ -507,7 +513,8 @@ class Generator(StepRunner):
                                            ("memory", "templates"), lv.examples),
                     schema=self.schema_for_prompt(schema, lv))
 
-            def evaluate(text: str, sub: Any = sub, schema: Any = schema) -> Evaluation:
+            def evaluate(text: str, sub: Any = sub, schema: Any = schema,
+                         before: Any = before) -> Evaluation:
                 design = validate_answer(read_strict(text, schema), SubtaskDesign)
                 problems = merge_problems(design, defined)
                 if problems:
@@ -521,11 +528,13 @@ class Generator(StepRunner):
                 wanted += [v for v in design.variables if v not in wanted]
                 scope_vars = closure(wanted, {**known, **local})
                 factor = make_factor(sub.name, design.description or sub.description,
-                                     design.goal, scope=None)
-                return checked_fragment(self, task, factor, scope_vars)
+                                     design.goal, scope=None, after=sub.after)
+                return checked_fragment(self, task, factor, scope_vars, before,
+                                        {**known, **local})
 
             piece, ok = ask_design(self, task, sub.name, prompt, schema, evaluate)
             fragments.append(piece)
+            done.append(piece.factors[0].model_copy(update={"after": list(sub.after)}))
             for v in piece.variables:
                 defined.setdefault(v.name, (v, sub.name))
             earlier.append({"subtask": sub.name, "verified": ok,
@@ -536,14 +545,15 @@ class Generator(StepRunner):
         return fragments
 
     def _assemble(self, task: str, desc: str, fragments: list[TaskGraph],
-                  found: list[Any] | None) -> None:
-        """Merge the subtasks, verify the whole (``found``: grounded, goals use each)."""
+                  found: list[Any] | None, outlined: Sequence[OutlinedSubtask] = ()) -> None:
+        """Merge the subtasks, verify the whole (``found``: grounded, goals use each;
+        ``outlined``: the outline, whose ``after`` orders the factors)."""
         graph = None
         problem = None
         try:
             graph = compose(*fragments, name=task, description=desc)
             # The outline is in the order the subtasks are done (see variables-first).
-            graph = graph.model_copy(update={"factors": in_listed_order(graph.factors)})
+            graph = graph.model_copy(update={"factors": as_planned(graph.factors, outlined)})
             if found is not None:
                 problem = gs.assembly_problem(graph, found)
         except CompositionError as exc:
@@ -560,10 +570,12 @@ class Generator(StepRunner):
 
         def evaluate(text: str) -> Evaluation:
             outline = validate_answer(read_strict(text, schema), SubtaskOutline)
-            labels = distinct_names([s.name for s in outline.subtasks])
-            return outline.model_copy(update={"subtasks": [
-                s.model_copy(update={"name": n}) for s, n in zip(outline.subtasks, labels,
-                                                                  strict=True)]}), "syntax", None
+            outline = outline.model_copy(update={"subtasks": relabelled(outline.subtasks)})
+            problems = order_problems(outline.subtasks)
+            if problems:
+                return None, "none", ("The outline has problems:\n"
+                                      + format_problems(problems))
+            return outline, "syntax", None
 
         return self.ask_or_abort("subtask_outline", prompt, schema, "subtask_outline", evaluate)
 

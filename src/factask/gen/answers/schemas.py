@@ -66,6 +66,8 @@ class PlannedSubtask(BaseModel):
     variables: list[Name] = Field(min_length=1, max_length=MAX_VARIABLES,
                                   description="The variables this subtask uses.")
     initial_setup: str = Field("", description="What must already hold before it runs.")
+    after: list[Name] = Field(default_factory=list, max_length=MAX_SUBTASKS,
+                              description="Earlier subtasks that must be done first.")
 
 
 class SubtaskPlan(BaseModel):
@@ -89,6 +91,8 @@ class OutlinedSubtask(BaseModel):
     model_config = ConfigDict(extra="forbid")
     name: Name
     description: str
+    after: list[Name] = Field(default_factory=list, max_length=MAX_SUBTASKS,
+                              description="Earlier subtasks that must be done first.")
 
 
 class SubtaskOutline(BaseModel):

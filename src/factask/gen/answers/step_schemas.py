@@ -140,7 +140,7 @@ def _length(most: float) -> Schema:
 
 
 def variable_schema(names: Sequence[str] | None = None) -> Schema:
-    """One state variable: name, description, kind, size, colour, count, initial.
+    """One state variable: name, description, kind, size, colour, count, fixed, initial.
 
     Args:
         names: Other variables an initial placement may refer to (None: any name).
@@ -157,6 +157,9 @@ def variable_schema(names: Sequence[str] | None = None) -> Schema:
                                            _length(MAX_HEIGHT)]}),
         "color": {"type": "string", "enum": list(COLOR_NAMES)},
         "count": _field_schema(StateVariable, "count"),
+        # null: the kind's default (zones and bowls fixed, blocks movable); true pins
+        # an object of a movable kind (an obstacle, a fixed stand).
+        "fixed": {"anyOf": [{"type": "null"}, {"type": "boolean"}]},
         "initial": placement_schema(names),
     })
 
@@ -269,6 +272,7 @@ def subtask_plan(variable_names: Sequence[str],
         "description": text(),
         "variables": array(name(variable_names), 1, len(variable_names)),
         "initial_setup": text(),
+        "after": array(name(), 0, max_subtasks),
     }), 1, max_subtasks)})
 
 
@@ -283,7 +287,8 @@ def goal_answer(scope: Mapping[str, str]) -> Schema:
 
 def subtask_outline() -> Schema:
     """Approach 2, step 1: subtask names and descriptions."""
-    return obj({"subtasks": array(obj({"name": name(), "description": text()}), 1,
+    return obj({"subtasks": array(obj({"name": name(), "description": text(),
+                                       "after": array(name(), 0, STEP_MAX_SUBTASKS)}), 1,
                                   STEP_MAX_SUBTASKS)})
 
 
@@ -297,6 +302,61 @@ def subtask_design(earlier: Sequence[str] = ()) -> Schema:
     del earlier  # names declared in the same answer cannot be enumerated up front
     return obj({"variables": array(variable_schema(), 0, STEP_MAX_VARIABLES),
                 "goal": goal_schema(), "description": text()})
+
+
+def with_empty_fields(data: Any, schema: Mapping[str, Any]) -> Any:
+    """``data`` with each required property it leaves out that has an empty value
+    filled: null where the schema admits null (``size``, ``fixed``), ``[]`` for a
+    list that may be empty (``after``). Strict schemas list every property as
+    required (a provider's strict mode asks for that), but leaving out a field whose
+    absence means "none" is not a mistake worth a repair; anything else missing is
+    still reported.
+
+    Args:
+        data: The decoded answer (not changed).
+        schema: The step's strict schema.
+
+    Returns:
+        A copy with the empty fields added (or ``data`` itself where nothing is).
+    """
+    root = schema
+
+    def deref(node: Any) -> Any:
+        for _ in range(64):
+            if not (isinstance(node, Mapping) and "$ref" in node):
+                break
+            node = _resolve(node, root.get("$defs", {}))
+        return node
+
+    def walk(value: Any, node: Any) -> Any:
+        node = deref(node)
+        if not isinstance(node, Mapping):
+            return value
+        branches = [deref(b) for b in node.get("anyOf") or ()]
+        if branches and isinstance(value, Mapping):
+            tagged = [b for b in branches
+                      if deref((b.get("properties") or {}).get("type", {})).get("const")
+                      == value.get("type")]
+            objects = [b for b in branches if b.get("type") == "object"]
+            chosen = tagged or (objects if len(objects) == 1 else [])
+            return walk(value, chosen[0]) if chosen else value
+        if isinstance(value, list) and node.get("type") == "array":
+            return [walk(v, node.get("items", {})) for v in value]
+        if not (isinstance(value, Mapping) and node.get("type") == "object"):
+            return value
+        props = node.get("properties", {})
+        out = {k: walk(v, props[k]) if k in props else v for k, v in value.items()}
+        for key in node.get("required", ()):
+            if key in out or key not in props:
+                continue
+            prop = deref(props[key])
+            if any(deref(b).get("type") == "null" for b in prop.get("anyOf") or ()):
+                out[key] = None
+            elif prop.get("type") == "array" and not prop.get("minItems"):
+                out[key] = []
+        return out
+
+    return walk(data, schema)
 
 
 def schema_problems(data: Any, schema: Mapping[str, Any], limit: int = 12) -> list[str]:
@@ -423,4 +483,4 @@ __all__ = ["MAX_TEXT", "NAME_REGEX", "TEXT_PATTERN", "all_step_schemas", "empty_
            "factor_schema",
            "goal_answer", "goal_schema", "graph_schema", "name", "placement_schema",
            "relation_schema", "schema_problems", "subtask_design", "subtask_outline",
-           "subtask_plan", "text", "variable_schema", "variables_answer"]
+           "subtask_plan", "text", "variable_schema", "variables_answer", "with_empty_fields"]
