@@ -125,8 +125,9 @@ def fit(data: Any, schema: Mapping[str, Any]) -> Any:
     """``data`` put in the form ``schema`` asks for, as a model that follows the schema
     writes it: properties it does not ask for left out, required ones it lacks filled
     (null, an empty list or text, else the schema's first choice), texts with the
-    schema's characters and length, numbers in range, lists no longer than allowed;
-    in an ``anyOf`` the branch whose ``type`` the data names.
+    schema's characters and length, numbers in range; in an ``anyOf`` the branch
+    whose ``type`` the data names. Lists keep every item (a task that needs more
+    objects than a step allows is the pipeline's to refuse or take).
 
     Args:
         data: A decoded answer (the reference's own form).
@@ -165,7 +166,7 @@ class _Fitter:
         if isinstance(data, Mapping) and (kind == "object" or "properties" in node):
             return self.fit_object(data, node)
         if isinstance(data, list) and kind == "array":
-            items = data[:node["maxItems"]] if "maxItems" in node else list(data)
+            items = list(data)  # as many as the task needs: the pipeline judges the count
             prefix = node.get("prefixItems")
             if prefix:
                 return [self.fit(x, prefix[i]) if i < len(prefix) else x
