@@ -167,6 +167,17 @@ def test_an_everyday_word_accepts_every_kind_it_may_mean() -> None:
     assert missing_mentions(proposal, as_bowl) == []
     as_zone = [as_bowl[0], StateVariable(name="basket", kind="zone", color="red")]
     assert [m.name for m in missing_mentions(proposal, as_zone)] == ["red_container"]
+    # A kind word is the reading's guess; the colour and the sort of object are not:
+    # cylinders aligned with a hole may lie down (logs), a container with a slot on
+    # top is a fixture.
+    lying = [StateVariable(name="c", kind="log", color="red"),
+             StateVariable(name="b", kind="fixture", color="blue")]
+    assert missing_mentions("insert the red cylinder into the blue container",
+                            lying) == []
+    assert [m.name for m in missing_mentions("put the red ball in the blue bowl",
+                                             lying)] == []  # a red mover, a blue holder
+    assert [m.name for m in missing_mentions("put the green ball in the blue bowl",
+                                             lying)] == ["green_ball"]
 
 
 def test_counts_read_past_modifiers_and_from_a_list_of_colours() -> None:

@@ -211,3 +211,24 @@ def test_empty_fields_may_be_left_out_but_nothing_else(name, data) -> None:
         assert field not in filled["variables"][i]
         assert any(f"'{field}' is a required property" in p
                    for p in ss.schema_problems(filled, schema))
+
+
+@pytest.mark.parametrize("approach", ["variables-first", "subtasks-first"])
+def test_a_valid_goal_beyond_the_step_grammar_is_taken_on_the_remote_path(approach) -> None:
+    """A row between two bowls (``along`` a list of two): the per-subtask grammar
+    names one anchor, the relation takes two; a capable model's valid goal is taken,
+    not refused for the grammar's sake."""
+    from pathlib import Path
+
+    from factask.evaluation.benchmark import load_tasks, reference_graph
+
+    tasks = load_tasks(Path(__file__).parent / "data" / "proposals.json")
+    task = next(t for t in tasks if t.name == "block-between-red-bowl-and-blue-bowl")
+    reference = reference_graph(task)
+    assert any(isinstance(f.goal.model_dump().get("along"), list) for f in reference.factors)
+    with open_client(LLMConfig(model=REFERENCE_MODEL, num_retries=0, timeout=30),
+                     references={task.name: reference}) as client:
+        result = Generator(client, Verifier(episodes=1), max_repairs=1).generate(
+            task.proposal, approach)
+    assert result.graph is not None, result.failure
+    assert compare(result.graph, reference).equivalent

@@ -16,13 +16,20 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
 
+from pydantic import BaseModel
+
 from factask.gen.answers.examples import (
     Example,
     library_task_examples,
     render_examples,
     template_examples,
 )
-from factask.gen.answers.schemas import AnswerError, read_json, several_objects_note
+from factask.gen.answers.schemas import (
+    AnswerError,
+    read_json,
+    several_objects_note,
+    validate_answer,
+)
 from factask.gen.answers.step_schemas import empty_choices, schema_problems, with_empty_fields
 from factask.gen.conversation import (
     RETRY_TEMPERATURES,
@@ -42,6 +49,7 @@ from factask.graph.taskgraph import TaskGraph, parse_graph
 from factask.vocabulary.errors import FactaskError, GraphValidationError, InvalidValueError
 
 T = TypeVar("T")
+M = TypeVar("M", bound=BaseModel)
 
 #: A step stops once the model has repeated earlier answers this many times.
 MAX_REPEATS = 2
@@ -124,6 +132,36 @@ def read_graph_answer(text: str, schema: Mapping[str, Any],
         except (GraphValidationError, TypeError):
             raise strict from None
         return graph.model_dump(mode="json", exclude_none=True)
+
+
+def read_valid(text: str, schema: Mapping[str, Any], model: type[M]) -> M:
+    """A step's answer: checked against its strict schema, or, where that refuses it,
+    taken when the step's answer model takes it all the same (a list anchor such as
+    a row ``between`` two zones, more objects than the grammar's bound, a longer
+    description). What a capable model writes that is valid is never refused for the
+    grammar's sake; the checks after the schema (scopes, the graph, the oracle)
+    still apply. Grounded steps keep their schema (it carries the reading).
+
+    Args:
+        text: The model's answer.
+        schema: The step's strict schema.
+        model: The step's answer model (:mod:`factask.gen.answers.schemas`).
+
+    Returns:
+        The validated answer.
+
+    Raises:
+        AnswerError: not JSON, or neither the schema nor the model takes it (the
+            schema's problems are the feedback).
+    """
+    try:
+        return validate_answer(read_strict(text, schema), model)
+    except AnswerError as strict:
+        data, _ = read_json(text)
+        try:
+            return model.model_validate(data)
+        except (TypeError, ValueError):  # a pydantic ValidationError is a ValueError
+            raise strict from None
 
 
 class StepRunner:

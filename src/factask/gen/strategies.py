@@ -68,10 +68,12 @@ from factask.gen.results import APPROACHES, DEFAULT_APPROACH, GenerationResult
 from factask.gen.steps import (
     Abort,
     Evaluation,
+    M,
     StepCallback,
     StepRunner,
     read_graph_answer,
     read_strict,
+    read_valid,
 )
 from factask.gen.verify import Level, Verifier, at_least, level_index
 from factask.graph.factors import SubtaskFactor
@@ -356,6 +358,13 @@ class Generator(StepRunner):
                 self.remember(extract_fragment(out.value, f.name), task)
 
     # ------------------------------------------------------ variables-first
+    def read(self, text: str, schema: dict[str, Any], model: type[M]) -> M:
+        """A step's answer: the strict schema, or, on the ungrounded path, any answer
+        the step's model takes (:func:`factask.gen.steps.read_valid`)."""
+        if self.grounded:
+            return validate_answer(read_strict(text, schema), model)
+        return read_valid(text, schema, model)
+
     def _shaped(self, task: str, desc: str) -> grounded_steps.GroundedTask | None:
         """The grounded one-shot grammar in pieces, where grounding applies and its
         goals are a list of fixed length (None: the general steps)."""
@@ -395,7 +404,7 @@ class Generator(StepRunner):
 
             def evaluate(text: str, sub: Any = sub, scope_vars: Any = scope_vars,
                          schema: Any = schema, before: Any = before) -> Evaluation:
-                answer = validate_answer(read_strict(text, schema), GoalAnswer)
+                answer = self.read(text, schema, GoalAnswer)
                 check_goal_scope(answer, sub.name, list(sub.variables), by_name)
                 factor = make_factor(sub.name, answer.description or sub.description,
                                      answer.goal, scope=list(sub.variables),
@@ -441,7 +450,7 @@ class Generator(StepRunner):
                           schema=self.schema_for_prompt(schema, lv))
 
         def evaluate(text: str) -> Evaluation:
-            answer = validate_answer(read_strict(text, schema), VariablesAnswer)
+            answer = self.read(text, schema, VariablesAnswer)
             answer.variables = without_repeats(answer.variables, named)
             found = graph_problems(TaskGraph(name=task, variables=answer.variables))
             if found:
@@ -467,7 +476,7 @@ class Generator(StepRunner):
                           schema=self.schema_for_prompt(schema, lv))
 
         def evaluate(text: str) -> Evaluation:
-            plan = validate_answer(read_strict(text, schema), SubtaskPlan)
+            plan = self.read(text, schema, SubtaskPlan)
             plan = plan.model_copy(update={"subtasks": relabelled(plan.subtasks, names)})
             problems = plan_problems(plan, variables)
             if problems:
@@ -515,7 +524,7 @@ class Generator(StepRunner):
 
             def evaluate(text: str, sub: Any = sub, schema: Any = schema,
                          before: Any = before) -> Evaluation:
-                design = validate_answer(read_strict(text, schema), SubtaskDesign)
+                design = self.read(text, schema, SubtaskDesign)
                 problems = merge_problems(design, defined)
                 if problems:
                     return None, "none", (
@@ -569,7 +578,7 @@ class Generator(StepRunner):
                           schema=self.schema_for_prompt(schema, lv))
 
         def evaluate(text: str) -> Evaluation:
-            outline = validate_answer(read_strict(text, schema), SubtaskOutline)
+            outline = self.read(text, schema, SubtaskOutline)
             outline = outline.model_copy(update={"subtasks": relabelled(outline.subtasks)})
             problems = order_problems(outline.subtasks)
             if problems:

@@ -468,8 +468,9 @@ def missing_mentions(proposal: str, variables: Sequence[Any]) -> list[Mention]:
     """The coloured objects the proposal names that no variable is.
 
     Only mentions with a colour are checked ("the yellow cylinder" needs a
-    yellow cylinder; "the zone" may be any zone): a colour and a kind together
-    say which object is meant, and a task without it is another task.
+    yellow object that moves as a cylinder does; "the zone" may be any zone): the
+    colour says which object is meant, and a task without it is another task; the
+    kind word is matched loosely (:func:`_alike_kinds`).
 
     Args:
         proposal: The task proposal.
@@ -480,7 +481,22 @@ def missing_mentions(proposal: str, variables: Sequence[Any]) -> list[Mention]:
     """
     have = {(getattr(v, "kind", None), getattr(v, "color", None)) for v in variables}
     return [m for m in mentions(proposal) if m.color
-            and not any((kind, m.color) in have for kind in (m.kind, *m.also))]
+            and not any((kind, m.color) in have for kind in _alike_kinds(m))]
+
+
+def _alike_kinds(m: Mention) -> list[str]:
+    """The kinds a variable may have and still be the object ``m`` names: its kind,
+    what its word may also mean, and any kind of the same sort (moves or stays by
+    default, solid or a marker, holds objects inside or not). A kind word is the
+    reading's guess ("cylinders" aligned with a hole lie down as logs, "boxes with a
+    slot" are fixtures): the colour and the sort are what the words pin, so a capable
+    model's other kind of that sort is not sent back as a missing object (the meaning
+    metric still judges it); a zone is never a basket."""
+    def sort(kind: str) -> tuple[bool, bool, bool]:
+        spec = kind_spec(kind)
+        return spec.movable, spec.collides, spec.receptacle
+
+    return [m.kind, *m.also, *(k for k in ASSET_KINDS if sort(k) == sort(m.kind))]
 
 
 def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
