@@ -334,7 +334,8 @@ def plan_problems(plan: SubtaskPlan, variables: list[StateVariable]) -> list[Pro
                 problems.append(Problem(s.name, "variables", f"unknown variable {v!r}",
                                         f"use only {names}"))
         kinds = {v.name: v.kind for v in variables if v.name in s.variables}
-        if kinds and not ss.goal_schema(kinds)["anyOf"]:
+        moved = [v.name for v in variables if v.name in s.variables and v.fixed is False]
+        if kinds and not ss.goal_schema(kinds, moved)["anyOf"]:
             problems.append(Problem(s.name, "variables", "no goal relation can move any of "
                                     "these variables", "add the object the subtask moves"))
     return problems + order_problems(plan.subtasks)

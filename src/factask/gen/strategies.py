@@ -389,7 +389,8 @@ class Generator(StepRunner):
             planned = [by_name[n] for n in sub.variables]
             before = list(factors)
             schema = grounded.goal_answer(planned, f"{desc} {sub.description}") \
-                if self.grounded else ss.goal_answer(_kinds(planned))
+                if self.grounded else ss.goal_answer(
+                    _kinds(planned), [v.name for v in planned if v.fixed is False])
 
             def prompt(lv: PromptLevel, sub: Any = sub, scope_vars: Any = scope_vars,
                        schema: Any = schema) -> str:

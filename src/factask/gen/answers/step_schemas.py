@@ -228,9 +228,11 @@ def relation_schema(relation: str, variables: Mapping[str, str] | None = None,
     return obj(props)
 
 
-def goal_schema(variables: Mapping[str, str] | None = None) -> Schema:
+def goal_schema(variables: Mapping[str, str] | None = None,
+                moved: Collection[str] = ()) -> Schema:
     """Any goal relation (one of the relation types), see :func:`relation_schema`."""
-    options = [s for r in RELATION_TYPES if (s := relation_schema(r, variables)) is not None]
+    options = [s for r in RELATION_TYPES
+               if (s := relation_schema(r, variables, moved)) is not None]
     return {"anyOf": options}
 
 
@@ -276,13 +278,14 @@ def subtask_plan(variable_names: Sequence[str],
     }), 1, max_subtasks)})
 
 
-def goal_answer(scope: Mapping[str, str]) -> Schema:
+def goal_answer(scope: Mapping[str, str], moved: Collection[str] = ()) -> Schema:
     """Approach 1, step 3: one subtask's goal over exactly its planned variables.
 
     Args:
         scope: Its variables' names -> kinds.
+        moved: Those of a kind fixed by default that the task moves (``fixed: false``).
     """
-    return obj({"goal": goal_schema(scope), "description": text()})
+    return obj({"goal": goal_schema(scope, moved), "description": text()})
 
 
 def subtask_outline() -> Schema:

@@ -66,7 +66,8 @@ MEASURES = frozenset({"cm", "mm", "m", "meter", "meters", "metre", "metres",
 #: Kinds a kind word may also mean here, beyond :data:`~factask.gen.reading.mentions.ALSO_KINDS`
 #: (GenSim's "box" is often an open container; a "block" may be a box).
 ALSO_MEANS: dict[str, tuple[str, ...]] = {"box": ("container",), "block": ("box",),
-                                        "container": ("box", "bowl"), "bowl": ("container",)}
+                                        "container": ("box", "bowl"), "bowl": ("container",),
+                                        "cylinder": ("log",)}  # a log: one lying down
 #: Shape adjectives before a kind word say the object's shape ("a square base"), which
 #: its kind gives: read when an object of that kind is in the graph.
 SHAPE_ADJECTIVES = frozenset({"square", "round", "circular", "rectangular", "triangular",

@@ -164,8 +164,10 @@ def list_free_colours(words: list[str], found: dict[str, Mention],
     if not free:
         return
     for name, m in list(found.items()):
-        if m.color is None and not m.listed and (
-                not ordered or (m.movable and (not m.counted or m.count >= len(free)))):
+        # a group counted fewer than the colours listed is not the one they colour
+        # ("nine blocks ... on a pallet. The bottom layer: red, blue, green, ...")
+        fits = not m.counted or m.count >= len(free)
+        if m.color is None and not m.listed and fits and (not ordered or m.movable):
             found[name] = replace(m, listed=tuple((c, 0) for c in free))
 
 
