@@ -38,6 +38,7 @@ from factask.gen.answers import step_schemas as ss
 from factask.gen.first_choice import first_choice
 from factask.gen.loopback import CutReply, conversation_step
 from factask.gen.strategies import given_name
+from factask.gen.verify import LEVELS
 from factask.graph.order import dependency_graph
 from factask.graph.taskgraph import TaskGraph
 from factask.graph.templates import rename
@@ -472,8 +473,10 @@ def repair_table(records: Iterable[Mapping[str, Any]], rate: float,
 
     Returns:
         Per kind: ``made`` (first answers spoiled), ``caught`` (that answer refused),
-        ``repaired`` (the step then passed), ``faithful`` (the generation ended
-        faithful).
+        ``repaired`` (a later answer of the step passed it, or reached a higher level
+        of the ladder: a whole graph that then ends ``partial`` for words its
+        reference leaves unread is mended all the same), ``faithful`` (the
+        generation ended faithful).
     """
     table = {k: {"made": 0, "caught": 0, "repaired": 0, "faithful": 0} for k in ERROR_KINDS}
     for record in records:
@@ -490,7 +493,9 @@ def repair_table(records: Iterable[Mapping[str, Any]], rate: float,
             row = table[kind]
             row["made"] += 1
             row["caught"] += not tries[0]["ok"]
-            row["repaired"] += not tries[0]["ok"] and any(s["ok"] for s in tries[1:])
+            first = LEVELS.index(tries[0].get("level", "none"))
+            row["repaired"] += not tries[0]["ok"] and any(
+                s["ok"] or LEVELS.index(s.get("level", "none")) > first for s in tries[1:])
             row["faithful"] += bool(record.get("faithful"))
     return table
 
