@@ -464,3 +464,18 @@ def test_module_does_not_import_mujoco() -> None:
         files += sorted(Path(str(package.__file__)).parent.glob("*.py"))
     src = "".join(f.read_text() for f in files)
     assert "import mujoco" not in src and "dm_control" not in src
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_a_zone_half_the_table_wide_finds_its_right_angled_spot(seed) -> None:
+    """A 0.5 m square zone on the 0.5 m-deep workspace fits only axis-aligned: its
+    yaw is drawn among right angles, not missed at random (the left half of the table)."""
+    g = make_graph(
+        [{"name": "half", "kind": "zone", "size": [0.5, 0.5, 0.001], "color": "gray"},
+         {"name": "blocks", "kind": "block", "color": "red", "count": 3}],
+        [{"name": "in_half", "goal": {"type": "in_zone", "objects": ["blocks"],
+                                      "zone": "half"}}])
+    layout = sample_layout(g, np.random.default_rng(seed))
+    zone = layout["half"] if "half" in layout else layout["half__0"]
+    assert abs(zone.pos[0] - 0.5) < 1e-9
+    assert min(abs(math.remainder(zone.yaw, math.pi / 2)), 1.0) < 1e-9
