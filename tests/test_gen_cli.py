@@ -113,3 +113,28 @@ def test_generate_help_names_the_default_approach_it_takes() -> None:
     assert gen_cmds._DEFAULT_APPROACH_HELP.startswith(f"default {DEFAULT_APPROACH}:")
     res = runner.invoke(app, ["generate", "--help"])
     assert f"default {DEFAULT_APPROACH}" in " ".join(res.output.split())
+
+
+def test_the_reference_models_from_the_command_line(tmp_path) -> None:
+    from factask.gen.compare import compare
+    from factask.library import get_task
+
+    out = tmp_path / "g.json"
+    result = runner.invoke(app, ["generate", "--model", "local/reference", "--episodes", "1",
+                                 "-o", str(out),
+                                 "place-red-in-green: put the red blocks in the green bowls"])
+    assert result.exit_code == 0, result.output
+    graph = parse_graph(json.loads(out.read_text()))
+    assert compare(graph, get_task("place-red-in-green")).equivalent
+    bad = runner.invoke(app, ["generate", "--model", "local/noisy-reference:abc", "x"])
+    assert bad.exit_code == 2 and "noise rate" in bad.output and "Traceback" not in bad.output
+    # a benchmark answers each task from its own reference (the list's)
+    tasks = tmp_path / "tasks.json"
+    tasks.write_text(json.dumps([{"name": "place-red-in-green",
+                                  "description": "put the red blocks in the green bowls"}]))
+    run = runner.invoke(app, ["benchmark", "--model", "local/noisy-reference:1", "-a",
+                              "one-shot", "--episodes", "1", "--tasks", str(tasks),
+                              "-o", str(tmp_path / "run"), "--json"])
+    assert run.exit_code == 0, run.output
+    line = json.loads((tmp_path / "run" / "results.jsonl").read_text().splitlines()[0])
+    assert line["faithful"] is True and line["repairs"] >= 1  # spoiled, then repaired

@@ -92,7 +92,7 @@ def noise_of(model: str) -> float:
     except ValueError:
         rate = -1.0
     if not 0.0 <= rate <= 1.0:
-        raise ReferenceModelError(f"{model}: the noise rate after ':' must be a number in "
+        raise ReferenceModelError(f"{model!r}: the noise rate after ':' must be a number in "
                                   f"[0, 1], e.g. {NOISY_REFERENCE_MODEL}:0.3")
     return rate
 
