@@ -337,3 +337,18 @@ def test_under_a_matching_phrase_an_uncoloured_object_is_the_group_of_its_colour
 ])
 def test_counts_groups_and_compound_kinds_stated_around_a_group(proposal, expected) -> None:
     assert [(m.name, m.count) for m in mentions(proposal)] == expected
+
+
+def test_an_uncoloured_object_never_takes_a_colour_the_words_give_another() -> None:
+    from factask.gen.reading.mentions import NEUTRAL_COLOURS, unnamed_colour
+
+    grey = mentions("move all the grey cylinders into the container")
+    assert unnamed_colour(grey) == "white"
+    container = next(m for m in grey if m.kind == "container")
+    assert container.as_variable(unnamed=unnamed_colour(grey))["color"] == "white"
+    assert unnamed_colour(mentions("put the red block in the bowl")) == "gray"
+    # every neutral colour named: the first neutral one after all (no colour is free)
+    crowded = mentions("put the gray block, the white block, the brown block and the "
+                       "black block in the bowl")
+    assert {m.color for m in crowded} >= set(NEUTRAL_COLOURS)
+    assert unnamed_colour(crowded) == NEUTRAL_COLOURS[0]

@@ -49,7 +49,7 @@ from factask.gen.fragments import checked_fragment, closure, earlier_text, make_
 from factask.gen.prompts import render, schema_skeleton
 from factask.gen.reading import grounded
 from factask.gen.reading.cover import tuple_schema
-from factask.gen.reading.mentions import Mention, mentions_text
+from factask.gen.reading.mentions import Mention, mentions_text, unnamed_colour
 from factask.gen.steps import Abort, Evaluation, StepRunner, read_strict
 from factask.graph.taskgraph import TaskGraph, graph_problems, problems_from_pydantic
 from factask.vocabulary.variables import StateVariable
@@ -115,7 +115,8 @@ def grounded_task(found: Sequence[Mention], proposal: str) -> GroundedTask | Non
         objects = [tuple(_moved_first(g, known)) for g in goals]
         names = grounded.factor_names([_pinned(g, known) for g in goals])
         shapes.append(Shape(tuple(names), tuple(goals), tuple(objects)))
-    declared = tuple(StateVariable.model_validate(m.as_variable())
+    unnamed = unnamed_colour(found)
+    declared = tuple(StateVariable.model_validate(m.as_variable(unnamed=unnamed))
                      for m in grounded.graph_mentions(found, proposal))
     return GroundedTask(found=tuple(found), shapes=tuple(shapes), starts=compact["variables"],
                         variables=declared,

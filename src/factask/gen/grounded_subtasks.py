@@ -52,7 +52,7 @@ from factask.gen.fragments import (
 from factask.gen.prompts import render, schema_skeleton
 from factask.gen.reading import grounded
 from factask.gen.reading.cover import must_use, used_names
-from factask.gen.reading.mentions import Mention, mentions_text
+from factask.gen.reading.mentions import Mention, mentions_text, unnamed_colour
 from factask.gen.steps import Evaluation, StepRunner, read_strict
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.names import slugify
@@ -155,7 +155,8 @@ def outline_objects(outline: SubtaskOutline, found: Sequence[Mention]) -> dict[s
 def named_variables(found: Sequence[Mention]) -> list[StateVariable]:
     """The named objects as variables, declared from the proposal's words
     (:meth:`~factask.gen.reading.mentions.Mention.as_variable`), on the table."""
-    return [StateVariable.model_validate(m.as_variable()) for m in found]
+    unnamed = unnamed_colour(found)
+    return [StateVariable.model_validate(m.as_variable(unnamed=unnamed)) for m in found]
 
 
 def design_schema(variables: Sequence[StateVariable], obj: str, proposal: str,

@@ -49,7 +49,7 @@ from factask.gen.reading.cover import (
     covering_factors,
     paired_in_order,
 )
-from factask.gen.reading.mentions import Mention, colour_matched, mentions
+from factask.gen.reading.mentions import Mention, colour_matched, mentions, unnamed_colour
 from factask.gen.reading.relation_schemas import (
     COORDINATE_RELATIONS,
     OBJECT_KINDS,
@@ -493,7 +493,8 @@ def expand_graph(data: dict[str, Any], found: Sequence[Mention], task: str,
     stated = read_goals(description, found)
     if stated and matches(stated, [f["goal"] for f in answered]):
         found = fit_sizes(stated, found)  # the anchors the stated goals fill, grown
-    variables = [m.as_variable(initial.get(m.name)) for m in found]
+    unnamed = unnamed_colour(found)
+    variables = [m.as_variable(initial.get(m.name), unnamed) for m in found]
     names = factor_names([f["goal"] for f in answered])
     factors = [{"name": n, "description": f"{n.replace('_', ' ')}: {description}"[:200],
                 "goal": f["goal"], "weight": 1.0 / len(answered)}

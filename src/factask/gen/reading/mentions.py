@@ -162,13 +162,15 @@ class Mention:
             parts.append("fixed (not moved)")
         return f"{self.name}: {', '.join(parts)}"
 
-    def as_variable(self, initial: dict[str, Any] | None = None) -> dict[str, Any]:
+    def as_variable(self, initial: dict[str, Any] | None = None,
+                    unnamed: str = "gray") -> dict[str, Any]:
         """The object as a graph variable's data (size null: the kind's default;
-        ``fixed`` false where the words move a kind that is fixed by default)."""
+        ``fixed`` false where the words move a kind that is fixed by default;
+        ``unnamed``: its colour where the words give none, see :func:`unnamed_colour`)."""
         out: dict[str, Any] = {"name": self.name, "description": self.describe(),
                                "kind": self.kind,
                                "size": list(self.size) if self.size else None,
-                               "color": self.color or "gray", "count": self.count,
+                               "color": self.color or unnamed, "count": self.count,
                                "initial": initial or {"type": "table"}}
         if self.moved:
             out["fixed"] = False
@@ -464,6 +466,18 @@ def mentions_text(proposal: str) -> str:
     return "\n".join(f"- {m.describe()}" for m in found)
 
 
+#: Colours for an object the words give none, the first that no named object has.
+NEUTRAL_COLOURS = ("gray", "white", "brown", "black")
+
+
+def unnamed_colour(found: Sequence[Mention]) -> str:
+    """The colour an uncoloured named object gets: not one the words give another
+    object ("the grey cylinders into the container": a grey container would be taken
+    for one of the grey things the words name)."""
+    named = {m.color for m in found} | {c for m in found for c, _ in m.listed}
+    return next((c for c in NEUTRAL_COLOURS if c not in named), NEUTRAL_COLOURS[0])
+
+
 def missing_mentions(proposal: str, variables: Sequence[Any]) -> list[Mention]:
     """The coloured objects the proposal names that no variable is.
 
@@ -512,4 +526,4 @@ def grounding_feedback(proposal: str, variables: Sequence[Any]) -> str | None:
 
 __all__ = ["ALSO_KINDS", "MAX_MENTIONS", "MAX_SPLIT_MENTIONS", "PINNED_WORDS", "Mention",
            "colour_matched", "grounding_feedback", "mentions",
-           "mentions_text", "missing_mentions"]
+           "mentions_text", "missing_mentions", "unnamed_colour"]
