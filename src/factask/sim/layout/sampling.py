@@ -158,12 +158,13 @@ def _table_draws(obj: SceneObject, placement: object, rng: np.random.Generator,
         inset = float(obj.half_xy.min())
         lo = WORKSPACE_CENTER - WORKSPACE_HALF + inset
         hi = WORKSPACE_CENTER + WORKSPACE_HALF - inset
+    xy = rng.uniform(lo, hi, size=(k, 2))  # centres first: the seeded layouts stay
     yaws = random_yaws(rng, k)
     if float(np.hypot(*obj.half_xy)) > float(np.min(WORKSPACE_HALF)):
         # Too big to turn freely on the table (a zone half the table wide): only its
         # right-angle yaws can fit, so draw those rather than miss them at random.
         yaws = rng.integers(0, 4, size=k) * (np.pi / 2)
-    return rng.uniform(lo, hi, size=(k, 2)), yaws
+    return xy, yaws
 
 
 def sample_layout(graph: TaskGraph, rng: np.random.Generator,
