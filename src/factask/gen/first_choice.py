@@ -69,14 +69,14 @@ class _Picker:
         if not isinstance(node, Mapping):
             raise FirstChoiceError(f"no instance of schema node {str(node)[:80]}")
         if "$ref" in node:
-            return self.pick(_resolve(node["$ref"], self.root), depth + 1)
+            return self.pick(resolve_ref(node["$ref"], self.root), depth + 1)
         for key in ("anyOf", "oneOf"):
             if node.get(key):
                 return self.pick(node[key][0], depth + 1)
         if node.get("allOf"):
             merged: dict[str, Any] = {}
             for part in node["allOf"]:
-                merged.update(_resolve(part["$ref"], self.root) if "$ref" in part else part)
+                merged.update(resolve_ref(part["$ref"], self.root) if "$ref" in part else part)
             return self.pick(merged, depth + 1)
         if "const" in node:
             return node["const"]
@@ -138,7 +138,12 @@ def _candidates() -> Iterator[str]:
     yield from (f"{a}_{b}" for a in letters for b in letters)
 
 
-def _resolve(ref: str, root: Mapping[str, Any]) -> Any:
+def resolve_ref(ref: str, root: Mapping[str, Any]) -> Any:
+    """The node a local ``$ref`` (``#/$defs/...``) points at in ``root``.
+
+    Raises:
+        FirstChoiceError: not a local reference, or nothing there.
+    """
     if not ref.startswith("#/"):
         raise FirstChoiceError(f"cannot resolve {ref!r}: only local references")
     node: Any = root

@@ -27,6 +27,7 @@ from factask.gen.steps import Abort, Evaluation, PromptBuilder, StepRunner
 from factask.graph.factors import SubtaskFactor
 from factask.graph.order import in_listed_order
 from factask.graph.taskgraph import TaskGraph, graph_problems, problems_from_pydantic
+from factask.graph.templates import extract_fragment
 from factask.vocabulary.errors import GraphValidationError, Problem
 from factask.vocabulary.names import unique_name
 from factask.vocabulary.variables import StateVariable
@@ -166,14 +167,7 @@ def own_fragment(piece: TaskGraph, factor: str) -> TaskGraph:
     when it is already one): what subtasks-first merges and the memory keeps."""
     if len(piece.factors) == 1:
         return piece
-    own = next(f for f in piece.factors if f.name == factor)
-    keep = set(own.scope_names)
-    variables = [v for v in piece.variables if v.name in keep]
-    pool = {v.name: v for v in piece.variables}
-    return TaskGraph(name=piece.name, description=piece.description,
-                     variables=closure(variables, pool),
-                     factors=[own.model_copy(update={"weight": 1.0, "after": [],
-                                                     "milestone": False})])
+    return extract_fragment(piece, factor, name=piece.name)
 
 
 def checked_fragment(runner: StepRunner, task: str, factor: SubtaskFactor,

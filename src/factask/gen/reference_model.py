@@ -32,14 +32,12 @@ import re
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
-import networkx as nx
-
 from factask.gen.answers import step_schemas as ss
-from factask.gen.first_choice import first_choice
+from factask.gen.first_choice import first_choice, resolve_ref
+from factask.gen.fragments import closure
 from factask.gen.loopback import CutReply, conversation_step
 from factask.gen.strategies import given_name
 from factask.gen.verify import LEVELS
-from factask.graph.order import dependency_graph
 from factask.graph.taskgraph import TaskGraph
 from factask.graph.templates import rename
 from factask.vocabulary.errors import FactaskError
@@ -145,13 +143,10 @@ class _Fitter:
         self.root = root
 
     def deref(self, node: Any) -> Any:
-        for _ in range(64):
+        for _ in range(64):  # a chain of references, never a cycle
             if not (isinstance(node, Mapping) and "$ref" in node):
                 return node
-            target: Any = self.root
-            for part in str(node["$ref"]).split("/")[1:]:
-                target = target[part]
-            node = target
+            node = resolve_ref(str(node["$ref"]), self.root)
         return node
 
     def fit(self, data: Any, node: Any) -> Any:
@@ -243,11 +238,8 @@ def _dump(model: Any) -> Any:
 
 def listed_factors(graph: TaskGraph) -> list[Any]:
     """The reference's factors in an order it allows (its listing where it can)."""
-    index = {f.name: i for i, f in enumerate(graph.factors)}
-    order = nx.lexicographical_topological_sort(dependency_graph(graph.factors),
-                                                key=index.__getitem__)
     by_name = {f.name: f for f in graph.factors}
-    return [by_name[n] for n in order]
+    return [by_name[n] for n in graph.factor_order()]
 
 
 def _subtask_of(graph: TaskGraph, subtask: str | None) -> Any:
@@ -261,18 +253,8 @@ def _subtask_of(graph: TaskGraph, subtask: str | None) -> Any:
 
 def _closure(graph: TaskGraph, names: Iterable[str]) -> list[Any]:
     """The variables named, with every variable their starts rest on, in graph order."""
-    by_name = {v.name: v for v in graph.variables}
-    wanted: set[str] = set()
-    todo = [n for n in names if n in by_name]
-    while todo:
-        n = todo.pop()
-        if n in wanted:
-            continue
-        wanted.add(n)
-        support = getattr(by_name[n].initial, "support", None) or \
-            getattr(by_name[n].initial, "container", None)
-        if support in by_name:
-            todo.append(support)
+    pool = {v.name: v for v in graph.variables}
+    wanted = {v.name for v in closure([pool[n] for n in names if n in pool], pool)}
     return [v for v in graph.variables if v.name in wanted]
 
 

@@ -322,14 +322,10 @@ def with_empty_fields(data: Any, schema: Mapping[str, Any]) -> Any:
     Returns:
         A copy with the empty fields added (or ``data`` itself where nothing is).
     """
-    root = schema
+    defs = schema.get("$defs", {})
 
     def deref(node: Any) -> Any:
-        for _ in range(64):
-            if not (isinstance(node, Mapping) and "$ref" in node):
-                break
-            node = _resolve(node, root.get("$defs", {}))
-        return node
+        return _resolve(node, defs) if isinstance(node, Mapping) and "$ref" in node else node
 
     def walk(value: Any, node: Any) -> Any:
         node = deref(node)

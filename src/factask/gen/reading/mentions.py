@@ -54,9 +54,8 @@ ALSO_KINDS: dict[str, tuple[str, ...]] = {
     "bin": ("bowl",), "tray": ("bowl", "kit"), "dish": ("container",), "pot": ("container",),
     "cup": ("container",), "platform": ("stand",), "plate": ("pallet", "zone", "kit"),
     "board": ("pallet",), "peg": ("block",), "rod": ("block",),
-    # a bridge's pillars are as often blocks or boxes; a stand objects go into upright
-    # is a fixture, one they rest on a pallet
-    "pillar": ("block", "box"), "stand": ("fixture", "pallet"),
+    # a stand objects go into upright is a fixture, one they rest on a pallet
+    "stand": ("fixture", "pallet"),
     "object": ("box", "cylinder", "ball", "ell"), "item": ("box", "cylinder", "ball", "ell"),
     "piece": ("box", "cylinder", "ball", "ell"), "shape": ("box", "cylinder", "ball", "ell"),
     "hole": ("kit", "container"), "slot": ("kit",), "silhouette": ("kit",), "area": ("pallet",),
