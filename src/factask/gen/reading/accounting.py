@@ -23,6 +23,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from factask.gen.reading.mentions import ALSO_KINDS
+from factask.gen.reading.selectors import ORDINAL_RANKS
 from factask.gen.reading.words import count_of, kind_of, words_of
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.kinds import kind_spec
@@ -63,6 +64,10 @@ SIZES = frozenset({"small", "smaller", "smallest", "large", "larger", "largest",
 MEASURES = frozenset({"cm", "mm", "m", "meter", "meters", "metre", "metres",
                       "centimeter", "centimeters", "centimetre", "centimetres", "inch",
                       "inches", "degree", "degrees", "deg", "percent", "seconds"})
+#: Side words a row of placed objects reads, by the row's axis (y: across the table).
+ROW_SIDES = {"y": frozenset({"left", "right", "leftmost", "rightmost"}),
+             "x": frozenset({"near", "far", "front", "back", "rear", "nearest", "farthest",
+                             "closest", "furthest", "nearer", "farther"})}
 #: Kinds a kind word may also mean here, beyond :data:`~factask.gen.reading.mentions.ALSO_KINDS`
 #: (GenSim's "box" is often an open container; a "block" may be a box).
 ALSO_MEANS: dict[str, tuple[str, ...]] = {"box": ("container",), "block": ("box",),
@@ -190,6 +195,24 @@ class _Facts:
             for f in graph.factors for a in f.goal.anchors())
         self.circle_centre = any(f.goal.type == "circle" and getattr(f.goal, "center", None)
                                  for f in graph.factors)
+        # Alike objects that start at given places in a row ("the second zone from the
+        # left", "the near bowl"): the side and ordinal words that pick one of them.
+        self.placed_words: set[str] = set()
+        posed: dict[tuple[str, str], list[tuple[float, float]]] = {}
+        for v in graph.variables:
+            if getattr(v.initial, "type", None) == "pose":
+                posed.setdefault((v.kind, str(v.color)), []).append(
+                    (float(v.initial.x), float(v.initial.y)))
+        for places in posed.values():
+            if len(places) < 2:
+                continue
+            self.placed_words |= {w for w, rank in ORDINAL_RANKS.items() if rank < len(places)}
+            self.placed_words |= {"last", "middle", "center", "centre"} if len(places) > 2 \
+                else {"last"}
+            if len({round(y, 3) for _, y in places}) > 1:
+                self.placed_words |= ROW_SIDES["y"]
+            if len({round(x, 3) for x, _ in places}) > 1:
+                self.placed_words |= ROW_SIDES["x"]
 
 
 def _number(word: str) -> int:
@@ -216,9 +239,13 @@ def _judge(words: list[str], k: int, facts: _Facts) -> tuple[str, bool, str] | N
         return ("number", n in facts.counts,
                 f"{n} objects of one kind, colour or variable" if n in facts.counts else
                 f"no variable, kind or colour counts {n}")
+    if w in ORDINALS and w in facts.placed_words:
+        return ("order", True, f"the {w} of alike objects placed in a row")
     if w in ORDINALS:
         return ("order", facts.ordered, "the goals or a goal's objects are ordered"
                 if facts.ordered else "no goal is ordered, nor a goal's objects")
+    if w in SIDES and w in facts.placed_words:
+        return ("side", True, f"the {w} one of alike objects placed in a row")
     if w in SIDES:
         if w in ("corner", "corners") and ("corner" in facts.kinds or "corner" in facts.modes):
             return ("side", True, "a corner object or a corner alignment")

@@ -40,6 +40,7 @@ from functools import lru_cache
 
 from factask.gen.reading.mentions import MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
+from factask.gen.reading.selectors import is_selector, selector_before, spell_out, unpicked
 from factask.gen.reading.words import count_of, kind_of, resolve_ones, words_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
@@ -180,14 +181,21 @@ def _referents(words: list[str], i: int, found: Sequence[Mention]) -> list[Menti
     if not same:
         same = [m for m in found if kind in m.also]
     if colours:
-        return [m for m in same if m.color in colours]
-    return same
+        same = [m for m in same if m.color in colours]
+    selector = selector_before(words, i)
+    if kind_of(words[i])[1] and selector != "one":
+        selector = None  # "the left zones": not one member ("one of the zones" is)
+    picked = [m for m in same if selector in m.selectors]
+    # "the second zone": that member; "the zones", "a zone": the group, all its members.
+    return picked or [m for m in same if not m.selectors or m.group is None
+                      or selector is None]
 
 
 def _anchor_prep(words: list[str], i: int) -> str | None:
     """The preposition that governs the phrase ending at ``words[i]`` (a kind word), if any."""
     j = i - 1
-    while j >= 0 and (words[j] in _LEAD or words[j] in COLOR_NAMES or count_of(words[j])):
+    while j >= 0 and (words[j] in _LEAD or words[j] in COLOR_NAMES or count_of(words[j])
+                      or is_selector(words[j])):  # "into the second zone"
         j -= 1
     if j >= 1 and words[j] == "to" and words[j - 1] in ("next", "close"):
         return "beside"  # "next to the blue block"
@@ -294,7 +302,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
     last: list[Mention] = []
     sequenced = False
     last_kind: str | None = None
-    for text, step in parts_of(proposal):
+    for text, step in parts_of(spell_out(proposal, found)):
         words, last_kind = resolve_ones(words_of(text), last_kind)  # "... the red ones"
         if words and words[0] in _FIRST:
             sequenced = True
@@ -390,6 +398,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
     goals = [g2 for g in goals for g2 in _layered(g, proposal, found)]
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
     still -= used  # moved or an anchor elsewhere: not still
+    still |= unpicked(found, used)  # "the second bowl": the others stay as they are
     if any(m.name not in used | still for m in found):
         return None
     return tuple(goals), frozenset(still)
@@ -462,7 +471,7 @@ def _source(words: list[str], i: int) -> bool:
     an object comes from."""
     j = i - 1
     while j >= 0 and words[j] != "of" and (words[j] in _LEAD or words[j] in COLOR_NAMES
-                                           or count_of(words[j])):
+                                           or count_of(words[j]) or is_selector(words[j])):
         j -= 1
     return j >= 0 and (words[j] == "from" or (words[j] == "of" and j and words[j - 1] == "out"))
 

@@ -32,6 +32,7 @@ from factask.gen.reading.group_counts import (
     recount,
     split_per_shape,
 )
+from factask.gen.reading.selectors import select_members
 from factask.gen.reading.words import (
     MODIFIERS,
     NUMBER_WORDS,
@@ -135,6 +136,13 @@ class Mention:
             list gives one ("(two red, two blue)"; 0: not given).
         pinned: The words fix an object whose kind moves by default ("the three
             fixed gray boxes": obstacles, :data:`PINNED_WORDS`).
+        group: The group this object is one member of, where the words pick members
+            ("the second zone": :mod:`factask.gen.reading.selectors`); None: none.
+        selectors: The words that pick this member ("second", "left").
+        rank: Its place in its group's row (0: first, at the left or nearest).
+        axis: The row's axis for a fixed group ("y": left to right, "x": near to
+            far); None: not placed.
+        place: Where it stands on the table (x, y), for a member of a placed row.
     """
 
     name: str
@@ -147,6 +155,11 @@ class Mention:
     counted: bool = False
     size: tuple[float, float, float] | None = None
     pinned: bool = False
+    group: str | None = None
+    selectors: tuple[str, ...] = ()
+    rank: int = 0
+    axis: str | None = None
+    place: tuple[float, float] | None = None
 
     def describe(self) -> str:
         """``red_blocks: kind block, colour red, count 3`` (``, moved`` for a bowl or
@@ -159,6 +172,11 @@ class Mention:
             parts.append("moved (not fixed)")
         if self.pinned:
             parts.append("fixed (not moved)")
+        if self.group:
+            picked = f"the {' / '.join(self.selectors)} one" if self.selectors else "one"
+            parts.append(f"{picked} of {self.group}")
+        if self.place:
+            parts.append(f"at x {self.place[0]:g} m, y {self.place[1]:g} m")
         return f"{self.name}: {', '.join(parts)}"
 
     def as_variable(self, initial: dict[str, Any] | None = None,
@@ -170,12 +188,17 @@ class Mention:
                                "kind": self.kind,
                                "size": list(self.size) if self.size else None,
                                "color": self.color or unnamed, "count": self.count,
-                               "initial": initial or {"type": "table"}}
+                               "initial": initial or self._placed()}
         if self.moved:
             out["fixed"] = False
         if self.pinned:
             out["fixed"] = True
         return out
+
+    def _placed(self) -> dict[str, Any]:
+        if self.place is None:
+            return {"type": "table"}
+        return {"type": "pose", "x": self.place[0], "y": self.place[1], "yaw_deg": 0.0}
 
     @property
     def movable(self) -> bool:
@@ -232,11 +255,12 @@ def mentions(proposal: str) -> list[Mention]:
         list_free_colours(words, found)
     else:
         list_free_colours(words, found, ordered=True)
+    out = list(found.values())
     if matched is not None or colour_matched(name) or any(m.listed for m in found.values()):
         # A group whose colours the words list ("blocks of different colours (red,
         # blue, green)") is one object per colour, paired by colour or not.
-        return _split_by_colour(list(found.values()), matched or set())
-    return list(found.values())
+        out = _split_by_colour(out, matched or set())
+    return select_members(desc, out, MAX_SPLIT_MENTIONS)  # "the second zone": its members
 
 
 def colour_matched(text: str) -> bool:

@@ -29,6 +29,7 @@ from factask.gen.reading.clauses import ReadGoal
 from factask.gen.reading.cover import nullable, pin, tuple_schema
 from factask.gen.reading.mentions import Mention
 from factask.gen.reading.relation_schemas import relation_over
+from factask.gen.reading.selectors import placed
 from factask.relations import RELATION_TYPES
 from factask.vocabulary.kinds import kind_spec
 
@@ -144,7 +145,7 @@ def fit_sizes(goals: Sequence[ReadGoal], found: Sequence[Mention]) -> list[Menti
             out[k] = replace(anchor, size=(sx, sy, sz))
         else:
             out[k] = anchor  # no size fits: the default, and the check says why
-    return out
+    return placed(out)  # a grown member of a placed row: the row spaced again
 
 
 #: The layout problems that more room on the anchor solves.
