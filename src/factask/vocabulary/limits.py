@@ -15,7 +15,7 @@ from typing import Annotated
 
 from pydantic import StringConstraints
 
-from factask.vocabulary.world import WORKSPACE_DEPTH, WORKSPACE_HEIGHT, WORKSPACE_WIDTH
+from factask.vocabulary.world import RAVENS_Z, WORKSPACE_DEPTH, WORKSPACE_WIDTH
 
 #: Smallest size along any axis, metres (a zone's or line's thickness is 1 mm).
 MIN_LENGTH = 0.0005
@@ -23,8 +23,9 @@ MIN_LENGTH = 0.0005
 MAX_HORIZONTAL = WORKSPACE_WIDTH
 #: The shorter horizontal side must fit the workspace's depth (turned to fit).
 MAX_SHORT_SIDE = WORKSPACE_DEPTH
-#: Largest height, metres: the workspace's height.
-MAX_HEIGHT = WORKSPACE_HEIGHT
+#: Largest height of one object, metres: CLIPort's workspace height (taller things on
+#: the table are built of several objects, up to the workspace's top, WORKSPACE_Z).
+MAX_HEIGHT = RAVENS_Z[1] - RAVENS_Z[0]
 #: Variables per graph.
 MAX_VARIABLES = 100
 #: Factors per graph.
@@ -56,7 +57,7 @@ def size_problem(size: tuple[float, float, float]) -> tuple[str, str] | None:
         return (f"size {tuple(size)} does not fit the workspace's depth ({MAX_SHORT_SIDE:g} m) "
                 "at any yaw", f"keep the shorter of size x and y at most {MAX_SHORT_SIDE:g} m")
     if z > MAX_HEIGHT:
-        return (f"size {tuple(size)} is taller than the workspace ({MAX_HEIGHT:g} m)",
+        return (f"size {tuple(size)} is taller than one object may be ({MAX_HEIGHT:g} m)",
                 f"keep size z at most {MAX_HEIGHT:g} m")
     return None
 

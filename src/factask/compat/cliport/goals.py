@@ -292,7 +292,15 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
                 or not other.objects <= goal_objects[slot.key[0]]]
         support, on_floor = 0.0, True
         for foot, top, placed, rim in fixed:
-            if not (placed <= slot.z and _overlap(slot.foot, foot)):
+            if not _overlap(slot.foot, foot):
+                continue
+            if placed > slot.z:
+                if rim is None and _centre_on(slot.foot, foot) and top > support:
+                    # Ravens ignores z: a target whose centre is over a fixed object
+                    # the author put it into (a box sent to the pallet's own pose) lands
+                    # on it. Its height stays the checker's to find (resting on what is
+                    # under it); what is stacked on it later stands on its top.
+                    support = top
                 continue
             if rim is not None and _on_rim(slot, foot, rim):
                 # Too wide to go in, put at its rim: it rests on the walls (a lid).
@@ -308,13 +316,16 @@ def resting_heights(goals: list[RecordedGoal], objects: list[RecordedObject],
                 continue
             # A target rests on one the author put lower, where they overlap. At the
             # same author z, a target of an earlier goal is already placed when this
-            # one is: it supports this one if it stands right under its centre (a
-            # tower sent to one point); neighbours (kit holes, a row) do not stack.
+            # one is, and Ravens lets the robot put the object down wherever it lands:
+            # on that object where they overlap (a tower sent to one point; boxes sent
+            # one by one to the pallet's centre, or closer than they are wide). Targets
+            # of one goal side by side (kit holes, a row) do not stack; overlaps of a
+            # few millimetres were pushed apart before (sharing.separate_targets).
             if other.z < slot.z - OVERLAP_SHRINK:
                 below = _overlap(slot.foot, other.foot)
             else:
                 below = (other.key[0] < slot.key[0] and other.z <= slot.z + Z_TOLERANCE
-                         and _centre_on(slot.foot, other.foot))
+                         and _overlap(slot.foot, other.foot))
             if not below:
                 continue
             if other.floor is not None:

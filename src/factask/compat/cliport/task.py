@@ -30,7 +30,7 @@ from factask.compat.cliport.scoring import pose_match
 from factask.compat.cliport.transforms import split_pose, yaw_of_xyzw
 from factask.vocabulary.errors import InvalidValueError
 from factask.vocabulary.palette import rgba
-from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
+from factask.vocabulary.world import RAVENS_Z, WORKSPACE_X, WORKSPACE_Y
 
 #: Ravens' XY tolerance of a pose goal, metres, and yaw tolerance, radians.
 RAVENS_POS_EPS = 0.01
@@ -71,7 +71,7 @@ class Task:
         self.rot_eps = RAVENS_ROT_EPS
         self.num_blocks = 50
         self.pix_size = 0.003125
-        self.bounds = np.array([list(WORKSPACE_X), list(WORKSPACE_Y), list(WORKSPACE_Z)])
+        self.bounds = np.array([list(WORKSPACE_X), list(WORKSPACE_Y), list(RAVENS_Z)])
         self.zone_bounds = np.copy(self.bounds)
         self.goals: list[Any] = []
         self.lang_goals: list[str] = []
@@ -313,8 +313,10 @@ class Task:
         """
         return top_down_view(active_session().objects.values(), self.bounds, self.pix_size)
 
-    def get_mesh_object_points(self, obj: int) -> Any:
-        return self._unsupported("get_mesh_object_points")
+    def get_mesh_object_points(self, obj: int) -> np.ndarray:
+        """Points (3, N) over the object's mesh bounds, as GenSim samples them; factask's
+        assets are built to their recorded size, so the bounds are the object's box."""
+        return self.get_box_object_points(obj)
 
     def get_target_sample_surface_points(self, *args: Any, **kwargs: Any) -> Any:
         return self._unsupported("get_target_sample_surface_points (meshes)")

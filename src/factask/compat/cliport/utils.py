@@ -215,6 +215,69 @@ def KDTree(node: TreeNode, min_object_dim: float, margin: float,
         stack.extend(reversed(current.children))  # the first child is split first
 
 
+def map_kit_scale(scale: Any) -> tuple[float, float, float]:
+    """GenSim's kit-shape scale: the mesh's (x, y, z) scale divided by ten."""
+    return (float(scale[0]) / 10, float(scale[1]) / 10, float(scale[2]) / 10)
+
+
+#: CLIPort's image statistics per input distribution: (colour mean, colour std) of
+#: pixels scaled to [0, 1], the same for r, g and b where one number is given.
+IMAGE_STATS: dict[str, tuple[tuple[float, float, float], tuple[float, float, float]]] = {
+    "transporter": ((0.18877631,) * 3, (0.07276466,) * 3),
+    "franka": ((0.622291933, 0.628313992, 0.623031488), (0.168154213, 0.17626014, 0.184527364)),
+    "clip": ((0.48145466, 0.4578275, 0.40821073), (0.26862954, 0.26130258, 0.27577711)),
+    "mdetr": ((0.485, 0.456, 0.406), (0.229, 0.224, 0.225)),
+}
+#: (depth mean, depth std) per distribution (every one but franka uses transporter's).
+DEPTH_STATS = {"transporter": (0.00509261, 0.00903967), "franka": (0.872146842, 0.195743116)}
+
+
+def preprocess(img: Any, dist: str = "transporter") -> np.ndarray:
+    """CLIPort's network input normalisation of an (H, W, 3 + k) colour-and-depth
+    image, in place as CLIPort does: colour / 255 standardised by the
+    distribution's statistics, depth standardised likewise (NumPy arrays only)."""
+    if not isinstance(img, np.ndarray):
+        raise Unsupported("utils.preprocess takes a NumPy (H, W, C) image here "
+                          "(torch tensors are CLIPort's training code, not a task's)")
+    color_mean, color_std = IMAGE_STATS.get(dist, IMAGE_STATS["transporter"])
+    depth_mean, depth_std = DEPTH_STATS.get(dist, DEPTH_STATS["transporter"])
+    img[:, :, :3] = (img[:, :, :3] / 255 - np.asarray(color_mean)) / np.asarray(color_std)
+    img[:, :, 3:] = (img[:, :, 3:] - depth_mean) / depth_std
+    return img
+
+
+def deprocess(img: Any) -> np.ndarray:
+    """The inverse of :func:`preprocess` (transporter statistics) back to 0-255, in
+    place, as CLIPort writes it."""
+    (color_mean, *_), (color_std, *_) = IMAGE_STATS["transporter"]
+    depth_mean, depth_std = DEPTH_STATS["transporter"]
+    img[:, :, :3] = np.uint8((img[:, :, :3] * color_std + color_mean) * 255)
+    img[:, :, 3:] = np.uint8((img[:, :, 3:] * depth_std + depth_mean) * 255)
+    return img
+
+
+#: Names of CLIPort's ``utils`` module factask refuses, with why (docs/compat.md
+#: lists them too; a task file that calls one gets this reason).
+REFUSED: dict[str, str] = {
+    **dict.fromkeys(("get_heightmap", "get_pointcloud", "transform_pointcloud",
+                     "reconstruct_heightmaps", "unproject_vectorized",
+                     "unproject_depth_vectorized", "get_fused_heightmap"),
+                    "camera geometry for CLIPort's networks: factask renders its own "
+                    "observations (factask.sim), a task file needs none"),
+    **dict.fromkeys(("get_image_transform", "check_transform",
+                     "get_se3_from_image_transform", "get_random_image_transform_params",
+                     "perturb", "apply_perturbation", "apply_transform", "ImageRotator"),
+                    "data augmentation for training CLIPort's networks (OpenCV / torch), "
+                    "not part of a task"),
+    **dict.fromkeys(("plot", "create_visualizer", "make_frame", "meshcat_visualize"),
+                    "plots and meshcat windows: factask's viewer is `factask show` / "
+                    "`factask render`"),
+    **dict.fromkeys(("load_cfg", "load_hydra_config"),
+                    "reads CLIPort's configuration files, which task files are not "
+                    "lent"),
+}
+
+
 def set_seed(seed: int, torch: bool = False) -> None:
     """Seed ``random`` and ``np.random`` (torch is not used here)."""
     random.seed(seed)
@@ -224,4 +287,6 @@ def set_seed(seed: int, torch: bool = False) -> None:
 def __getattr__(name: str) -> Any:
     if name.startswith("__"):
         raise AttributeError(name)
-    raise Unsupported(f"cliport.utils.utils.{name} is not provided by factask's CLIPort layer")
+    why = REFUSED.get(name, "not part of CLIPort's utils that factask knows")
+    raise Unsupported(f"cliport.utils.utils.{name} is not provided by factask's CLIPort "
+                      f"layer: {why}")

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from factask.sim.render.cameras import CameraSpec, points_from_depth
-from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
+from factask.vocabulary.world import RAVENS_Z, WORKSPACE_X, WORKSPACE_Y
 
 #: CLIPort's height-map resolution (m per pixel): 160 x 320 pixels over the workspace.
 PIXEL_SIZE = 0.003125
@@ -36,7 +36,7 @@ class HeightmapGrid:
 
     x: tuple[float, float] = WORKSPACE_X
     y: tuple[float, float] = WORKSPACE_Y
-    z: tuple[float, float] = WORKSPACE_Z
+    z: tuple[float, float] = RAVENS_Z  # CLIPort's maps: clipped at 0.3 m, as there
     pixel_size: float = PIXEL_SIZE
 
     @property
