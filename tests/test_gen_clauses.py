@@ -23,6 +23,22 @@ def goals(proposal: str) -> list[tuple]:
 
 
 @pytest.mark.parametrize(("proposal", "expected"), [
+    # one at a time onto one stand, the words saying what is at the bottom: one stack
+    ("Put the green, red and blue cylinders on the stand one at a time: blue at the "
+     "bottom, then red, and green at the top.",
+     [("stack", ("blue_cylinder", "red_cylinder", "green_cylinder"), "stand", True, 0)]),
+    # the order a later sentence gives
+    ("Build a tower of the purple, orange and green blocks on the pallet. From bottom to "
+     "top the colours go orange, green, purple.",
+     [("stack", ("orange_block", "green_block", "purple_block"), "pallet", True, 0)]),
+    # the scene in the passive: no goal ("the bowls are placed in a row")
+    ("Put the red block in the red bowl and the blue block in the blue bowl. The bowls "
+     "are placed in a row and the blocks are scattered on the table.",
+     [("inside", ("red_block",), "red_bowl", False, 0),
+      ("inside", ("blue_block",), "blue_bowl", False, 0)]),
+    # the rainbow's order
+    ("Line up the blue, yellow and red blocks in rainbow order.",
+     [("row", ("red_block", "yellow_block", "blue_block"), None, True, 0)]),
     # gapping: one verb, two goals
     ("Put the blue blocks in the blue bowl and the green blocks in the green bowl.",
      [("inside", ("blue_blocks",), "blue_bowl", False, 0),

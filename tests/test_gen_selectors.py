@@ -125,7 +125,8 @@ def test_the_reading_only_graph_places_the_row_and_reads_the_words() -> None:
 
 _WORDS = ["the", "first", "second", "third", "last", "left", "right", "middle", "near",
           "far", "one", "other", "of", "two", "three", "bowl", "bowls", "zone", "zones",
-          "block", "blocks", "red", "put", "in", "on", "and", "."]
+          "block", "blocks", "red", "put", "in", "on", "and", ".", "each", "every",
+          "different", "evenly", "over", "cylinders", "twelve"]
 
 
 @settings(max_examples=150, deadline=None)
@@ -147,3 +148,43 @@ def test_any_words_pick_members_of_a_group_or_none(text: str) -> None:
     if read is not None:
         used = {n for g in read for n in (*g.objects, g.anchor) if n}
         assert used <= set(names)
+
+
+@pytest.mark.parametrize(("proposal", "expected"), [
+    ("Please put each of the three cylinders in a different one of the three zones.",
+     [("in_zone", ("cylinder_1",), "zone_1"), ("in_zone", ("cylinder_2",), "zone_2"),
+      ("in_zone", ("cylinder_3",), "zone_3")]),
+    ("Split 12 blocks evenly over the 3 zones, 4 blocks in each zone.",
+     [("in_zone", ("blocks_1",), "zone_1"), ("in_zone", ("blocks_2",), "zone_2"),
+      ("in_zone", ("blocks_3",), "zone_3")]),
+])
+def test_each_member_of_a_shared_anchor_takes_its_share(proposal: str,
+                                                        expected: list[tuple]) -> None:
+    assert goals(proposal) == expected
+    shares = [m.count for m in mentions(proposal) if m.movable]
+    assert len(set(shares)) == 1  # an even split
+
+
+@pytest.mark.parametrize("proposal", [
+    "Put each block in the zone.",                   # one zone: nothing to share
+    "Put the red and blue blocks in the zones, one in each zone.",  # coloured: the colours pair
+    "Put each of the three cylinders in the bowl.",  # "each" of the movers, not the anchor
+])
+def test_no_share_without_one_group_that_divides_another(proposal: str) -> None:
+    assert not any(m.group for m in mentions(proposal))
+
+
+@pytest.mark.parametrize(("proposal", "expected"), [
+    ("Put a brown box on the pallet and another brown box on top of it.",
+     [("on", ("one_brown_box",), "pallet"), ("on", ("another_brown_box",), "one_brown_box")]),
+    ("Place one yellow ball in the bowl and another yellow ball in the container.",
+     [("inside", ("one_yellow_ball",), "bowl"),
+      ("inside", ("another_yellow_ball",), "container")]),
+])
+def test_another_names_one_more_of_the_same(proposal: str, expected: list[tuple]) -> None:
+    assert goals(proposal) == expected
+
+
+def test_another_of_no_colour_is_no_member_of_a_coloured_group() -> None:
+    assert all(m.group is None for m in mentions(
+        "Put the red block in the bowl and another block in the zone."))

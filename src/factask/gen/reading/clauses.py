@@ -62,6 +62,27 @@ STILL_VERBS = frozenset({"leave", "keep", "ignore", "avoid", "skip", "remain", "
 #: Verbs that say how things are, not what to do: "the ball is in the left bowl".
 STATE_VERBS = frozenset({"is", "are", "sits", "sit", "lies", "lie", "starts", "start",
                          "holds", "hold", "rests", "contains", "standing", "was", "were"})
+#: Participles that, after "is" / "are", say how the scene is set, not what to do:
+#: "the pallets are placed in a row", "the blocks are scattered on the table".
+SCENE_PARTICIPLES = frozenset({"placed", "arranged", "scattered", "positioned", "located",
+                               "lined", "laid", "spread", "distributed", "situated",
+                               "stacked", "set", "put", "kept", "stored", "lying"})
+#: Words that make such a phrase a goal after all: "the blocks should be placed ...".
+_MODALS = frozenset({"should", "must", "need", "needs", "to", "will", "shall", "has", "have"})
+
+
+def _passive_scene(words: list[str]) -> bool:
+    """Whether a part describes the scene in the passive ("the pallets are placed in a
+    row"): a state verb right before a scene participle, no modal in the part."""
+    if _MODALS & set(words):
+        return False
+    return any(w in ("is", "are", "was", "were") and k + 1 < len(words)
+               and (words[k + 1] in SCENE_PARTICIPLES or (
+                   words[k + 1] in ("randomly", "already", "all", "initially")
+                   and k + 2 < len(words) and words[k + 2] in SCENE_PARTICIPLES))
+               for k, w in enumerate(words))
+
+
 #: Words that begin a part that comes first: "first put ...".
 _FIRST = frozenset({"first", "firstly", "start"})
 #: Prepositions that make the phrase after them an anchor, by the relation they ask.
@@ -78,7 +99,7 @@ _LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "ow
                    "color", "colour", "large", "small", "big", "little", "tiny", "larger",
                    "smaller", "square", "round", "brown", "marked", "target", "specified",
                    "designated", "empty", "open", "flat", "tall", "short", "wooden",
-                   "middle", "center", "centre"})
+                   "middle", "center", "centre", "different", "separate"})
 #: Words that refer back to the objects moved last.
 PRONOUNS = frozenset({"them", "they", "it", "those", "these", "both"})
 #: Shape words: the arrangement they name.
@@ -186,6 +207,10 @@ def _referents(words: list[str], i: int, found: Sequence[Mention]) -> list[Menti
     if kind_of(words[i])[1] and selector != "one":
         selector = None  # "the left zones": not one member ("one of the zones" is)
     picked = [m for m in same if selector in m.selectors]
+    if not picked and selector is None and not kind_of(words[i])[1]:
+        # "a brown box ... another brown box": the one named first, not another
+        picked = [m for m in same if "one" in m.selectors and any(
+            "another" in o.selectors for o in same if o.group == m.group)]
     # "the second zone": that member; "the zones", "a zone": the group, all its members.
     return picked or [m for m in same if not m.selectors or m.group is None
                       or selector is None]
@@ -315,7 +340,8 @@ def _read(proposal: str, found: tuple[Mention, ...]
         # around it are not part of the task", "the other cylinder should stay bare".
         idle = bool((NEGATIONS | STILL_VERBS) & verbs) and not ACTION_VERBS & verbs
         # "The red block sits on top of the yellow cylinder": the scene, no goal.
-        described = bool(STATE_VERBS & verbs) and not (ACTION_VERBS | SHAPES.keys()) & verbs
+        described = (bool(STATE_VERBS & verbs) and not (ACTION_VERBS | SHAPES.keys()) & verbs) \
+            or _passive_scene(words)
         described_subject = False
         negated = False
         for i, w in enumerate(words):
@@ -395,6 +421,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
     if sequenced and len({g.step for g in goals}) == 1 and len(goals) > 1:
         goals = [replace(g, step=k) for k, g in enumerate(goals)]  # "first A, B": as read
     goals = _in_colour_sequence(goals, proposal, found)
+    goals = _stacked_in_order(goals, proposal, found)
     goals = [g2 for g in goals for g2 in _layered(g, proposal, found)]
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
     still -= used  # moved or an anchor elsewhere: not still
@@ -438,6 +465,40 @@ def _in_colour_sequence(goals: list[ReadGoal], proposal: str,
         return goals
     listed += [c for c in mine if c not in listed and c is not None]
     return [replace(g, step=listed.index(str(c))) for g, c in zip(goals, mine, strict=True)]
+
+
+#: Words that place objects one above another: "red at the bottom, ... yellow at the top".
+_LAYER_PLACES = frozenset({"bottom", "top", "base"})
+
+
+def _stacked_in_order(goals: list[ReadGoal], proposal: str,
+                      found: Sequence[Mention]) -> list[ReadGoal]:
+    """Objects put one by one onto (or into) one fixed object, or onto each other
+    there, the words saying which is at the bottom and which at the top ("place it
+    into the pallet in a specific colour sequence: red at the bottom, then blue, ...
+    yellow at the top"): one stack on that object in the words' order, the order
+    read from the whole proposal (a later sentence may give it: "the sequence from
+    bottom to top should be orange, blue, ..."); any other goals as they are."""
+    by_name = {m.name: m for m in found}
+    words = set(re.findall(r"[a-z]+", proposal.lower()))
+    if not _LAYER_PLACES & words or any(g.relation not in ("on", "inside", "stack")
+                                        for g in goals):
+        return goals
+    movers = list(dict.fromkeys(o for g in sorted(goals, key=lambda g: g.step)
+                                for o in g.objects))
+    bases = {g.anchor for g in goals} - set(movers)
+    if len(bases) != 1 or any(by_name[o].count != 1 for o in movers if o in by_name):
+        return goals
+    (base,) = bases
+    if base is not None and (base not in by_name or by_name[base].movable):
+        return goals
+    if len(movers) < 2 or (len(goals) == 1 and goals[0].ordered):
+        return goals  # one object, or one goal ordered already
+    ordered, known = ordered_by_words([by_name[o] for o in movers], proposal.lower())
+    if not known:
+        return goals
+    return [ReadGoal("stack", tuple(m.name for m in ordered), base, True,
+                     min(g.step for g in goals))]
 
 
 #: Words of a build in layers: each group of objects is a layer on the one below.

@@ -32,7 +32,7 @@ from factask.gen.reading.group_counts import (
     recount,
     split_per_shape,
 )
-from factask.gen.reading.selectors import select_members
+from factask.gen.reading.selectors import distribute, select_members
 from factask.gen.reading.words import (
     MODIFIERS,
     NUMBER_WORDS,
@@ -173,8 +173,7 @@ class Mention:
         if self.pinned:
             parts.append("fixed (not moved)")
         if self.group:
-            picked = f"the {' / '.join(self.selectors)} one" if self.selectors else "one"
-            parts.append(f"{picked} of {self.group}")
+            parts.append(f"{' / '.join(self.selectors) or 'member'} of {self.group}")
         if self.place:
             parts.append(f"at x {self.place[0]:g} m, y {self.place[1]:g} m")
         return f"{self.name}: {', '.join(parts)}"
@@ -260,7 +259,8 @@ def mentions(proposal: str) -> list[Mention]:
         # A group whose colours the words list ("blocks of different colours (red,
         # blue, green)") is one object per colour, paired by colour or not.
         out = _split_by_colour(out, matched or set())
-    return select_members(desc, out, MAX_SPLIT_MENTIONS)  # "the second zone": its members
+    out = select_members(desc, out, MAX_SPLIT_MENTIONS)  # "the second zone": its members
+    return distribute(desc, out, MAX_SPLIT_MENTIONS)  # "in each zone": a share each
 
 
 def colour_matched(text: str) -> bool:
@@ -381,6 +381,11 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
         pinned = kind_spec(kind).movable and bool(PINNED_WORDS & set(words[max(j - 1, 0):j + 1]))
         if earlier and (not colors or any(m.color is None and m.count > 1
                                            for m in earlier)):
+            stated = _stated_count(words, j)
+            alone = [m for m in earlier if m.color is None]
+            if not colors and stated > 1 and len(alone) == 1 and not alone[0].counted:
+                recount(found, alone[0].name, stated)  # "a block ... there are three blocks"
+                earlier = [found[n] for n in found if found[n].kind == kind]
             if moved:  # "... then put the bowl in the green zone"
                 for m in earlier:
                     if not colors or m.color in colors:
@@ -427,6 +432,21 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                                   listed, moved, counted, pinned=pinned)
             if len(found) >= MAX_MENTIONS:
                 return
+
+
+#: Words that state how many objects there are: "there are three blocks", "... and
+#: three blocks" in that list.
+_EXISTENTIAL = frozenset({"are", "is", "has", "have", "with"})
+
+
+def _stated_count(words: list[str], j: int) -> int:
+    """The count an existential phrase ending at ``words[j]`` states ("there are three
+    cylinders and three blocks": 3 for either), else 0."""
+    while j >= 0 and words[j] in MODIFIERS:
+        j -= 1
+    if j < 0 or not count_of(words[j]) or words[j] in ("a", "an", "one"):
+        return 0
+    return count_of(words[j]) if _EXISTENTIAL & set(words[max(0, j - 6):j]) else 0
 
 
 def _named(stem: str, names: Collection[str]) -> bool:

@@ -26,12 +26,24 @@ def ordered_by_words(movers: list[Mention], text: str) -> tuple[list[Mention], b
     if len(movers) < 2 or None in colours or len(set(colours)) < len(colours):
         return movers, False
     words = re.findall(r"[a-z]+", text.replace("grey", "gray"))
+    if "rainbow" in words and all(c in RAINBOW for c in colours):
+        # "in the order of the colours of the rainbow": red first (the bottom, the
+        # start of a line), violet last; "from top to bottom" turns it round
+        top_first = "top" in words and "bottom" in words \
+            and words.index("top") < words.index("bottom")
+        ranked = sorted(movers, key=lambda m: RAINBOW.index(str(m.color)))
+        return (ranked[::-1] if top_first else ranked), True
     cue = next((k for k, w in enumerate(words) if w in ORDER_WORDS), None)
     if cue is None:
         return movers, False
     placed = _positions(text, colours)
     if placed is not None:
         return sorted(movers, key=lambda m: placed[str(m.color)]), True
+    if words[cue] in ("bottom", "base", "top"):
+        # "blue at the bottom, then red, ...": the colour just before the place word
+        # is the first of the order
+        before = [k for k in range(max(cue - 3, 0), cue) if words[k] in colours]
+        cue = before[-1] if before else cue
     seen: list[str] = []
     for w in words[cue:]:
         if w in colours and w not in seen:
@@ -48,6 +60,8 @@ def ordered_by_words(movers: list[Mention], text: str) -> tuple[list[Mention], b
     return sorted(movers, key=lambda m: order.index(str(m.color))), True
 
 
+#: The colours of the rainbow in its order (and those a palette names between them).
+RAINBOW = ("red", "orange", "yellow", "green", "cyan", "blue", "indigo", "purple", "violet")
 #: An order word that points back at the colours named before it.
 _BACK_ORDER = re.compile(r"\b(?:in\s+(?:that|this|the\s+same|the\s+given)\s+order|"
                          r"respectively|in\s+the\s+order\s+(?:given|named|listed))\b")
@@ -64,7 +78,8 @@ def _positions(text: str, colours: Sequence[str | None]) -> dict[str, float] | N
     """Each colour's place where every colour is named in a phrase that gives one
     ("2 purple blocks at the bottom and 3 yellow cylinders on top"), else None."""
     out: dict[str, float] = {}
-    for chunk in re.split(r"[,;:]|\band\b|\bthen\b|\bfollowed\b", text.replace("grey", "gray")):
+    for chunk in re.split(r"[,;:.!?()]|\band\b|\bthen\b|\bfollowed\b",
+                          text.replace("grey", "gray")):
         words = re.findall(r"[a-z]+", chunk)
         places = [PLACES[w] for w in words if w in PLACES]
         named = [w for w in words if w in colours]
@@ -75,4 +90,4 @@ def _positions(text: str, colours: Sequence[str | None]) -> dict[str, float] | N
     return out if len(set(out.values())) == len(out) else None
 
 
-__all__ = ["ORDER_WORDS", "PLACES", "ordered_by_words"]
+__all__ = ["ORDER_WORDS", "PLACES", "RAINBOW", "ordered_by_words"]

@@ -56,8 +56,9 @@ SIDE_ENDS: dict[str, tuple[str | None, str]] = {
     "farther": ("x", "high"), "back": ("x", "high"), "rear": ("x", "high"),
     "middle": (None, "middle"), "center": (None, "middle"), "centre": (None, "middle"),
     "central": (None, "middle")}
-#: Words that pick one member of a pair (or one and the rest).
-PAIR_WORDS = frozenset({"one", "other"})
+#: Words that pick one member of a pair (or one and the rest): "one cylinder ... the
+#: other", "a brown box ... another brown box".
+PAIR_WORDS = frozenset({"one", "other", "another"})
 #: Words that may stand between a selector and the kind word it qualifies.
 _BETWEEN = frozenset({"tall", "short", "small", "large", "big", "little", "empty", "open",
                       "round", "square", "wooden", "flat", "marked", "the", "two", "three",
@@ -184,6 +185,9 @@ def _selections(words: list[str], found: Sequence[Mention]) -> dict[str, list[st
         selector = selector_before(words, i)
         if plural and selector != "one":
             continue  # "the left zones": no one member ("one of the zones" is)
+        if selector == "another" and (words[i - 1] if words[i - 1] in COLOR_NAMES
+                                      else None) != group.color:
+            continue  # "the red block ... another block": of any colour, not a red one
         if selector is not None and selector not in out.get(group.name, []):
             out.setdefault(group.name, []).append(selector)
     return out
@@ -251,13 +255,14 @@ def select_members(text: str, found: Sequence[Mention], most: int) -> list[Menti
 def _split(m: Mention, selectors: list[str], words: list[str]) -> list[Mention] | None:
     stem = f"{m.color}_{m.kind}" if m.color else m.kind
     if set(selectors) <= PAIR_WORDS:
-        if set(selectors) != PAIR_WORDS:
+        second = "another" if "another" in selectors else "other"
+        if second not in selectors:
             return None  # "one block" alone is a count, not a pick
         rest = max(m.count - 1, 1)  # "one cyan cylinder ... the other": two at least
         return [replace(m, name=f"one_{stem}", count=1, counted=True, group=m.name,
                         selectors=("one",)),
-                replace(m, name=f"other_{plural_of(stem) if rest > 1 else stem}",
-                        count=rest, counted=True, group=m.name, selectors=("other",))]
+                replace(m, name=f"{second}_{plural_of(stem) if rest > 1 else stem}",
+                        count=rest, counted=True, group=m.name, selectors=(second,))]
     selectors = [w for w in selectors if w not in PAIR_WORDS]
     if m.movable:
         return None  # "the second block" of a tower: a place in it, not a member
@@ -278,6 +283,85 @@ def _split(m: Mention, selectors: list[str], words: list[str]) -> list[Mention] 
         out.append(replace(m, name=_member_name(stem, rank, size, axis, by_side), count=1,
                            counted=True, group=m.name, selectors=named, rank=rank,
                            axis=axis))
+    return out
+
+
+#: Words before a group's kind word that give each of its members a share of what is
+#: moved there: "in each zone", "on every cylinder", "a different one of the zones".
+_EACH = frozenset({"each", "every", "different", "separate", "own"})
+#: Words after a count that spread it over the anchors: "12 blocks evenly over the zones".
+_EVENLY = frozenset({"evenly", "equally"})
+
+
+#: Words a shared anchor's phrase may hold between its preposition and its kind word.
+_SHARE_LEAD = _BETWEEN | _EACH | {"a", "an", "of", "one", "top"}
+#: Prepositions before a shared anchor: "in each zone", "over the three zones".
+_SHARE_PREPOSITIONS = frozenset({"in", "into", "on", "onto", "over", "across", "to", "at",
+                                 "among", "inside", "between", "per"})
+
+
+def _shared_kind(words: list[str], found: Sequence[Mention]) -> str | None:
+    """The kind of the one group whose members each take a share ("in each zone", "on
+    top of every cylinder", "in a different one of the three zones", "evenly over the
+    three zones"), or None."""
+    kinds: set[str] = set()
+    for i, w in enumerate(words):
+        kind = kind_of(w)[0]
+        if kind is None:
+            continue
+        j = i - 1
+        while j >= 0 and i - j <= 8 and words[j] in _SHARE_LEAD:
+            j -= 1
+        if j < 0 or words[j] not in _SHARE_PREPOSITIONS:
+            continue  # not where things go ("each of the three cylinders": the movers)
+        if set(words[j + 1:i]) & _EACH or (j and words[j - 1] in _EVENLY):
+            kinds.add(kind)
+    groups = [m for m in found if m.kind in kinds and m.count > 1 and m.group is None]
+    return groups[0].kind if len(groups) == 1 and len(kinds) == 1 else None
+
+
+def distribute(text: str, found: Sequence[Mention], most: int) -> list[Mention]:
+    """``found`` with a group whose members each take a share of another group split:
+    "put each of the three cylinders in a different one of the three zones" (three
+    zones, three cylinders: one each), "split 12 blocks evenly over the 3 zones" (four
+    each), "a block on every cylinder". The shared group becomes its members
+    (``zone_1`` ...), the other -- the one group of another kind whose count they
+    divide -- as many parts (``blocks_1`` of four ...), paired in order by the
+    reading (:func:`factask.gen.reading.clauses.read_goals`).
+
+    Args:
+        text: The proposal's description.
+        found: Its mentions (after :func:`select_members`).
+        most: The most mentions in all (nothing is split past it).
+
+    Returns:
+        The mentions, the two groups replaced in place by their members and parts, or
+        ``found`` unchanged where no one pair of groups divides so.
+    """
+    words = words_of(text.lower())
+    kind = _shared_kind(words, found)
+    if kind is None:
+        return list(found)
+    shared = next(m for m in found if m.kind == kind and m.count > 1 and m.group is None)
+    k = shared.count
+    others = [m for m in found if m is not shared and m.kind != kind and m.group is None
+              and m.count >= k and m.count % k == 0 and m.color is None]
+    if len(others) != 1 or len(found) - 2 + 2 * k > most or k > MAX_MEMBERS:
+        return list(found)
+    spread = others[0]
+    share = spread.count // k
+    stem = f"{shared.color}_{shared.kind}" if shared.color else shared.kind
+    spread_stem = spread.kind if share == 1 else plural_of(spread.kind)
+    out: list[Mention] = []
+    for m in found:
+        if m is shared:
+            out.extend(replace(m, name=f"{stem}_{i + 1}", count=1, counted=True,
+                               group=m.name, rank=i) for i in range(k))
+        elif m is spread:
+            out.extend(replace(m, name=f"{spread_stem}_{i + 1}", count=share, counted=True,
+                               group=m.name, rank=i) for i in range(k))
+        else:
+            out.append(m)
     return out
 
 
@@ -321,5 +405,5 @@ def unpicked(found: Sequence[Mention], used: set[str]) -> set[str]:
     return {m.name for m in found if m.group is not None and m.name not in used}
 
 
-__all__ = ["LAST_WORDS", "ORDINAL_RANKS", "SIDE_ENDS", "is_selector", "placed",
+__all__ = ["LAST_WORDS", "ORDINAL_RANKS", "SIDE_ENDS", "distribute", "is_selector", "placed",
            "select_members", "selector_before", "spell_out", "unpicked"]
