@@ -237,7 +237,38 @@ def settle(objects: list[RecordedObject], names: dict[int, str], moved: set[int]
             warn(f"{name} starts tilted; only its yaw is kept")
             yaw = yaw_of_xyzw(o.quat)
             o.quat = np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])
+    _seat_in_receptacles(objects, names, moved, warn)
     _seat_on_raised_supports(objects, names, moved, warn)
+
+
+def _seat_in_receptacles(objects: list[RecordedObject], names: dict[int, str],
+                         moved: set[int], warn: Any) -> None:
+    """Objects the author put inside a receptacle at a height of their own (a block
+    at the container's pose plus 2 cm) start on its floor, as ``StartInside`` puts
+    them; what is put into the receptacle later lands on them where they really lie,
+    and targets over them are measured from there (:func:`resting_heights`). Their
+    top as the author placed it is kept (``placed_top``), so targets the author put
+    on them still count as on them.
+    """
+    for o in objects:
+        if (o.random_start and o.obj_id in moved and o.category != "fixed") or (
+                not _in_workspace(o)):
+            continue
+        receptacles, _supports, _rims = _hosts(o, [c for c in objects if c is not o])
+        if not receptacles:
+            continue
+        host = receptacles[-1]
+        bottom = float(o.pos[2]) - o.size[2] / 2
+        floor = float(host.pos[2]) - host.size[2] / 2 + floor_thickness(host.kind)
+        if abs(floor - bottom) <= SINK_EPS:
+            continue
+        if o.placed_top is None:
+            o.placed_top = bottom + (floor_thickness(o.kind) if kind_spec(o.kind).receptacle
+                                     else o.size[2])
+        o.pos = np.array([o.pos[0], o.pos[1], floor + o.size[2] / 2], dtype=float)
+        if abs(floor - bottom) > SUPPORT_SLACK / 2:
+            warn(f"{names[o.obj_id]} starts in {names[host.obj_id]!r} {bottom - floor:+.3f} m "
+                 "off its floor; it starts on the floor (what goes in later lands on it)")
 
 
 def _seat_on_raised_supports(objects: list[RecordedObject], names: dict[int, str],
