@@ -36,6 +36,9 @@ def goals(proposal: str) -> list[tuple]:
      "are placed in a row and the blocks are scattered on the table.",
      [("inside", ("red_block",), "red_bowl", False, 0),
       ("inside", ("blue_block",), "blue_bowl", False, 0)]),
+    # between a pair of regions: a row from one to the other
+    ("Set the cyan cylinder between the two white zones.",
+     [("row", ("cyan_cylinder",), "white_zones", False, 0)]),
     # the rainbow's order
     ("Line up the blue, yellow and red blocks in rainbow order.",
      [("row", ("red_block", "yellow_block", "blue_block"), None, True, 0)]),

@@ -52,7 +52,7 @@ MISREAD: dict[str, tuple[str, ...]] = {
     "stated goals that do not lay out at the kinds' default sizes (a box across two "
     "blocks, a row of one along a line): the grammar offers other shapes": (
         "align-blocks-on-line", "build-bridge", "build-car", "build-house",
-        "color-coded-blocks-on-corner", "color-coordinated-cylinder-pyramid",
+        "color-coded-blocks-on-corner",
         "create-pyramid-with-color-coded-ells", "cylinder-balancing-on-blocks",
         "rainbow-pyramid-in-zone"),
     "a ball put into a fixture (the graph: inside; the reading: aligned)": (

@@ -91,6 +91,7 @@ PREPOSITIONS: dict[str, str] = {
     "on": "on", "onto": "on", "atop": "on", "upon": "on", "over": "on", "across": "on",
     "along": "along", "around": "around", "encircling": "around", "surrounding": "around",
     "beside": "beside", "next": "beside", "alongside": "beside",
+    "between": "between",
 }
 #: Words that may stand between a preposition and the kind word it governs.
 _LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "own", "this",
@@ -247,6 +248,9 @@ def _relation(prep: str, anchor: Mention, movers: Sequence[Mention], shape: str 
         return "pile_in_zone" if kind == "zone" else None
     if prep == "beside":
         return "row" if anchor.movable else None  # "the red block next to the blue one"
+    if prep == "between":
+        # "between the two grey zones": in a row that runs from one to the other
+        return "row" if anchor.count == 2 and not anchor.movable else None
     if kind == "zone":
         return "in_zone"
     # Into a fixture or a kit: shape into its place; "on the kitting plate": on it.
@@ -484,6 +488,12 @@ def _stacked_in_order(goals: list[ReadGoal], proposal: str,
     if not _LAYER_PLACES & words or any(g.relation not in ("on", "inside", "stack")
                                         for g in goals):
         return goals
+    steps: dict[str, set[int]] = {}
+    for g in goals:
+        for o in g.objects:
+            steps.setdefault(o, set()).add(g.step)
+    if sum(g.relation == "stack" for g in goals) > 1 or any(len(v) > 1 for v in steps.values()):
+        return goals  # two towers; or put on the pallet, *then* stacked: steps of their own
     movers = list(dict.fromkeys(o for g in sorted(goals, key=lambda g: g.step)
                                 for o in g.objects))
     bases = {g.anchor for g in goals} - set(movers)
@@ -589,6 +599,8 @@ def _anchored(prep: str, anchors: list[Mention], movers: list[Mention], shape: s
             relation, field_ = "row", "on"  # "three white blocks, one on each grey block"
         if relation in ("stack", "row"):
             group, ordered = ordered_by_words(group, text)
+        if prep == "between":
+            field_ = "along"
         out.append(ReadGoal(relation, tuple(m.name for m in group), anchor.name, ordered,
                             step, field_))
     return out

@@ -111,9 +111,12 @@ def pin(branch: Schema, objects: Sequence[str], anchors: Sequence[str],
     instances = sum(counts.get(o, 1) for o in objects)
     out: list[Schema] = []
     for chosen in permutations(fields, len(anchors)):
+        between = relation == "row" and "along" in chosen \
+            and counts.get(anchors[chosen.index("along")], 1) == 2
         if relation in GROUP_RELATIONS - {"stack"} and instances < 2 \
-                and not (relation == "row" and "on" in chosen):
+                and not (relation == "row" and "on" in chosen) and not between:
             continue  # a row of one is no row, but for the top of a pyramid (on others)
+            # or one object between two regions (a row from one to the other)
         new = dict(props)
         new["objects"] = tuple_schema([{"const": o} for o in objects])
         ok = True
