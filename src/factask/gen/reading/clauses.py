@@ -32,14 +32,15 @@ reading could not account for is :mod:`factask.gen.reading.accounting`'s to say.
 
 from __future__ import annotations
 
-import itertools
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
+from factask.gen.reading.goal_order import in_colour_sequence, layered, stacked_in_order
 from factask.gen.reading.mentions import MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
+from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.selectors import is_selector, selector_before, spell_out, unpicked
 from factask.gen.reading.words import count_of, kind_of, resolve_ones, words_of
 from factask.vocabulary.kinds import kind_spec
@@ -123,29 +124,6 @@ _SHAPE_PHRASES = (
      " row "),
     (re.compile(r"\bon\s+(?:top\s+of\s+)?(?:each\s+other|one\s+another)\b"), " stacked "),
 )
-
-
-@dataclass(frozen=True)
-class ReadGoal:
-    """One goal the words state.
-
-    Attributes:
-        relation: The relation type (``inside``, ``stack``, ...).
-        objects: The names of the objects it moves, in the words' order.
-        anchor: The name of the object it anchors on (None: none).
-        ordered: Whether the order of ``objects`` is the task's (a stack's bottom first).
-        step: The part of the proposal it comes from, counted in sequence words:
-            a goal comes after every goal of a lower step.
-        field: The anchor field ``anchor`` fills where the relation has several
-            (a row ``on`` other objects, not ``along`` them); None: any.
-    """
-
-    relation: str
-    objects: tuple[str, ...]
-    anchor: str | None = None
-    ordered: bool = False
-    step: int = 0
-    field: str | None = None
 
 
 @dataclass
@@ -424,117 +402,15 @@ def _read(proposal: str, found: tuple[Mention, ...]
         return None
     if sequenced and len({g.step for g in goals}) == 1 and len(goals) > 1:
         goals = [replace(g, step=k) for k, g in enumerate(goals)]  # "first A, B": as read
-    goals = _in_colour_sequence(goals, proposal, found)
-    goals = _stacked_in_order(goals, proposal, found)
-    goals = [g2 for g in goals for g2 in _layered(g, proposal, found)]
+    goals = in_colour_sequence(goals, proposal, found)
+    goals = stacked_in_order(goals, proposal, found)
+    goals = [g2 for g in goals for g2 in layered(g, proposal, found)]
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
     still -= used  # moved or an anchor elsewhere: not still
     still |= unpicked(found, used)  # "the second bowl": the others stay as they are
     if any(m.name not in used | still for m in found):
         return None
     return tuple(goals), frozenset(still)
-
-
-#: Relations whose objects may be placed one at a time, each a goal of its own.
-_ONE_BY_ONE = frozenset({"inside", "in_zone", "on", "aligned"})
-#: Words that say the goals are done in an order the words then list.
-_SEQUENCE_WORDS = frozenset({"sequence", "order", "sequentially", "sequential"})
-
-
-def _in_colour_sequence(goals: list[ReadGoal], proposal: str,
-                        found: Sequence[Mention]) -> list[ReadGoal]:
-    """Goals of one step, each moving one colour, put in the colour order the words
-    list after a sequence word ("... in a specific color sequence: red, blue, green")."""
-    colour = {m.name: m.color for m in found}
-    if len(goals) == 1 and goals[0].relation in _ONE_BY_ONE and len(goals[0].objects) > 1:
-        # "put the balls in the container in this order: black, white, gold": one goal
-        # per object, ordered below (where the words list their colours).
-        goals = [replace(goals[0], objects=(o,)) for o in goals[0].objects]
-        split = _in_colour_sequence(goals, proposal, found)
-        return split if len({g.step for g in split}) == len(split) else \
-            [replace(goals[0], objects=tuple(o for g in goals for o in g.objects))]
-    mine = [colour.get(g.objects[0]) if len(g.objects) == 1 else None for g in goals]
-    if len(goals) < 2 or len({g.step for g in goals}) > 1 or None in mine \
-            or len(set(mine)) < len(mine):
-        return goals
-    words = re.findall(r"[a-z]+", proposal.lower().replace("grey", "gray"))
-    cue = next((k for k, w in enumerate(words) if w in _SEQUENCE_WORDS), None)
-    if cue is None:
-        return goals
-    listed: list[str] = []
-    for w in words[cue:]:
-        if w in mine and w not in listed:
-            listed.append(w)
-    if len(listed) < len(mine) - 1:
-        return goals
-    listed += [c for c in mine if c not in listed and c is not None]
-    return [replace(g, step=listed.index(str(c))) for g, c in zip(goals, mine, strict=True)]
-
-
-#: Words that place objects one above another: "red at the bottom, ... yellow at the top".
-_LAYER_PLACES = frozenset({"bottom", "top", "base"})
-
-
-def _stacked_in_order(goals: list[ReadGoal], proposal: str,
-                      found: Sequence[Mention]) -> list[ReadGoal]:
-    """Objects put one by one onto (or into) one fixed object, or onto each other
-    there, the words saying which is at the bottom and which at the top ("place it
-    into the pallet in a specific colour sequence: red at the bottom, then blue, ...
-    yellow at the top"): one stack on that object in the words' order, the order
-    read from the whole proposal (a later sentence may give it: "the sequence from
-    bottom to top should be orange, blue, ..."); any other goals as they are."""
-    by_name = {m.name: m for m in found}
-    words = set(re.findall(r"[a-z]+", proposal.lower()))
-    if not _LAYER_PLACES & words or any(g.relation not in ("on", "inside", "stack")
-                                        for g in goals):
-        return goals
-    steps: dict[str, set[int]] = {}
-    for g in goals:
-        for o in g.objects:
-            steps.setdefault(o, set()).add(g.step)
-    if sum(g.relation == "stack" for g in goals) > 1 or any(len(v) > 1 for v in steps.values()):
-        return goals  # two towers; or put on the pallet, *then* stacked: steps of their own
-    movers = list(dict.fromkeys(o for g in sorted(goals, key=lambda g: g.step)
-                                for o in g.objects))
-    bases = {g.anchor for g in goals} - set(movers)
-    if len(bases) != 1 or any(by_name[o].count != 1 for o in movers if o in by_name):
-        return goals
-    (base,) = bases
-    if base is not None and (base not in by_name or by_name[base].movable):
-        return goals
-    if len(movers) < 2 or (len(goals) == 1 and goals[0].ordered):
-        return goals  # one object, or one goal ordered already
-    ordered, known = ordered_by_words([by_name[o] for o in movers], proposal.lower())
-    if not known:
-        return goals
-    return [ReadGoal("stack", tuple(m.name for m in ordered), base, True,
-                     min(g.step for g in goals))]
-
-
-#: Words of a build in layers: each group of objects is a layer on the one below.
-LAYER_WORDS = frozenset({"pyramid", "wall", "layer", "layers", "course", "courses", "level",
-                         "levels", "tier", "tiers"})
-
-
-def _layered(goal: ReadGoal, proposal: str, found: Sequence[Mention]) -> list[ReadGoal]:
-    """A stack of groups the words build in layers ("a pyramid: the three green blocks
-    at the bottom, the two red blocks in the middle and the blue block on top") as one
-    row per group, each on the one below (the first along the anchor); any other goal
-    as it is."""
-    by_name = {m.name: m for m in found}
-    groups = [by_name[n] for n in goal.objects if n in by_name]
-    words = set(re.findall(r"[a-z]+", proposal.lower()))
-    if goal.relation != "stack" or len(groups) < 2 or not LAYER_WORDS & words \
-            or all(m.count == 1 for m in groups):
-        return [goal]
-    if not goal.ordered:
-        groups, ordered = ordered_by_words(groups, proposal.lower())
-        if not ordered:
-            return [goal]
-    out = [ReadGoal("row", (groups[0].name,), goal.anchor, False, goal.step, "along")]
-    out += [ReadGoal("row", (upper.name,), lower.name, False, goal.step, "on")
-            for lower, upper in itertools.pairwise(groups)]
-    return out
 
 
 def _source(words: list[str], i: int) -> bool:

@@ -1,0 +1,122 @@
+"""Passes over the goals the clause reading found (:mod:`factask.gen.reading.clauses`)
+that order or regroup them by what the whole proposal says: goals done in a colour
+sequence (:func:`in_colour_sequence`), objects put one by one where the words say
+what is at the bottom and the top as one stack (:func:`stacked_in_order`), a stack
+built in layers as one row per layer (:func:`layered`). Split from the clause reading
+(one concept: the order the words give goals already read).
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+from collections.abc import Sequence
+from dataclasses import replace
+
+from factask.gen.reading.mentions import Mention
+from factask.gen.reading.orders import ordered_by_words
+from factask.gen.reading.read_goal import ReadGoal
+
+#: Relations whose objects may be placed one at a time, each a goal of its own.
+_ONE_BY_ONE = frozenset({"inside", "in_zone", "on", "aligned"})
+#: Words that say the goals are done in an order the words then list.
+_SEQUENCE_WORDS = frozenset({"sequence", "order", "sequentially", "sequential"})
+
+
+def in_colour_sequence(goals: list[ReadGoal], proposal: str,
+                        found: Sequence[Mention]) -> list[ReadGoal]:
+    """Goals of one step, each moving one colour, put in the colour order the words
+    list after a sequence word ("... in a specific color sequence: red, blue, green")."""
+    colour = {m.name: m.color for m in found}
+    if len(goals) == 1 and goals[0].relation in _ONE_BY_ONE and len(goals[0].objects) > 1:
+        # "put the balls in the container in this order: black, white, gold": one goal
+        # per object, ordered below (where the words list their colours).
+        goals = [replace(goals[0], objects=(o,)) for o in goals[0].objects]
+        split = in_colour_sequence(goals, proposal, found)
+        return split if len({g.step for g in split}) == len(split) else \
+            [replace(goals[0], objects=tuple(o for g in goals for o in g.objects))]
+    mine = [colour.get(g.objects[0]) if len(g.objects) == 1 else None for g in goals]
+    if len(goals) < 2 or len({g.step for g in goals}) > 1 or None in mine \
+            or len(set(mine)) < len(mine):
+        return goals
+    words = re.findall(r"[a-z]+", proposal.lower().replace("grey", "gray"))
+    cue = next((k for k, w in enumerate(words) if w in _SEQUENCE_WORDS), None)
+    if cue is None:
+        return goals
+    listed: list[str] = []
+    for w in words[cue:]:
+        if w in mine and w not in listed:
+            listed.append(w)
+    if len(listed) < len(mine) - 1:
+        return goals
+    listed += [c for c in mine if c not in listed and c is not None]
+    return [replace(g, step=listed.index(str(c))) for g, c in zip(goals, mine, strict=True)]
+
+
+#: Words that place objects one above another: "red at the bottom, ... yellow at the top".
+_LAYER_PLACES = frozenset({"bottom", "top", "base"})
+
+
+def stacked_in_order(goals: list[ReadGoal], proposal: str,
+                      found: Sequence[Mention]) -> list[ReadGoal]:
+    """Objects put one by one onto (or into) one fixed object, or onto each other
+    there, the words saying which is at the bottom and which at the top ("place it
+    into the pallet in a specific colour sequence: red at the bottom, then blue, ...
+    yellow at the top"): one stack on that object in the words' order, the order
+    read from the whole proposal (a later sentence may give it: "the sequence from
+    bottom to top should be orange, blue, ..."); any other goals as they are."""
+    by_name = {m.name: m for m in found}
+    words = set(re.findall(r"[a-z]+", proposal.lower()))
+    if not _LAYER_PLACES & words or any(g.relation not in ("on", "inside", "stack")
+                                        for g in goals):
+        return goals
+    steps: dict[str, set[int]] = {}
+    for g in goals:
+        for o in g.objects:
+            steps.setdefault(o, set()).add(g.step)
+    if sum(g.relation == "stack" for g in goals) > 1 or any(len(v) > 1 for v in steps.values()):
+        return goals  # two towers; or put on the pallet, *then* stacked: steps of their own
+    movers = list(dict.fromkeys(o for g in sorted(goals, key=lambda g: g.step)
+                                for o in g.objects))
+    bases = {g.anchor for g in goals} - set(movers)
+    if len(bases) != 1 or any(by_name[o].count != 1 for o in movers if o in by_name):
+        return goals
+    (base,) = bases
+    if base is not None and (base not in by_name or by_name[base].movable):
+        return goals
+    if len(movers) < 2 or (len(goals) == 1 and goals[0].ordered):
+        return goals  # one object, or one goal ordered already
+    ordered, known = ordered_by_words([by_name[o] for o in movers], proposal.lower())
+    if not known:
+        return goals
+    return [ReadGoal("stack", tuple(m.name for m in ordered), base, True,
+                     min(g.step for g in goals))]
+
+
+#: Words of a build in layers: each group of objects is a layer on the one below.
+LAYER_WORDS = frozenset({"pyramid", "wall", "layer", "layers", "course", "courses", "level",
+                         "levels", "tier", "tiers"})
+
+
+def layered(goal: ReadGoal, proposal: str, found: Sequence[Mention]) -> list[ReadGoal]:
+    """A stack of groups the words build in layers ("a pyramid: the three green blocks
+    at the bottom, the two red blocks in the middle and the blue block on top") as one
+    row per group, each on the one below (the first along the anchor); any other goal
+    as it is."""
+    by_name = {m.name: m for m in found}
+    groups = [by_name[n] for n in goal.objects if n in by_name]
+    words = set(re.findall(r"[a-z]+", proposal.lower()))
+    if goal.relation != "stack" or len(groups) < 2 or not LAYER_WORDS & words \
+            or all(m.count == 1 for m in groups):
+        return [goal]
+    if not goal.ordered:
+        groups, ordered = ordered_by_words(groups, proposal.lower())
+        if not ordered:
+            return [goal]
+    out = [ReadGoal("row", (groups[0].name,), goal.anchor, False, goal.step, "along")]
+    out += [ReadGoal("row", (upper.name,), lower.name, False, goal.step, "on")
+            for lower, upper in itertools.pairwise(groups)]
+    return out
+
+
+__all__ = ["LAYER_WORDS", "in_colour_sequence", "layered", "stacked_in_order"]
