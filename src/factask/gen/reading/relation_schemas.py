@@ -47,11 +47,6 @@ def _without(field: Schema, name: str) -> Schema | None:
     return options[0] if len(options) == 1 else {"anyOf": options}
 
 
-def _names(field: Schema) -> list[str]:
-    """The variable names an anchor field's schema offers (its enums)."""
-    return [n for option in field.get("anyOf", [field]) for n in option.get("enum", [])]
-
-
 def relation_over(relation: str, kinds: dict[str, str],
                   counts: dict[str, int] | None = None,
                   moved: Collection[str] = ()) -> Schema | None:
@@ -78,7 +73,7 @@ def relation_over(relation: str, kinds: dict[str, str],
             if relation == "row" and "along" in props:
                 # One object between two regions ("between the two grey zones"): a
                 # row from one to the other, along a pair and on nothing.
-                pairs = [n for n in _names(props["along"]) if counts.get(n, 1) == 2]
+                pairs = [n for n in names_of(props["along"]) if counts.get(n, 1) == 2]
                 if not pairs:
                     return None
                 props["along"] = {"type": "string", "enum": pairs}
