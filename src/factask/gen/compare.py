@@ -29,6 +29,13 @@ block in the green bowl" is met by a block of any colour, whatever colour the
 reference happened to give it. Every such colour, in both graphs, is compared as
 "unspecified"; the colours the words name are compared as they are.
 
+**Sizes the words contrast.** Where the words tell objects apart by size ("the small
+ball in the small bowl and the large ball in the large bowl", :func:`sizes_named`),
+each object is labelled too with its size among the objects of its kind and colour
+(smaller / larger by volume, :data:`GRADE_RATIO`): a graph that puts the large ball
+in the small bowl, or has two balls of one size, is another task. Without such words
+sizes are details.
+
 The graphs are **equivalent** when their canonical forms are isomorphic (networkx's
 ``DiGraphMatcher`` with node and edge matches) under a mapping that keeps every order
 of the reference (A before B, explicit or implied by anchors, transitively) — order is
@@ -48,8 +55,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import networkx as nx
+import numpy as np
 from networkx.algorithms.isomorphism import DiGraphMatcher
 
+from factask.gen.reading.words import GRADE_WORDS
 from factask.graph.taskgraph import TaskGraph, parse_graph
 from factask.vocabulary.palette import colour_of_word
 
@@ -61,7 +70,9 @@ _NOT_PARAMETERS = frozenset(["type", "objects", "tolerances"])
 #: identical objects have factorially many; the first ones differ only in those).
 MAX_MAPPINGS = 2000
 
-InstanceLabel = tuple[str, str, bool]  # kind, colour ("" for none), fixed
+InstanceLabel = tuple[str, str, bool, str]  # kind, colour ("" for none), fixed, grade ("")
+#: Two sizes differ when their volumes differ by more than this factor.
+GRADE_RATIO = 1.1
 
 
 @dataclass(frozen=True)
@@ -122,15 +133,46 @@ def colours_named(text: str) -> frozenset[str]:
     return frozenset(c for c in named if c is not None)
 
 
-def _instances(graph: TaskGraph, stated: frozenset[str] | None = None,
+def sizes_named(text: str) -> bool:
+    """Whether ``text`` tells objects apart by size ("the small ball", "the tall one")."""
+    return any(w in GRADE_WORDS for w in re.findall(r"[a-z]+", text.lower()))
+
+
+def _grades(graph: TaskGraph, colour_of: dict[str, str]) -> dict[str, str]:
+    """Variable -> its size among the variables of its kind and colour that differ in
+    size ("smaller" / "larger", or "size 2 of 3"); alike ones of one size get none."""
+    volume = {v.name: float(np.prod(v.extents)) for v in graph.variables}
+    groups: dict[tuple[str, str], list[str]] = {}
+    for v in graph.variables:
+        groups.setdefault((v.kind, colour_of[v.name]), []).append(v.name)
+    out: dict[str, str] = {}
+    for names in groups.values():
+        levels: list[float] = []
+        for vol in sorted(volume[n] for n in names):
+            if not levels or vol > levels[-1] * GRADE_RATIO:
+                levels.append(vol)
+        if len(levels) < 2:
+            continue
+        for n in names:
+            rank = max(k for k, level in enumerate(levels) if volume[n] >= level)
+            out[n] = ("smaller", "larger")[rank] if len(levels) == 2 \
+                else f"size {rank + 1} of {len(levels)}"
+    return out
+
+
+def _instances(graph: TaskGraph, stated: frozenset[str] | None = None, graded: bool = False,
                ) -> tuple[dict[str, InstanceLabel], dict[str, list[str]]]:
     labels: dict[str, InstanceLabel] = {}
     of: dict[str, list[str]] = {}
+    colour_of = {}
     for v in graph.variables:
         colour = _colour(v.color)
         if stated is not None and colour not in stated:
             colour = ""  # the words leave it open
-        label = (v.kind, colour, bool(v.is_fixed))
+        colour_of[v.name] = colour
+    grades = _grades(graph, colour_of) if graded else {}
+    for v in graph.variables:
+        label = (v.kind, colour_of[v.name], bool(v.is_fixed), grades.get(v.name, ""))
         of[v.name] = list(v.instances)
         for inst in v.instances:
             labels[inst] = label
@@ -164,10 +206,12 @@ def _ordered(goal: Any) -> bool:
     return bool(getattr(goal, "ordered", False))
 
 
-def canonical(graph: TaskGraph, stated_colours: frozenset[str] | None = None) -> _Canon:
+def canonical(graph: TaskGraph, stated_colours: frozenset[str] | None = None,
+              graded: bool = False) -> _Canon:
     """``graph`` in the canonical form the comparison reads (see the module doc);
-    with ``stated_colours``, every other colour is read as unspecified."""
-    labels, of = _instances(graph, stated_colours)
+    with ``stated_colours``, every other colour is read as unspecified; ``graded``:
+    objects are told apart by their sizes among alike ones too."""
+    labels, of = _instances(graph, stated_colours, graded)
     g = nx.DiGraph()
     for inst, label in labels.items():
         g.add_node(inst, label=("object", *label))
@@ -227,8 +271,8 @@ def _signature(c: _Canon, node: str) -> tuple[Any, ...]:
 
 
 def _describe_object(label: InstanceLabel) -> str:
-    kind, colour, fixed = label
-    return " ".join(x for x in (colour, kind, "(fixed)" if fixed else "") if x)
+    kind, colour, fixed, grade = label
+    return " ".join(x for x in (grade, colour, kind, "(fixed)" if fixed else "") if x)
 
 
 def _describe_factor(sig: tuple[Any, ...]) -> str:
@@ -298,8 +342,9 @@ def compare(generated: TaskGraph | dict[str, Any] | str,
         GraphValidationError: either graph is not a valid task graph.
     """
     stated = None if proposal is None else colours_named(proposal)
-    gen = canonical(parse_graph(generated), stated)
-    ref = canonical(parse_graph(reference), stated)
+    graded = proposal is not None and sizes_named(proposal)
+    gen = canonical(parse_graph(generated), stated, graded)
+    ref = canonical(parse_graph(reference), stated, graded)
     objects_got, objects_want = Counter(gen.instances.values()), Counter(ref.instances.values())
     sig_got = Counter(_signature(gen, n) for n in gen.factors)
     sig_want = Counter(_signature(ref, n) for n in ref.factors)

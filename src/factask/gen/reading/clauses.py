@@ -38,6 +38,7 @@ from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 from factask.gen.reading.goal_order import in_colour_sequence, layered, stacked_in_order
+from factask.gen.reading.grades import pick_graded
 from factask.gen.reading.mentions import MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
 from factask.gen.reading.read_goal import ReadGoal
@@ -183,6 +184,9 @@ def _referents(words: list[str], i: int, found: Sequence[Mention]) -> list[Menti
     if colours:
         same = [m for m in same if m.color in colours]
     selector = selector_before(words, i)
+    graded = pick_graded(words, i, same, selector in ("other", "another"))
+    if graded is not None:
+        return graded  # "the small ball", "the other box" after "the small box"
     if kind_of(words[i])[1] and selector != "one":
         selector = None  # "the left zones": not one member ("one of the zones" is)
     picked = [m for m in same if selector in m.selectors]

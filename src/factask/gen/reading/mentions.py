@@ -23,6 +23,7 @@ from collections.abc import Collection, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
+from factask.gen.reading.grades import grade_members
 from factask.gen.reading.group_counts import (
     MAX_COUNT,
     MAX_SPLIT_MENTIONS,
@@ -143,6 +144,9 @@ class Mention:
         axis: The row's axis for a fixed group ("y": left to right, "x": near to
             far); None: not placed.
         place: Where it stands on the table (x, y), for a member of a placed row.
+        grade: Its size among alike objects the words tell apart by size ("small",
+            "large", "tall", "short", "long": :mod:`factask.gen.reading.grades`);
+            None: not graded.
     """
 
     name: str
@@ -160,6 +164,7 @@ class Mention:
     rank: int = 0
     axis: str | None = None
     place: tuple[float, float] | None = None
+    grade: str | None = None
 
     def describe(self) -> str:
         """``red_blocks: kind block, colour red, count 3`` (``, moved`` for a bowl or
@@ -172,6 +177,8 @@ class Mention:
             parts.append("moved (not fixed)")
         if self.pinned:
             parts.append("fixed (not moved)")
+        if self.grade:
+            parts.append(f"the {self.grade} one of its kind")
         if self.group:
             parts.append(f"{' / '.join(self.selectors) or 'member'} of {self.group}")
         if self.place:
@@ -259,6 +266,7 @@ def mentions(proposal: str) -> list[Mention]:
         # A group whose colours the words list ("blocks of different colours (red,
         # blue, green)") is one object per colour, paired by colour or not.
         out = _split_by_colour(out, matched or set())
+    out = grade_members(desc, out, MAX_SPLIT_MENTIONS)  # "the small ball ... the large ball"
     out = select_members(desc, out, MAX_SPLIT_MENTIONS)  # "the second zone": its members
     return distribute(desc, out, MAX_SPLIT_MENTIONS)  # "in each zone": a share each
 

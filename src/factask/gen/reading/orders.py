@@ -1,4 +1,4 @@
-"""The order the words give the objects of a stack or row, by their colours.
+"""The order the words give the objects of a stack or row, by their colours or sizes.
 
 "2 purple blocks at the bottom and 3 yellow cylinders on top", "the bottom of the
 tower is red, followed by blue, then green", "the red, green and blue blocks in that
@@ -12,6 +12,8 @@ import re
 from collections.abc import Sequence
 
 from factask.gen.reading.mentions import Mention
+from factask.gen.reading.words import GRADE_WORDS
+from factask.vocabulary.palette import COLOR_NAMES
 
 #: Words that say the objects of an arrangement are listed in their order.
 ORDER_WORDS = frozenset({"order", "sequence", "bottom", "followed", "then", "next",
@@ -20,44 +22,74 @@ ORDER_WORDS = frozenset({"order", "sequence", "bottom", "followed", "then", "nex
 
 
 def ordered_by_words(movers: list[Mention], text: str) -> tuple[list[Mention], bool]:
-    """The movers in the order the words give their colours, and whether the words
-    order them (an order word, and distinct colours named after it)."""
-    colours = [m.color for m in movers]
-    if len(movers) < 2 or None in colours or len(set(colours)) < len(colours):
+    """The movers in the order the words give their colours (or, for alike objects
+    told apart by size, their sizes: "the large box first", "from the largest at the
+    bottom to the smallest"), and whether the words order them (an order word, and
+    distinct colours or sizes named after it)."""
+    tags = _tags(movers)
+    if tags is None:
         return movers, False
     words = re.findall(r"[a-z]+", text.replace("grey", "gray"))
-    if "rainbow" in words and all(c in RAINBOW for c in colours):
+    graded = tags[0] not in COLOR_NAMES
+    if graded:  # "largest", "bigger": their grade, named as the movers' are
+        words = [GRADE_WORDS.get(w, w) for w in words]
+        text = " ".join(words)
+    tag_of = {m.name: tag for m, tag in zip(movers, tags, strict=True)}
+    if not graded and "rainbow" in words and all(c in RAINBOW for c in tags):
         # "in the order of the colours of the rainbow": red first (the bottom, the
         # start of a line), violet last; "from top to bottom" turns it round
         top_first = "top" in words and "bottom" in words \
             and words.index("top") < words.index("bottom")
-        ranked = sorted(movers, key=lambda m: RAINBOW.index(str(m.color)))
+        ranked = sorted(movers, key=lambda m: RAINBOW.index(tag_of[m.name]))
         return (ranked[::-1] if top_first else ranked), True
     cue = next((k for k, w in enumerate(words) if w in ORDER_WORDS), None)
     if cue is None:
         return movers, False
-    placed = _positions(text, colours)
+    placed = _positions(text, tags)
     if placed is not None:
-        return sorted(movers, key=lambda m: placed[str(m.color)]), True
+        return sorted(movers, key=lambda m: placed[tag_of[m.name]]), True
     if words[cue] in ("bottom", "base", "top"):
-        # "blue at the bottom, then red, ...": the colour just before the place word
+        # "blue at the bottom, then red, ...": the tag just before the place word
         # is the first of the order
-        before = [k for k in range(max(cue - 3, 0), cue) if words[k] in colours]
+        before = [k for k in range(max(cue - 3, 0), cue) if words[k] in tags]
         cue = before[-1] if before else cue
     seen: list[str] = []
     for w in words[cue:]:
-        if w in colours and w not in seen:
+        if w in tags and w not in seen:
             seen.append(w)
-    if len(seen) < len(colours) - 1 and _BACK_ORDER.search(text):
-        # "the red, green and blue blocks ... in that order": the colours named before
-        seen = [w for k, w in enumerate(words) if w in colours and w not in words[:k]]
-    if len(seen) < len(colours) - 1:
+    if len(seen) < len(tags) - 1 and (_BACK_ORDER.search(text) or graded):
+        # "the red, green and blue blocks ... in that order": the tags named before;
+        # "the large box and the small box ..., the large box first"
+        seen = [w for k, w in enumerate(words) if w in tags and w not in words[:k]]
+    if len(seen) < len(tags) - 1:
         return movers, False
-    seen += [c for c in colours if c not in seen]  # the one the words leave last
+    seen += [c for c in tags if c not in seen]  # the one the words leave last
     tail = words[cue:]
     top_first = "top" in tail and ("bottom" not in tail or tail.index("top") < tail.index("bottom"))
     order = list(reversed(seen)) if top_first else seen  # "from the top: red, ..."
-    return sorted(movers, key=lambda m: order.index(str(m.color))), True
+    if graded:
+        order = _by_size(order)
+    return sorted(movers, key=lambda m: order.index(tag_of[m.name])), True
+
+
+def _by_size(order: list[str]) -> list[str]:
+    """Grades in the words' order, the middle size the words leave unnamed between the
+    two they name ("from the largest at the bottom to the smallest": large, medium,
+    small)."""
+    if len(order) == 3 and order[-1] == "medium":
+        return [order[0], "medium", order[1]]
+    return order
+
+
+def _tags(movers: list[Mention]) -> list[str] | None:
+    """What tells the movers apart in the words: their colours, else their grades
+    (sizes); None: neither does, one each."""
+    if len(movers) < 2:
+        return None
+    for tags in ([m.color for m in movers], [m.grade for m in movers]):
+        if None not in tags and len(set(tags)) == len(tags):
+            return [str(t) for t in tags]
+    return None
 
 
 #: The colours of the rainbow in its order (and those a palette names between them).
@@ -74,7 +106,7 @@ PLACES: dict[str, float] = {
 }
 
 
-def _positions(text: str, colours: Sequence[str | None]) -> dict[str, float] | None:
+def _positions(text: str, colours: Sequence[str]) -> dict[str, float] | None:
     """Each colour's place where every colour is named in a phrase that gives one
     ("2 purple blocks at the bottom and 3 yellow cylinders on top"), else None."""
     out: dict[str, float] = {}

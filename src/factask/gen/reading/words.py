@@ -89,6 +89,16 @@ MODIFIERS = frozenset({
     "short", "wooden", "plastic", "solid", "empty", "separate", "individual", "more",
     "random", "randomly", "placed", "scattered", "multicolored", "multicoloured",
 })
+#: Size word -> its grade: the sizes that tell alike objects apart
+#: (:mod:`factask.gen.reading.grades`).
+GRADE_WORDS: dict[str, str] = {
+    "small": "small", "smaller": "small", "smallest": "small", "little": "small",
+    "tiny": "small", "large": "large", "larger": "large", "largest": "large",
+    "big": "large", "bigger": "large", "biggest": "large", "huge": "large",
+    "tall": "tall", "taller": "tall", "tallest": "tall", "short": "short",
+    "shorter": "short", "shortest": "short", "long": "long", "longer": "long",
+    "longest": "long"}
+
 
 
 #: Words that may stand between a moving verb and its object: "pick up the two red
@@ -242,7 +252,8 @@ def resolve_ones(words: list[str], last: str | None = None) -> tuple[list[str], 
         kind, _plural, singular = kind_of(w)
         if kind is not None and not _after_preposition(words, i):
             last = singular  # "the red ones in the red zone": the objects, not the zone
-        elif w in ("one", "ones") and last and i and words[i - 1] in COLOR_NAMES \
+        elif w in ("one", "ones") and last and i and (words[i - 1] in COLOR_NAMES
+                                                     or words[i - 1] in GRADE_WORDS) \
                 and not (i + 1 < len(words) and kind_of(words[i + 1])[0] is not None):
             out[i] = plural_of(last) if w == "ones" else last
     return out, last
@@ -253,5 +264,5 @@ def count_of(word: str) -> int:
     return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
 
 
-__all__ = ["KIND_WORDS", "MODIFIERS", "NUMBER_WORDS", "OBJECT_LEAD", "PHRASES", "WORD", "count_of",
-           "kind_of", "plural_of", "resolve_ones", "words_of"]
+__all__ = ["GRADE_WORDS", "KIND_WORDS", "MODIFIERS", "NUMBER_WORDS", "OBJECT_LEAD", "PHRASES",
+           "WORD", "count_of", "kind_of", "plural_of", "resolve_ones", "words_of"]
