@@ -37,7 +37,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
-from factask.gen.reading.goal_order import in_colour_sequence, layered, stacked_in_order
+from factask.gen.reading.goal_order import (
+    in_colour_sequence,
+    in_member_sequence,
+    layered,
+    stacked_in_order,
+)
 from factask.gen.reading.grades import pick_graded
 from factask.gen.reading.mentions import MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
@@ -174,7 +179,9 @@ def _referents(words: list[str], i: int, found: Sequence[Mention]) -> list[Menti
     colours: list[str] = []
     j = i - 1
     while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or", "then")
-                                                   and colours)):
+                                                   and colours) or (
+            colours and count_of(words[j]) and j and words[j - 1] in ("and", "or"))):
+        # "three blue and three yellow blocks": both colours, each with its count
         if words[j] in COLOR_NAMES:
             colours.append(words[j])
         j -= 1
@@ -409,6 +416,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
     goals = in_colour_sequence(goals, proposal, found)
     goals = stacked_in_order(goals, proposal, found)
     goals = [g2 for g in goals for g2 in layered(g, proposal, found)]
+    goals = [in_member_sequence(g, proposal, found) for g in goals]
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
     still -= used  # moved or an anchor elsewhere: not still
     still |= unpicked(found, used)  # "the second bowl": the others stay as they are

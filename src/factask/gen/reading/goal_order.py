@@ -1,6 +1,7 @@
 """Passes over the goals the clause reading found (:mod:`factask.gen.reading.clauses`)
 that order or regroup them by what the whole proposal says: goals done in a colour
-sequence (:func:`in_colour_sequence`), objects put one by one where the words say
+sequence (:func:`in_colour_sequence`), the members of coloured groups in a sequence
+that repeats colours (:func:`in_member_sequence`), objects put one by one where the words say
 what is at the bottom and the top as one stack (:func:`stacked_in_order`), a stack
 built in layers as one row per layer (:func:`layered`). Split from the clause reading
 (one concept: the order the words give goals already read).
@@ -16,6 +17,7 @@ from dataclasses import replace
 from factask.gen.reading.mentions import Mention
 from factask.gen.reading.orders import ordered_by_words
 from factask.gen.reading.read_goal import ReadGoal
+from factask.gen.reading.sequences import CUES, colour_sequence
 
 #: Relations whose objects may be placed one at a time, each a goal of its own.
 _ONE_BY_ONE = frozenset({"inside", "in_zone", "on", "aligned"})
@@ -119,4 +121,37 @@ def layered(goal: ReadGoal, proposal: str, found: Sequence[Mention]) -> list[Rea
     return out
 
 
-__all__ = ["LAYER_WORDS", "in_colour_sequence", "layered", "stacked_in_order"]
+#: Arrangements whose objects can take a sequence.
+_ARRANGEMENTS = frozenset({"stack", "row", "circle"})
+
+
+def in_member_sequence(goal: ReadGoal, proposal: str,
+                       found: Sequence[Mention]) -> ReadGoal:
+    """``goal`` with its objects in the sequence the words ask, where it is an
+    arrangement of every member of the groups the sequence runs over; else as it is."""
+    by_name = {m.name: m for m in found}
+    movers = [by_name.get(n) for n in goal.objects]
+    if goal.relation not in _ARRANGEMENTS or None in movers:
+        return goal
+    groups = {m.group for m in movers if m is not None}
+    members = {m.name for m in found if m.group in groups}
+    if None in groups or members != set(goal.objects):
+        return goal
+    whole = [replace(m, name=str(m.group), count=sum(1 for o in found if o.group == m.group),  # type: ignore[type-var]
+                     group=None) for m in found if m.group in groups and m.rank == 0]
+    words = re.findall(r"[a-z]+", proposal.lower().replace("grey", "gray"))
+    ranked, known = ordered_by_words(list(whole), proposal.lower())
+    sequence = colour_sequence(words, whole, [str(m.color) for m in ranked] if known else ())
+    if sequence is None:
+        return goal
+    tail = words[next((k for k, w in enumerate(words) if w in CUES), 0):]
+    if "top" in tail and "bottom" in tail and tail.index("top") < tail.index("bottom"):
+        sequence = sequence[::-1]  # "from the top: ..."
+    queues = {str(m.color): sorted((o for o in found if o.group == m.name),
+                                   key=lambda o: o.rank) for m in whole}
+    objects = tuple(queues[c].pop(0).name for c in sequence)
+    return replace(goal, objects=objects, ordered=True)
+
+
+__all__ = ["LAYER_WORDS", "in_colour_sequence", "in_member_sequence", "layered",
+           "stacked_in_order"]

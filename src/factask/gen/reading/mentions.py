@@ -34,6 +34,7 @@ from factask.gen.reading.group_counts import (
     split_per_shape,
 )
 from factask.gen.reading.selectors import distribute, select_members
+from factask.gen.reading.sequences import sequence_members
 from factask.gen.reading.words import (
     MODIFIERS,
     NUMBER_WORDS,
@@ -267,6 +268,7 @@ def mentions(proposal: str) -> list[Mention]:
         # blue, green)") is one object per colour, paired by colour or not.
         out = _split_by_colour(out, matched or set())
     out = grade_members(desc, out, MAX_SPLIT_MENTIONS)  # "the small ball ... the large ball"
+    out = sequence_members(desc, out, MAX_SPLIT_MENTIONS)  # "in alternating colours"
     out = select_members(desc, out, MAX_SPLIT_MENTIONS)  # "the second zone": its members
     return distribute(desc, out, MAX_SPLIT_MENTIONS)  # "in each zone": a share each
 

@@ -51,7 +51,8 @@ def ordered_by_words(movers: list[Mention], text: str) -> tuple[list[Mention], b
     if words[cue] in ("bottom", "base", "top"):
         # "blue at the bottom, then red, ...": the tag just before the place word
         # is the first of the order
-        before = [k for k in range(max(cue - 3, 0), cue) if words[k] in tags]
+        # ("a yellow block at the bottom": four words back)
+        before = [k for k in range(max(cue - 4, 0), cue) if words[k] in tags]
         cue = before[-1] if before else cue
     seen: list[str] = []
     for w in words[cue:]:

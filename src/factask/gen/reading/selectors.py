@@ -270,8 +270,8 @@ def _split(m: Mention, selectors: list[str], words: list[str]) -> list[Mention] 
         return None  # "the back-left corner": a corner of the table, not of a row
     highest = max((ORDINAL_RANKS[w] + 1 for w in selectors if w in ORDINAL_RANKS), default=0)
     size = max(m.count, highest, 2) if not m.counted else m.count
-    if size > MAX_MEMBERS:
-        return None
+    if size > MAX_MEMBERS or size < 2:
+        return None  # too many to split; or one object ("one first bowl"), no group
     ranks = _ranks(selectors, size)
     if ranks is None:
         return None
