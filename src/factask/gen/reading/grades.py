@@ -23,6 +23,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Protocol
 
+from factask.gen.reading.selectors import Mention as SelectorMention
 from factask.gen.reading.words import GRADE_WORDS, kind_of, plural_of, resolve_ones, words_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
@@ -43,21 +44,9 @@ _ENDS = {"small": ("small", "large"), "large": ("small", "large"),
 MAX_GRADES = 3
 
 
-class Mention(Protocol):
+class Mention(SelectorMention, Protocol):
     """What this module reads of a :class:`factask.gen.reading.mentions.Mention`."""
 
-    @property
-    def name(self) -> str: ...
-    @property
-    def kind(self) -> str: ...
-    @property
-    def color(self) -> str | None: ...
-    @property
-    def count(self) -> int: ...
-    @property
-    def counted(self) -> bool: ...
-    @property
-    def group(self) -> str | None: ...
     @property
     def grade(self) -> str | None: ...
 

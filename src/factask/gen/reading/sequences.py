@@ -27,8 +27,8 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import Protocol
 
+from factask.gen.reading.selectors import Mention
 from factask.gen.reading.words import words_of
 
 #: Words that ask one of each colour in turn.
@@ -37,23 +37,6 @@ ALTERNATING = frozenset({"alternating", "alternate", "alternately", "alternated"
 #: Words after which the colours named are a sequence.
 CUES = frozenset({"order", "sequence", "bottom", "base", "followed", "starting", "start",
                    "first", "top"})
-
-
-class Mention(Protocol):
-    """What this module reads of a :class:`factask.gen.reading.mentions.Mention`."""
-
-    @property
-    def name(self) -> str: ...
-    @property
-    def kind(self) -> str: ...
-    @property
-    def color(self) -> str | None: ...
-    @property
-    def count(self) -> int: ...
-    @property
-    def group(self) -> str | None: ...
-    @property
-    def rank(self) -> int: ...
 
 
 def _listed(words: list[str], colours: set[str]) -> list[str]:
