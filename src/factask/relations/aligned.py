@@ -29,10 +29,19 @@ from factask.vocabulary.world import TABLE_Z
 HOLE_GAP = 0.005
 
 
+#: Kinds whose objects are put in place by alignment, not inside or on them: an ell
+#: into its fixture, a block into a corner marker, a shape into its kit, a log by a
+#: holed box.
+ALIGNING_KINDS = frozenset({"fixture", "corner", "kit", "holed_box"})
+
+
 def modes_for(reference_kind: str) -> tuple[str, ...]:
-    """The modes an ``aligned`` goal may take with a reference of this kind: a
-    ``holed_box`` is lined up with (``hole``) and nothing else is."""
-    return ("hole",) if reference_kind == "holed_box" else ("center", "corner")
+    """The modes an ``aligned`` goal may take with a reference of this kind, the one
+    its kind asks first: a ``holed_box`` is lined up with (``hole``) and nothing else
+    is; into a corner marker an object goes corner to corner."""
+    if reference_kind == "holed_box":
+        return ("hole",)
+    return ("corner", "center") if reference_kind == "corner" else ("center", "corner")
 
 
 class Aligned(RelationBase):

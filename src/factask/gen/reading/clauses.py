@@ -44,7 +44,7 @@ from factask.gen.reading.goal_order import (
     stacked_in_order,
 )
 from factask.gen.reading.grades import pick_graded
-from factask.gen.reading.mentions import MOVE_VERBS, Mention
+from factask.gen.reading.mentions import MATCH_AFTER, MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
 from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.selectors import is_selector, selector_before, spell_out, unpicked
@@ -100,14 +100,15 @@ PREPOSITIONS: dict[str, str] = {
     "beside": "beside", "next": "beside", "alongside": "beside",
     "between": "between",
 }
-#: Words that may stand between a preposition and the kind word it governs.
+#: Words that may stand between a preposition and the kind word it governs (the
+#: matching words too: "into four color-coded fixtures", "the colour-matched bowls").
 _LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "own", "this",
                    "that", "these", "those", "top", "of", "both", "all", "same", "matching",
                    "corresponding", "respective", "other", "another", "colored", "coloured",
                    "color", "colour", "large", "small", "big", "little", "tiny", "larger",
                    "smaller", "square", "round", "brown", "marked", "target", "specified",
                    "designated", "empty", "open", "flat", "tall", "short", "wooden",
-                   "middle", "center", "centre", "different", "separate"})
+                   "middle", "center", "centre", "different", "separate"}) | MATCH_AFTER
 #: Words that refer back to the objects moved last.
 PRONOUNS = frozenset({"them", "they", "it", "those", "these", "both"})
 #: Shape words: the arrangement they name.

@@ -67,6 +67,7 @@ from factask.graph.factors import SubtaskFactor
 from factask.graph.order import dependency_graph, in_listed_order
 from factask.graph.taskgraph import TaskGraph
 from factask.relations import RELATION_TYPES
+from factask.relations.aligned import ALIGNING_KINDS
 from factask.vocabulary.errors import FactaskError, InvalidValueError
 from factask.vocabulary.kinds import ASSET_KINDS, kind_spec
 from factask.vocabulary.names import slugify
@@ -268,7 +269,11 @@ def _goal(kinds: dict[str, str], wanted: set[str] | None = None,
     named = {r: s for r, s in options.items() if r in (wanted or ())}
     # An arrangement the proposal names (a stack, a row, a circle) is its task; "on"
     # or "into" beside it say where: the arrangement's branches come first.
-    order = sorted(named or options, key=lambda r: r not in GROUP_RELATIONS)
+    # Into a fixture, a corner marker or a kit, the words mean alignment: those
+    # branches before "inside" / "on" where such an object is named.
+    aligning = bool(ALIGNING_KINDS & set(kinds.values()))
+    order = sorted(named or options, key=lambda r: (r not in GROUP_RELATIONS,
+                                                    not (aligning and r == "aligned")))
     chosen = [b for r in order for b in (named or options)[r].get("anyOf", [(named or options)[r]])
               if "properties" in b]
     if not chosen:

@@ -105,8 +105,8 @@ def _narrow_modes(props: Schema, kinds: dict[str, str]) -> None:
     ref = props.get("reference", {})
     names = [o.get("const") for o in ref.get("anyOf", [ref]) if "const" in o]
     names += [n for o in ref.get("anyOf", [ref]) for n in o.get("enum", [])]
-    modes = {m for n in names if n in kinds for m in modes_for(kinds[n])}
-    allowed = [m for m in props["mode"].get("enum", []) if m in modes]
+    modes = list(dict.fromkeys(m for n in names if n in kinds for m in modes_for(kinds[n])))
+    allowed = [m for m in modes if m in props["mode"].get("enum", [])]  # the kind's first
     if allowed:
         props["mode"] = {"type": "string", "enum": allowed}
 

@@ -31,6 +31,7 @@ from factask.gen.reading.mentions import Mention
 from factask.gen.reading.relation_schemas import relation_over
 from factask.gen.reading.selectors import placed
 from factask.relations import RELATION_TYPES
+from factask.relations.aligned import modes_for
 from factask.vocabulary.kinds import kind_spec
 
 Schema = dict[str, Any]
@@ -69,8 +70,7 @@ def goal_schema(goal: ReadGoal, kinds: dict[str, str], counts: dict[str, int],
                 props["ordered"] = {"const": goal.ordered}
             if "mode" in props and goal.anchor:
                 # Into a corner marker: corner to corner; into a box's hole: the hole.
-                mode = {"corner": "corner", "holed_box": "hole"}.get(kinds[goal.anchor],
-                                                                      "center")
+                mode = modes_for(kinds[goal.anchor])[0]
                 if mode not in props["mode"].get("enum", [mode]):
                     continue
                 props["mode"] = {"const": mode}
