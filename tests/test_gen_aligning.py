@@ -29,9 +29,8 @@ def test_a_corner_marker_asks_corner_to_corner_first() -> None:
 @pytest.mark.parametrize(("proposal", "mode"), [
     # the words state no goal the clause reading can place (a scene sentence between):
     # the grammar's first choice is the aligned goal, corner to corner into a corner
-    ("On the table, there are four colored blocks (red, blue, green, and yellow) and four "
-     "corners. Each corner is marked with a color matching one of the blocks. Pick up each "
-     "block and align it into the corner of the same color, from top left to bottom right.",
+    ("Four blocks (red, blue, green, yellow) wait beside four corners of matching "
+     "colours; each block belongs in its corner.",
      "corner"),
 ])
 def test_the_grammar_offers_alignment_into_aligning_kinds_first(proposal: str,
@@ -49,3 +48,14 @@ def test_matching_words_between_a_preposition_and_its_kind_word() -> None:
     assert [(g.relation, g.objects, g.anchor) for g in read] == [
         ("aligned", (f"{c}_block",), f"{c}_fixture") for c in ("red", "blue", "green",
                                                                  "yellow")]
+
+
+@pytest.mark.parametrize(("proposal", "anchor"), [
+    ("There are four balls and four corners of different colors (red, blue, green, and "
+     "yellow). Place each ball in the corner of the same color.", "corner"),
+])
+def test_the_corner_of_a_colour_is_a_corner_marker(proposal: str, anchor: str) -> None:
+    read = read_goals(proposal, mentions(proposal))
+    assert read is not None and read
+    assert all(g.relation == "aligned" and g.anchor and g.anchor.endswith(anchor)
+               for g in read)

@@ -53,7 +53,10 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
     # An L-shaped marker on the table is a corner; "the corners of the pallet" are places
     # on it, not objects.
     (re.compile(r"\b(?:l|ell)\s*shaped?\s+(?:marker|mark|outline|corner)(s?)\b"), r"corner\1"),
-    (re.compile(r"\bcorners?\s+of\s+(?=(?:the|a|an|its|their|each)\s)"), "edge of "),
+    # ("the corner of the same colour", "of its colour": a corner marker, picked by colour)
+    (re.compile(r"\bcorners?\s+of\s+(?=(?:the|a|an|its|their|each)\s)"
+                r"(?!\w+\s+(?:same|matching|corresponding|identical|own|colou?r)\b)"),
+     "edge of "),
     # "an L shape hole" is a hole (the words say its shape); any other L shape (with
     # or without a noun: block, piece, ...) is an ell.
     (re.compile(r"\b(?:l|ell)\s*shaped?\s+"
