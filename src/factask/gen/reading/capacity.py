@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import re
 import time
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import replace
 from functools import lru_cache
 from itertools import islice, product
@@ -227,13 +227,27 @@ def _problem(keys: tuple[tuple[tuple[str, Any], ...], ...],
     return last
 
 
-def fit_variant(branch: Schema, found: Sequence[Mention]) -> Schema | None:
+def moving_anchors(goal: dict[str, Any], earlier: Sequence[dict[str, Any]]
+                   ) -> list[dict[str, Any]]:
+    """The goals of ``earlier`` (JSON) that move an object ``goal`` anchors on: "the
+    two blocks in a row" before "the log across the two blocks"."""
+    fields = RELATION_TYPES[goal["type"]].anchor_fields if goal.get("type") in \
+        RELATION_TYPES else ()
+    anchors = {n for f in fields for n in (goal.get(f) if isinstance(goal.get(f), list)
+                                           else [goal.get(f)]) if isinstance(n, str)}
+    return [g for g in earlier if anchors & set(g.get("objects") or [])]
+
+
+def fit_variant(branch: Schema, found: Sequence[Mention],
+                before: Sequence[dict[str, Any]] = ()) -> Schema | None:
     """A pinned goal branch narrowed to what can be laid out, or None (nothing can).
 
     Its anchor fields keep the names (and null) whose goal fits, the others set to
     their pinned or null value; a free length (a row's ``spacing``, a circle's
     ``radius``) becomes the :data:`LENGTHS` that fit (and null where the default
-    fits). A branch whose ``objects`` are not pinned comes back unchanged.
+    fits). A branch whose ``objects`` are not pinned comes back unchanged. ``before``:
+    goals done first that move what this one anchors on ("the log across the two
+    blocks" after "the two blocks in a row"): laid out with them, in order.
     """
     props = branch.get("properties", {})
     relation = props.get("type", {}).get("const")
@@ -247,8 +261,11 @@ def fit_variant(branch: Schema, found: Sequence[Mention]) -> Schema | None:
             if not known:
                 return branch  # a field this check cannot fill: leave it to the ladder
             base[field] = value
-    fits: Callable[[dict[str, Any]], bool] = \
-        lambda g: layout_problem(g, found) is None  # noqa: E731
+    def fits(goal: dict[str, Any]) -> bool:
+        if layout_problem(goal, found) is None:
+            return True
+        earlier = moving_anchors(goal, before)
+        return bool(earlier) and goals_problem([*earlier, goal], found) is None
     new = dict(props)
     for field in RELATION_TYPES[relation].anchor_fields:
         if field not in props or "const" in props[field]:
@@ -310,18 +327,24 @@ def prune(schema: Schema, found: Sequence[Mention],
 
 
 def _prune(schema: Schema, found: Sequence[Mention], budget: Deadline,
-           order: Sequence[str] | None = None) -> Schema | None:
+           order: Sequence[str] | None = None,
+           before: Sequence[dict[str, Any]] = ()) -> Schema | None:
     props = schema.get("properties")
     if isinstance(props, dict) and isinstance(props.get("type"), dict) \
             and props["type"].get("const") in RELATION_TYPES:
-        return fit_variant(schema, found)
+        return fit_variant(schema, found, before)
     if "anyOf" in schema:
-        kept = [p for o in schema["anyOf"] if (p := _prune(o, found, budget, order)) is not None]
+        kept = [p for o in schema["anyOf"]
+                if (p := _prune(o, found, budget, order, before)) is not None]
         if not kept:
             return None
         return kept[0] if len(kept) == 1 else {**schema, "anyOf": kept}
     if isinstance(schema.get("prefixItems"), list):
-        items = [_prune(i, found, budget, order) for i in schema["prefixItems"]]
+        items: list[Schema | None] = []
+        for item in schema["prefixItems"]:
+            # A goal anchored on what earlier goals move may be laid out after them.
+            earlier = [g for i in items if i is not None for g in _first_goal(i)]
+            items.append(_prune(item, found, budget, order, earlier))
         if any(i is None for i in items):
             return None
         ordered = acyclic_anchors([i for i in items if i is not None],
@@ -332,9 +355,31 @@ def _prune(schema: Schema, found: Sequence[Mention], budget: Deadline,
         item = _prune(schema["items"], found, budget, order)
         return None if item is None else {**schema, "items": item}
     if isinstance(props, dict) and "goal" in props:
-        goal = _prune(props["goal"], found, budget, order)
+        goal = _prune(props["goal"], found, budget, order, before)
         return None if goal is None else {**schema, "properties": {**props, "goal": goal}}
     return schema
+
+
+def _at_values(variant: Schema) -> dict[str, Any] | None:
+    """A goal variant as a goal (JSON): its pinned objects, every other field at its
+    pinned (or first, or null) value; None where a field has none."""
+    props = variant["properties"]
+    goal: dict[str, Any] = {"objects": _pinned_objects(props["objects"])}
+    for field, schema in props.items():
+        if field != "objects":
+            known, value = _value(schema)
+            if not known:
+                return None
+            goal[field] = value
+    return goal
+
+
+def _first_goal(item: Schema) -> list[dict[str, Any]]:
+    """A tuple item's first goal variant as a goal (:func:`_at_values`); [] where it
+    has none or is not a pinned goal."""
+    variants = _variants(item)
+    goal = _at_values(variants[0]) if variants else None
+    return [goal] if goal is not None else []
 
 
 def _variants(item: Schema) -> list[Schema] | None:
@@ -361,13 +406,9 @@ def _on(variant: Schema, anchor: str) -> list[dict[str, Any]]:
     """The goals (JSON) of ``variant`` that name ``anchor`` in an anchor field: one
     per such field, the other fields at their pinned (or first, or null) values."""
     props = variant["properties"]
-    base: dict[str, Any] = {"objects": _pinned_objects(props["objects"])}
-    for field, schema in props.items():
-        if field != "objects":
-            known, value = _value(schema)
-            if not known:
-                return []
-            base[field] = value
+    base = _at_values(variant)
+    if base is None:
+        return []
     out = []
     for field in _anchor_fields(variant):
         if anchor in names_of(props[field]):

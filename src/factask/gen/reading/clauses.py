@@ -38,6 +38,7 @@ from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 from factask.gen.reading.goal_order import (
+    bridged,
     in_colour_sequence,
     in_member_sequence,
     layered,
@@ -418,6 +419,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
     goals = stacked_in_order(goals, proposal, found)
     goals = [g2 for g in goals for g2 in layered(g, proposal, found)]
     goals = [in_member_sequence(g, proposal, found) for g in goals]
+    goals = bridged(goals, found)
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
     still -= used  # moved or an anchor elsewhere: not still
     still |= unpicked(found, used)  # "the second bowl": the others stay as they are

@@ -1,7 +1,8 @@
 """Passes over the goals the clause reading found (:mod:`factask.gen.reading.clauses`)
 that order or regroup them by what the whole proposal says: goals done in a colour
 sequence (:func:`in_colour_sequence`), the members of coloured groups in a sequence
-that repeats colours (:func:`in_member_sequence`), objects put one by one where the words say
+that repeats colours (:func:`in_member_sequence`), a pair standing apart under a
+bridge (:func:`bridged`), objects put one by one where the words say
 what is at the bottom and the top as one stack (:func:`stacked_in_order`), a stack
 built in layers as one row per layer (:func:`layered`). Split from the clause reading
 (one concept: the order the words give goals already read).
@@ -153,5 +154,27 @@ def in_member_sequence(goal: ReadGoal, proposal: str,
     return replace(goal, objects=objects, ordered=True)
 
 
-__all__ = ["LAYER_WORDS", "in_colour_sequence", "in_member_sequence", "layered",
+def bridged(goals: list[ReadGoal], found: Sequence[Mention]) -> list[ReadGoal]:
+    """A bridge: one object put on a pair of objects the robot moves ("lay the log
+    across the two red blocks", "balance the cylinder on top of the red blocks") rests
+    on both, so the pair stands apart in a row first, where no goal of the words moves
+    the pair already; the goals after it one step later."""
+    by_name = {m.name: m for m in found}
+    moved = {o for g in goals for o in g.objects}
+    out = list(goals)
+    for g in goals:
+        pair = by_name.get(g.anchor or "")
+        deck = [by_name.get(o) for o in g.objects]
+        if g.relation != "on" or pair is None or not pair.movable or pair.count != 2 \
+                or pair.name in moved or len(deck) != 1 or deck[0] is None \
+                or deck[0].count != 1:
+            continue
+        out = [replace(x, step=x.step + 1) if x.step >= g.step else x for x in out]
+        out.insert(out.index(replace(g, step=g.step + 1)),
+                   ReadGoal("row", (pair.name,), None, False, g.step))
+        moved.add(pair.name)
+    return out
+
+
+__all__ = ["LAYER_WORDS", "bridged", "in_colour_sequence", "in_member_sequence", "layered",
            "stacked_in_order"]

@@ -36,6 +36,8 @@ from factask.gen.reading.group_counts import (
 from factask.gen.reading.selectors import distribute, select_members
 from factask.gen.reading.sequences import sequence_members
 from factask.gen.reading.words import (
+    DECK_SIZE,
+    DECK_WORDS,
     MODIFIERS,
     NUMBER_WORDS,
     OBJECT_LEAD,
@@ -439,7 +441,8 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                     recount(found, again, count)  # "... there are five yellow balls"
                 continue
             found[name] = Mention(name, kind, color, count, ALSO_KINDS.get(singular, ()),
-                                  listed, moved, counted, pinned=pinned)
+                                  listed, moved, counted, pinned=pinned,
+                                  size=DECK_SIZE if singular in DECK_WORDS else None)
             if len(found) >= MAX_MENTIONS:
                 return
 

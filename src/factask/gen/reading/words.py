@@ -30,11 +30,20 @@ KIND_WORDS: dict[str, str] = {
     "plate": "stand", "hole": "fixture", "slot": "fixture", "socket": "fixture",
     "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
     "heap": "pile", "board": "kit", "silhouette": "fixture",
+    # What is laid across a bridge's pillars: a long flat box (:data:`DECK_SIZE`).
+    "bar": "box", "plank": "box", "beam": "box", "deck": "box", "slab": "box",
+    "lintel": "box",
     # A box with a hole in its side (one word: see HOLED_BOXES).
     "holedbox": "holed_box",
     # Objects of no stated shape are blocks: "pack the objects into the container".
     "object": "block", "item": "block", "piece": "block", "shape": "block",
 }
+
+
+#: Words of a long flat box laid across two pillars, and its size (x, y, z; metres):
+#: long enough to span two 4 cm blocks 8 cm apart with room to spare.
+DECK_WORDS = frozenset({"bar", "plank", "beam", "deck", "slab", "lintel"})
+DECK_SIZE = (0.14, 0.04, 0.02)
 
 
 #: Count words (a digit string is read too).
@@ -267,5 +276,6 @@ def count_of(word: str) -> int:
     return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
 
 
-__all__ = ["GRADE_WORDS", "KIND_WORDS", "MODIFIERS", "NUMBER_WORDS", "OBJECT_LEAD", "PHRASES",
-           "WORD", "count_of", "kind_of", "plural_of", "resolve_ones", "words_of"]
+__all__ = ["DECK_SIZE", "DECK_WORDS", "GRADE_WORDS", "KIND_WORDS", "MODIFIERS", "NUMBER_WORDS",
+           "OBJECT_LEAD", "PHRASES", "WORD", "count_of", "kind_of", "plural_of", "resolve_ones",
+           "words_of"]
