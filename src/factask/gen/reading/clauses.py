@@ -196,8 +196,9 @@ def _referents(words: list[str], i: int, found: Sequence[Mention]) -> list[Menti
     graded = pick_graded(words, i, same, selector in ("other", "another"))
     if graded is not None:
         return graded  # "the small ball", "the other box" after "the small box"
-    if kind_of(words[i])[1] and selector != "one":
-        selector = None  # "the left zones": not one member ("one of the zones" is)
+    if kind_of(words[i])[1] and selector not in ("one", "other"):
+        selector = None  # "the left zones": not one member ("one of the zones", "the
+        # other boxes" are)
     picked = [m for m in same if selector in m.selectors]
     if not picked and selector is None and not kind_of(words[i])[1]:
         # "a brown box ... another brown box": the one named first, not another
@@ -346,7 +347,8 @@ def _read(proposal: str, found: tuple[Mention, ...]
             if negated and (w in _POSITIVE or (w in ACTION_VERBS and words[i - 1] not in
                                                NEGATIONS | {"do", "to", "t"})):
                 negated = False
-            if w in PRONOUNS:
+            if w in PRONOUNS and not (w == "both" and i + 1 < len(words)
+                                      and words[i + 1] in COLOR_NAMES):  # "both red"
                 refs = list(last)  # "... and put them on the pallet", "on top of it"
             elif kind_of(w)[0] is not None:
                 refs = _referents(words, i, found)
@@ -355,7 +357,8 @@ def _read(proposal: str, found: tuple[Mention, ...]
             if not refs:
                 continue
             prep = _anchor_prep(words, i)
-            if negated or idle or (_source(words, i) and not any(m.movable for m in refs)):
+            if negated or idle or _among(words, i) or (
+                    _source(words, i) and not any(m.movable for m in refs)):
                 still.update(m.name for m in refs)
                 continue
             movers = [m for m in pending if m not in refs]
@@ -436,6 +439,15 @@ def _source(words: list[str], i: int) -> bool:
                                            or count_of(words[j]) or is_selector(words[j])):
         j -= 1
     return j >= 0 and (words[j] == "from" or (words[j] == "of" and j and words[j - 1] == "out"))
+
+
+def _among(words: list[str], i: int) -> bool:
+    """Whether the kind word ``words[i]`` ends a phrase "(from) among ...": the group a
+    named object is picked out of ("the yellow ball from among the four balls")."""
+    j = i - 1
+    while j >= 0 and (words[j] in _LEAD or words[j] in COLOR_NAMES or count_of(words[j])):
+        j -= 1
+    return j >= 0 and words[j] in ("among", "amongst")
 
 
 def _add(goals: list[ReadGoal], goal: ReadGoal, by_name: dict[str, Mention],
