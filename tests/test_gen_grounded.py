@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from factask.gen.answers.step_schemas import schema_problems
+from factask.gen.first_choice import first_choice
 from factask.gen.reading import grounded
 from factask.gen.reading.mentions import mentions
 from factask.graph.taskgraph import TaskGraph
@@ -262,6 +263,22 @@ def test_goal_problems_name_an_unused_object_and_a_trivial_group() -> None:
     assert any("green_block" in p for p in problems)
     good = [{"type": "on", "objects": ["red_block"], "support": "green_block"}]
     assert grounded.goal_problems(good, found) == []
+
+
+@pytest.mark.parametrize("proposal", [
+    "Place the white block between the two grey zones.",
+    "Build a pyramid on the table: the three green blocks at the bottom, the two red "
+    "blocks in the middle and the blue block on top.",
+])
+def test_the_check_takes_every_goal_the_stated_grammar_admits(proposal: str) -> None:
+    # a row of one between a pair, or on the layer below: the grammar admits it, and
+    # the one-shot check must too (it refused them: no graph at all)
+    found = mentions(proposal)
+    schema = grounded.compact_graph_schema(found, proposal)
+    answer = first_choice(schema)
+    goals = [f["goal"] for f in answer["factors"]]
+    assert any(g["type"] == "row" and len(g["objects"]) == 1 for g in goals)
+    assert grounded.goal_problems(goals, found) == []
 
 
 def test_an_object_is_never_its_own_anchor() -> None:

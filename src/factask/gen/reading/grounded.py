@@ -308,7 +308,7 @@ def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention],
                   still: Collection[str] = ()) -> list[str]:
     """What makes a grounded graph's goals another (or no) task: a named object no
     goal uses (but those the words keep still), a row, circle or stack of fewer
-    than two objects.
+    than two objects (but a row of one between a pair or on a layer below).
 
     Args:
         goals: The answer's goals (JSON).
@@ -329,7 +329,11 @@ def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention],
         kind = goal.get("type")
         objects = [n for n in goal.get("objects", []) if n in counts]
         instances = sum(counts[n] for n in objects) + (1 if goal.get("base") else 0)
-        if kind in GROUP_RELATIONS and instances < 2:
+        # A row of one between a pair ("between the two grey zones") or laid on the
+        # layer below (a pyramid's top): a task, as the grammar admits it.
+        between = kind == "row" and (counts.get(goal.get("along") or "", 0) == 2
+                                     or bool(goal.get("on")))
+        if kind in GROUP_RELATIONS and instances < 2 and not between:
             out.append(f"factors.{i}.goal: a {kind} of {instances} object is no task; use "
                        "the relation the proposal asks for, over the objects it names")
     for m in found:
