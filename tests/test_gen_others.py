@@ -1,4 +1,4 @@
-"""The rest of a kind beside a coloured one (mentions._others): "the two other
+"""The rest of a kind beside a coloured one (selectors.rest_of_kind): "the two other
 cylinders", "the other two boxes, both red", "the yellow ball from among the four"."""
 
 from __future__ import annotations

@@ -33,7 +33,7 @@ from factask.gen.reading.group_counts import (
     recount,
     split_per_shape,
 )
-from factask.gen.reading.selectors import distribute, select_members
+from factask.gen.reading.selectors import distribute, rest_of_kind, select_members
 from factask.gen.reading.sequences import sequence_members
 from factask.gen.reading.words import (
     DECK_SIZE,
@@ -391,7 +391,7 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
             j -= 1
         moved = kind in CARRIED_KINDS and _moved_at(words, j)
         pinned = kind_spec(kind).movable and bool(PINNED_WORDS & set(words[max(j - 1, 0):j + 1]))
-        others = _others(words, i, earlier) if plural and not colors else None
+        others = rest_of_kind(words, i, earlier) if plural and not colors else None
         if others is not None:  # "the two other cylinders", "one of the four balls"
             count, colour = others
             stem = f"other_{colour}_{kind}" if colour else f"other_{kind}"
@@ -455,38 +455,6 @@ def _scan(words: list[str], found: dict[str, Mention]) -> None:
                                   size=DECK_SIZE if singular in DECK_WORDS else None)
             if len(found) >= MAX_MENTIONS:
                 return
-
-
-#: Words that say a counted group is the rest of its kind: "the two other cylinders".
-OTHER_WORDS = frozenset({"other", "others", "remaining", "rest"})
-#: Words that say a counted group holds the coloured one named before it: "the yellow
-#: ball from among the four balls", "one of the three cylinders".
-_AMONG = frozenset({"among", "amongst", "of"})
-
-
-def _others(words: list[str], i: int, earlier: Sequence[Mention]) -> tuple[int, str | None] | None:
-    """The count and colour of the rest of a kind that an uncoloured counted plural at
-    ``words[i]`` names after coloured ones of that kind (``earlier``): "the two other
-    cylinders" (2), "the other two boxes, both red" (2, red), "the yellow ball from
-    among the four balls" (3: the four hold the yellow one); None: not such a phrase."""
-    if not earlier or any(m.color is None or m.group for m in earlier):
-        return None
-    k = i - 1
-    other = False
-    while k >= 0 and (words[k] in OTHER_WORDS or words[k] in MODIFIERS):
-        other = other or words[k] in OTHER_WORDS
-        k -= 1
-    count = count_of(words[k]) if k >= 0 and words[k] not in ("a", "an") else 0
-    if count < 1:
-        return None
-    if not other and k >= 1 and words[k - 1] == "the" and k >= 2 and words[k - 2] in _AMONG:
-        count -= sum(m.count for m in earlier)  # the group holds the ones named before
-    elif not other and not (k >= 1 and words[k - 1] in OTHER_WORDS):
-        return None
-    after = words[i + 1:i + 3]
-    colour = after[1] if len(after) == 2 and after[0] in ("both", "all", "each") \
-        and after[1] in COLOR_NAMES else None
-    return (min(count, MAX_COUNT), colour) if count >= 1 else None
 
 
 #: Words that state how many objects there are: "there are three blocks", "... and

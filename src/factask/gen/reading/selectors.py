@@ -20,6 +20,10 @@ the group becomes its members, one object each (:func:`select_members`):
 * "one X ... the other" names two members of any group (one and the rest), with no
   places.
 
+The rest of a kind beside a coloured one ("the two other cylinders", "the yellow ball
+from among the four balls") is a group of its own, picked by "the other"
+(:func:`rest_of_kind`, read by the mention scan).
+
 Sides on two axes at once ("the back-left corner") are a corner of the table, not a
 member of a row: left whole (and the words unread).
 
@@ -35,8 +39,9 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Protocol
 
+from factask.gen.reading.group_counts import MAX_COUNT
 from factask.gen.reading.group_counts import Mention as CountedMention
-from factask.gen.reading.words import kind_of, plural_of, words_of
+from factask.gen.reading.words import MODIFIERS, count_of, kind_of, plural_of, words_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
 
@@ -405,5 +410,51 @@ def unpicked(found: Sequence[Mention], used: set[str]) -> set[str]:
     return {m.name for m in found if m.group is not None and m.name not in used}
 
 
-__all__ = ["LAST_WORDS", "ORDINAL_RANKS", "SIDE_ENDS", "distribute", "is_selector", "placed",
-           "select_members", "selector_before", "spell_out", "unpicked"]
+#: Words that say a counted group is the rest of its kind: "the two other cylinders".
+OTHER_WORDS = frozenset({"other", "others", "remaining", "rest"})
+#: Words that say a counted group holds the coloured one named before it: "the yellow
+#: ball from among the four balls", "one of the three cylinders".
+_AMONG = frozenset({"among", "amongst", "of"})
+
+
+def rest_of_kind(words: list[str], i: int, earlier: Sequence[Mention]
+                 ) -> tuple[int, str | None] | None:
+    """The count and colour of the rest of a kind that an uncoloured counted plural at
+    ``words[i]`` names after coloured ones of that kind (``earlier``): "the two other
+    cylinders" (2), "the other two boxes, both red" (2, red), "the yellow ball from
+    among the four balls" (3: the four hold the yellow one); None: not such a phrase."""
+    if not earlier or any(m.color is None or m.group for m in earlier):
+        return None
+    k = i - 1
+    other = False
+    while k >= 0 and (words[k] in OTHER_WORDS or words[k] in MODIFIERS):
+        other = other or words[k] in OTHER_WORDS
+        k -= 1
+    count = count_of(words[k]) if k >= 0 and words[k] not in ("a", "an") else 0
+    if count < 1:
+        return None
+    if not other and k >= 1 and words[k - 1] == "the" and k >= 2 and words[k - 2] in _AMONG:
+        count -= sum(m.count for m in earlier)  # the group holds the ones named before
+    elif not other and not (k >= 1 and words[k - 1] in OTHER_WORDS):
+        return None
+    after = words[i + 1:i + 3]
+    colour = after[1] if len(after) == 2 and after[0] in ("both", "all", "each") \
+        and after[1] in COLOR_NAMES else None
+    return (min(count, MAX_COUNT), colour) if count >= 1 else None
+
+
+
+__all__ = [
+    "LAST_WORDS",
+    "ORDINAL_RANKS",
+    "OTHER_WORDS",
+    "SIDE_ENDS",
+    "distribute",
+    "is_selector",
+    "placed",
+    "rest_of_kind",
+    "select_members",
+    "selector_before",
+    "spell_out",
+    "unpicked",
+]
