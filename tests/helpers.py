@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from factask.geometry import Pose, quat_from_axis_angle, quat_mul
 from factask.graph import TaskGraph
 from factask.scene.objects import footprint_corners, obb_overlaps
 from factask.sim.env import FactaskEnv
@@ -44,3 +46,11 @@ def free_spot(env: FactaskEnv, half: float = 0.04, seed: int = 0,
         if not obb_overlaps(square[None], occ).any():
             return xy
     raise AssertionError("no free spot found in the workspace")
+
+
+def perturbed(pose: Pose, d: tuple[float, float, float, float, float]) -> Pose:
+    """``pose`` moved by (dx, dy, dz) m, turned by dyaw and tilted by dtilt degrees."""
+    dx, dy, dz, dyaw, dtilt = d
+    q = quat_mul(quat_from_axis_angle((0.0, 0.0, 1.0), math.radians(dyaw)), pose.quat)
+    q = quat_mul(quat_from_axis_angle((1.0, 0.0, 0.0), math.radians(dtilt)), q)
+    return Pose(pose.pos + np.array([dx, dy, dz]), q)

@@ -12,6 +12,7 @@ from functools import cache
 
 import numpy as np
 import pytest
+from helpers import perturbed
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -54,14 +55,6 @@ def _reset(name: str, seed: int) -> tuple[dict[str, Pose], dict[str, SolvedFacto
     return reset_layout(_graph(name), np.random.default_rng(seed))
 
 
-def _perturbed(pose: Pose, d: tuple[float, float, float, float, float]) -> Pose:
-    """``pose`` moved by (dx, dy, dz) m, turned by dyaw and tilted by dtilt degrees."""
-    dx, dy, dz, dyaw, dtilt = d
-    q = quat_mul(quat_from_axis_angle((0.0, 0.0, 1.0), math.radians(dyaw)), pose.quat)
-    q = quat_mul(quat_from_axis_angle((1.0, 0.0, 0.0), math.radians(dtilt)), q)
-    return Pose(pose.pos + np.array([dx, dy, dz]), q)
-
-
 #: Per object: where it starts from (its initial pose, its target, or the target of
 #: another object of the factor) and how far it is moved from there.
 _offsets = st.tuples(*(st.one_of(st.just(0.0), st.floats(-r, r)) for r in
@@ -84,7 +77,7 @@ def _world(data: st.DataObject, name: str, seed: int
         where = data.draw(_where, label=f"{n} from")
         base = {"start": layout[n], "target": targets[n], "held": targets[n],
                 "swap": targets[data.draw(st.sampled_from(names), label=f"{n} swap")]}[where]
-        poses[n] = _perturbed(base, data.draw(_offsets, label=f"{n} offset"))
+        poses[n] = perturbed(base, data.draw(_offsets, label=f"{n} offset"))
         if where == "held" and not held:
             held.append(n)
     return poses, solved, held

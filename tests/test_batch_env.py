@@ -356,6 +356,11 @@ def test_the_oracle_in_lockstep_succeeds_where_the_cpu_oracle_does(batch: BatchE
         assert bool(result.success[w]) == cpu.success, (seed, result.failure[w], cpu.failure)
         assert result.actions[w] == cpu.steps
     assert result.success.all() and result.failure == [None] * len(SEEDS)
+    # Every action planned once, as array work over the worlds (nothing in this task
+    # needs the scalar oracle's fallback), one timing per lockstep action.
+    assert result.planned_arrays + result.planned_fallback == result.actions.sum()
+    assert result.planned_fallback == 0
+    assert len(result.planning_seconds) == result.actions.max()
 
 
 def _place_actions(batch: BatchEnv) -> dict[str, np.ndarray]:

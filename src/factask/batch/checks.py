@@ -60,22 +60,25 @@ class BatchFactorStatus:
         progress: Progress in [0, 1] per world (W,).
         satisfied: Every object placed (or, for piles, the share reached) (W,).
         placed: Which of the factor's objects are placed (W, n), in relation order.
+        slot: The slot each placed object occupies (W, n), -1 elsewhere; None for the
+            relations whose check matches no slots (regions, ``on``, piles).
     """
 
     progress: np.ndarray
     satisfied: np.ndarray
     placed: np.ndarray
+    slot: np.ndarray | None = None
 
 
 #: A batched check: (goal, the factor's stacked targets, the scene) -> status.
 BatchCheck = Callable[[RelationBase, BatchTargets, BatchScene], BatchFactorStatus]
 
 
-def _from_placed(placed: np.ndarray) -> BatchFactorStatus:
+def _from_placed(placed: np.ndarray, slot: np.ndarray | None = None) -> BatchFactorStatus:
     n = placed.shape[1]
     count = placed.sum(axis=1)
     progress = count / n if n else np.ones(placed.shape[0])
-    return BatchFactorStatus(progress.astype(float), count == n, placed)
+    return BatchFactorStatus(progress.astype(float), count == n, placed, slot)
 
 
 # ------------------------------------------------------------------ slots
@@ -130,7 +133,8 @@ def assign_slots(ok: np.ndarray, chain: bool) -> np.ndarray:
 def check_slots_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
                       ) -> BatchFactorStatus:
     """Slot relations (``at_pose``, ``stack``, ``row``, ``circle``, ``aligned``)."""
-    return _from_placed(assign_slots(slot_fits(goal, t, scene), t.chain) >= 0)
+    slot = assign_slots(slot_fits(goal, t, scene), t.chain)
+    return _from_placed(slot >= 0, slot)
 
 
 # ------------------------------------------------------------------ areas

@@ -174,6 +174,49 @@ def in_disk(points: np.ndarray, center: np.ndarray, radius: np.ndarray) -> np.nd
     return d <= radius[..., None] + GEOMETRY_EPS
 
 
-__all__ = ["box_z_range", "footprint_grid", "footprint_points_batch", "in_disk", "in_rect",
-           "normalize_quat", "rotate_2d", "rotation_matrices", "tilts_deg",
-           "to_local_2d", "upright_tilts_deg", "yaw_errors_deg", "yaws"]
+def footprint_rects(half_xy: np.ndarray, xy: np.ndarray, yaw: np.ndarray) -> np.ndarray:
+    """Footprint corners (..., 4, 2), counter-clockwise, of rectangles of half extents
+    ``half_xy`` (..., 2) at centres ``xy`` (..., 2) turned by ``yaw`` (...,) (see
+    :func:`~factask.scene.objects.footprint_corners`)."""
+    signs = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
+    local = signs * np.asarray(half_xy, dtype=float)[..., None, :]
+    return rotate_2d(local, np.asarray(yaw)[..., None]) + np.asarray(xy)[..., None, :]
+
+
+def _edge_normals(corners: np.ndarray) -> np.ndarray:
+    e = np.stack([corners[..., 1, :] - corners[..., 0, :],
+                  corners[..., 3, :] - corners[..., 0, :]], axis=-2)
+    norm = np.linalg.norm(e, axis=-1, keepdims=True)
+    return e / np.where(norm > 0, norm, 1.0)
+
+
+def rects_overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Separating-axis overlap of rectangles paired element by element: corners
+    (..., 4, 2) each, broadcast together (see :func:`~factask.scene.objects.obb_overlaps`:
+    touching edges do not count)."""
+    a, b = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(b, dtype=float))
+    axes = np.concatenate([_edge_normals(a), _edge_normals(b)], axis=-2)  # (..., 4, 2)
+    pa = np.einsum("...ad,...cd->...ac", axes, a)
+    pb = np.einsum("...ad,...cd->...ac", axes, b)
+    separated = (pa.max(-1) <= pb.min(-1) + GEOMETRY_EPS) | (pb.max(-1) <= pa.min(-1)
+                                                              + GEOMETRY_EPS)
+    return ~separated.any(-1)
+
+
+__all__ = [
+    "box_z_range",
+    "footprint_grid",
+    "footprint_points_batch",
+    "footprint_rects",
+    "in_disk",
+    "in_rect",
+    "normalize_quat",
+    "rects_overlap",
+    "rotate_2d",
+    "rotation_matrices",
+    "tilts_deg",
+    "to_local_2d",
+    "upright_tilts_deg",
+    "yaw_errors_deg",
+    "yaws",
+]

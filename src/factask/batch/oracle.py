@@ -1,75 +1,31 @@
-"""The oracle in lockstep: one plan per world, executed together.
+"""The oracle in lockstep: every world's next action planned at once, executed together.
 
-Each world gets the single env's scripted oracle (:class:`factask.sim.oracle.scripted.Oracle`,
-unchanged), which reads a :class:`WorldView` — that world's objects, solved
-targets, poses, held object and scalar status, as the oracle reads an env — and
-plans its next action. The batch then runs every world's pick-and-place at once
-(:func:`factask.batch.primitive.pick_and_place`) and re-checks every world. Worlds
-that are done (success, the oracle gave up, the action budget used up, a physics
-failure) stand still while the others go on.
+Each loop plans every running world's next action with
+:class:`~factask.batch.planner.LockstepPlanner` — the single env's scripted oracle's
+rules written as array work over worlds, a world whose step needs more (an obstacle
+to move, a receptacle taken by its rim, ...) planned alone by its own scalar
+:class:`~factask.sim.oracle.scripted.Oracle` — then runs every world's pick-and-place
+at once (:func:`factask.batch.primitive.pick_and_place`) and re-checks every world.
+Worlds that are done (success, the oracle gave up, the action budget used up, a
+physics failure) stand still while the others go on.
 
-Planning is Python, world by world (the oracle's own code); only the physics is
-batched. Pushes (piles) and low carries (ropes) are not batched yet: a world whose
-oracle asks for one stops with that reason.
+Pushes (piles) and low carries (ropes) are not batched yet: a world whose oracle
+asks for one stops with that reason.
 """
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from factask.geometry import Pose
-from factask.sim.layout.checks import TaskStatus, check_task
-from factask.sim.oracle.scripted import Oracle, OracleAction
+from factask.batch.planner import LockstepPlanner, WorldView
 from factask.vocabulary.tolerances import SUCCESS_REWARD
 
 if TYPE_CHECKING:
     from factask.batch.env import BatchEnv
-    from factask.sim.env import FactaskEnv
-
-
-class WorldView:
-    """One world of a batch, read as the oracle reads a :class:`FactaskEnv`.
-
-    Args:
-        batch: The batch.
-        world: The world's index.
-    """
-
-    def __init__(self, batch: BatchEnv, world: int) -> None:
-        self.batch, self.world = batch, int(world)
-        self.graph = batch.graph
-        self.objects = batch.objects
-        self._poses: dict[str, Pose] = {}
-        self._held: set[str] = set()
-
-    @property
-    def solved(self) -> dict:
-        """The world's solved factors (its own layout's targets)."""
-        return self.batch.solved[self.world]
-
-    def refresh(self, poses: np.ndarray, held: str | None) -> None:
-        """Take this world's poses (n, 7) and held object from a batch snapshot."""
-        self._poses = {n: Pose(p[:3], p[3:]) for n, p in
-                       zip(self.batch.object_names, poses, strict=True)}
-        self._held = {held} if held else set()
-
-    def object_poses(self) -> dict[str, Pose]:
-        """Every object's pose in this world (as of the last refresh)."""
-        return dict(self._poses)
-
-    def held_objects(self) -> set[str]:
-        """The instance this world's cup holds (as of the last refresh)."""
-        return set(self._held)
-
-    def status(self) -> TaskStatus:
-        """The scalar status of this world (milestones reached so far kept latched)."""
-        reached = {n for n, r in zip(self.batch.factor_names, self.batch.reached[self.world],
-                                     strict=True) if r}
-        return check_task(self.graph, self.solved, self._poses, self._held, self.objects,
-                          reached)
 
 
 @dataclass(frozen=True)
@@ -82,6 +38,9 @@ class BatchEpisodeResult:
         actions: Actions each world took (num_envs,).
         failure: Why each world stopped short (None where it succeeded).
         sim_steps: Physics steps of the whole run (every world steps them).
+        planning_seconds: Host time spent planning each lockstep action (every world's).
+        planned_arrays: Actions planned as array work over worlds.
+        planned_fallback: Actions the scalar oracle planned for one world alone.
     """
 
     success: np.ndarray
@@ -89,13 +48,21 @@ class BatchEpisodeResult:
     actions: np.ndarray
     failure: list[str | None]
     sim_steps: int
+    planning_seconds: tuple[float, ...] = ()
+    planned_arrays: int = 0
+    planned_fallback: int = 0
+
+
+def planner_for(batch: BatchEnv) -> LockstepPlanner:
+    """A :class:`LockstepPlanner` for the batch's worlds as they were last reset (each
+    world's scalar oracle seeded with its reset seed, as
+    :func:`factask.sim.episode.run_episode` seeds its oracle)."""
+    return LockstepPlanner(batch.graph, batch.objects, batch.object_names, batch.solved,
+                           [int(s) for s in batch.seeds])
 
 
 def run_oracle(batch: BatchEnv, max_actions: int | None = None) -> BatchEpisodeResult:
     """Run the oracle in every world from the batch's current (reset) state, in lockstep.
-
-    Each world's oracle is seeded with the world's reset seed, as
-    :func:`factask.sim.episode.run_episode` seeds its oracle with the episode's.
 
     Args:
         batch: A floating-cup batch, every world reset.
@@ -105,51 +72,40 @@ def run_oracle(batch: BatchEnv, max_actions: int | None = None) -> BatchEpisodeR
         The :class:`BatchEpisodeResult`.
     """
     w = batch.num_envs
-    views = [WorldView(batch, k) for k in range(w)]
-    # The oracle reads only what a WorldView has (objects, solved, poses, held, status).
-    oracles = [Oracle(cast("FactaskEnv", v), seed=int(batch.seeds[k]))
-               for k, v in enumerate(views)]
+    planner = planner_for(batch)
     budget = batch.graph.max_actions() if max_actions is None else int(max_actions)
     done = np.zeros(w, dtype=bool)
     actions = np.zeros(w, dtype=int)
     failure: list[str | None] = [None] * w
     steps = 0
+    timings: list[float] = []
     status = batch.status()
     while not done.all():
-        poses, held = batch.object_poses(), batch.held_objects()
         problems = batch.physics_failures()
-        pick, place = np.array(batch.command), np.array(batch.command)
-        active = np.zeros(w, dtype=bool)
         for k in np.flatnonzero(~done):
             if problems[k] is not None:
                 done[k], failure[k] = True, problems[k]
-                continue
-            if status.success[k]:
-                done[k] = True
-                continue
-            if actions[k] >= budget:
+            elif actions[k] >= budget and not status.success[k]:
                 done[k], failure[k] = True, f"action budget of {budget} used up"
-                continue
-            views[k].refresh(poses[k], held[k])
-            planned = oracles[k].plan()
-            if planned is None:
-                done[k] = True
-                failure[k] = oracles[k].failure or "the oracle stopped"
-            elif not isinstance(planned, OracleAction):
-                done[k] = True
-                failure[k] = f"{type(planned).__name__} is not batched yet"
-            else:
-                pick[k], place[k], active[k] = planned.pick, planned.place, True
-        if not active.any():
+        if done.all():
             break
-        result = batch.pick_and_place(pick, place, active)
+        start = time.perf_counter()
+        plan = planner.plan(batch.scene(), status, ~done)
+        took = time.perf_counter() - start
+        for k in np.flatnonzero(plan.stop):
+            done[k], failure[k] = True, plan.failure[k]
+        if not plan.act.any():
+            break
+        timings.append(took)
+        result = batch.pick_and_place(plan.pick, plan.place, plan.act)
         steps += result.sim_steps
-        actions += active
+        actions += plan.act
         status = batch.status()
     success = status.reward >= SUCCESS_REWARD
     failure = [None if s else (f or "did not succeed") for s, f in
                zip(success, failure, strict=True)]
-    return BatchEpisodeResult(success, status.reward.copy(), actions, failure, steps)
+    return BatchEpisodeResult(success, status.reward.copy(), actions, failure, steps,
+                              tuple(timings), planner.planned_arrays, planner.planned_fallback)
 
 
-__all__ = ["BatchEpisodeResult", "WorldView", "run_oracle"]
+__all__ = ["BatchEpisodeResult", "WorldView", "planner_for", "run_oracle"]

@@ -62,7 +62,7 @@ MAX_IDLE_PUSHES = 6
 
 class OracleView(Protocol):
     """What the oracle reads of an env: :class:`factask.sim.env.FactaskEnv` after
-    ``reset``, or one world of a batch (:class:`factask.batch.oracle.WorldView`).
+    ``reset``, or one world of a batch (:class:`factask.batch.planner.WorldView`).
 
     The oracle never steps the env itself (its caller does), so it needs no import of
     the env: it sits beside it, below the episode loop that drives both.
