@@ -25,6 +25,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 
+from factask.batch.agreement import batched
 from factask.batch.assignment import assign_min_cost
 from factask.batch.geometry import footprint_rects, rects_overlap
 from factask.batch.planner import LockstepPlanner, round_mm, yaw_toward
@@ -281,3 +282,16 @@ def test_most_actions_are_planned_as_arrays_and_fallbacks_say_why() -> None:
     assert house.planned_fallback >= 1
     assert house.planned_arrays > house.planned_fallback
     assert set(house.fallback_reasons) >= {"something stands at the target"}
+
+
+@pytest.mark.parametrize(("name", "action"), [("mix-piles", "PushAction"),
+                                              ("align-rope", "CarryAction")])
+def test_pushes_and_rope_carries_stop_the_world_and_say_so(name: str, action: str) -> None:
+    graph = get_task(name)
+    objects = objects_by_name(graph)
+    start, solved = _layout(name, 0)
+    scene, status = _batch_status(graph, objects, [solved], [start], [set()])
+    plan = LockstepPlanner(graph, objects, list(objects), [solved], [0]).plan(scene, status)
+    assert plan.stop[0] and not plan.act[0] and plan.fallback[0]
+    assert plan.failure[0] == f"{action} is not batched yet"
+    assert batched(graph) is False

@@ -188,15 +188,22 @@ class BatchEnv:
         state = np.zeros(self._state.shape, dtype=np.float32)
         mask = np.zeros(self.num_envs, dtype=bool)
         m, d = self.cpu_env.model, self.cpu_env.data
-        row = np.empty(mujoco.mj_stateSize(m, STATE_SIG))
+        # A seed given to several worlds is reset once (a reset is deterministic in its
+        # seed): many worlds from a few layouts cost what those layouts cost.
+        done: dict[int, tuple[np.ndarray, dict[str, SolvedFactor], dict[str, Pose]]] = {}
         for w, s in zip(idx, seeds, strict=True):
-            self.cpu_env.reset(seed=int(s))
-            mujoco.mj_getState(m, d, row, STATE_SIG)
+            if int(s) not in done:
+                self.cpu_env.reset(seed=int(s))
+                row = np.empty(mujoco.mj_stateSize(m, STATE_SIG))
+                mujoco.mj_getState(m, d, row, STATE_SIG)
+                done[int(s)] = (row, dict(self.cpu_env.solved),
+                                dict(self.cpu_env.initial_layout))
+            row, solved, layout = done[int(s)]
             state[w] = row
             mask[w] = True
             self.seeds[w] = int(s)
-            self.solved[w] = dict(self.cpu_env.solved)
-            self.initial_layouts[w] = dict(self.cpu_env.initial_layout)
+            self.solved[w] = dict(solved)
+            self.initial_layouts[w] = dict(layout)
             self._reached[w] = False
         self._was_reset |= mask
         self.suction.reset(mask)
