@@ -28,6 +28,7 @@ from scipy.optimize import linear_sum_assignment
 from factask.batch.agreement import batched
 from factask.batch.assignment import assign_min_cost
 from factask.batch.geometry import footprint_rects, rects_overlap
+from factask.batch.grasp import rim_offsets
 from factask.batch.planner import LockstepPlanner, round_mm, yaw_toward
 from factask.batch.scene import BatchScene
 from factask.batch.status import check_task_batch
@@ -36,9 +37,10 @@ from factask.geometry import Pose
 from factask.graph.taskgraph import TaskGraph
 from factask.library import get_task, task_names
 from factask.relations.solving import SolvedFactor
-from factask.scene.objects import obb_overlaps, objects_by_name
+from factask.scene.objects import obb_overlaps, objects_by_name, top_z
 from factask.sim.env import FactaskEnv
 from factask.sim.layout.reset import reset_layout
+from factask.sim.oracle.pick_points import grasp_offset, takes_by_rim
 from factask.sim.oracle.scripted import Oracle, OracleAction, _yaw_toward
 from factask.vocabulary.errors import InvalidValueError
 
@@ -295,3 +297,29 @@ def test_pushes_and_rope_carries_stop_the_world_and_say_so(name: str, action: st
     assert plan.stop[0] and not plan.act[0] and plan.fallback[0]
     assert plan.failure[0] == f"{action} is not batched yet"
     assert batched(graph) is False
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 5), st.lists(st.tuples(_xy, _xy, st.floats(0.0, 0.06), _yaw),
+                                   min_size=12, max_size=12))
+def test_receptacles_are_taken_on_the_rim_the_scalar_oracle_takes(
+        seed: int, moves: list[tuple[float, float, float, float]]) -> None:
+    # Free bowls among blocks: nearby blocks as high as the rim (moved up to 6 cm up)
+    # rule rim points out, as in the scalar grasp_offset.
+    graph = get_task("color-coordinated-block-bowl-sorting")
+    objects = objects_by_name(graph)
+    names = list(objects)
+    start, _ = _layout(graph.name, seed)
+    poses = {}
+    for k, n in enumerate(names):
+        dx, dy, dz, yaw = moves[k % len(moves)]
+        poses[n] = perturbed(start[n], (dx / 4, dy / 4, dz if k % 3 == 0 else 0.0,
+                                        math.degrees(yaw), 0.0))
+    scene = BatchScene.from_poses(objects, [poses])
+    objs = [objects[n] for n in names]
+    tops = np.array([[top_z(objects[n], poses[n]) for n in names]])
+    for c, n in enumerate(names):
+        if takes_by_rim(objects[n]):
+            want = grasp_offset(objects[n], poses[n], objects, poses)
+            got = rim_offsets(c, objs, scene.pos, scene.quat, tops)[0]
+            assert np.allclose(got, want, atol=1e-9), (n, got, want)

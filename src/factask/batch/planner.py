@@ -14,7 +14,7 @@ A world whose next step is anything else falls back to the scalar oracle, alone,
 and the plan says so (:attr:`LockstepPlan.fallback`, and why in
 :attr:`LockstepPlanner.fallback_reasons`): moving an obstacle out of the way (a
 parking spot drawn at random), a goal done by pushes or rope carries, an object
-taken by its rim (a receptacle), an object lying tilted, a retry past the attempt
+lying tilted, a retry past the attempt
 budget, no free slot, more objects than free slots. The fallback reads the same
 status and keeps the same attempt counts (the arrays here are the one record; they
 are copied into the world's scalar oracle before it plans and back after), so a
@@ -39,10 +39,12 @@ from factask.batch.geometry import (
     in_disk,
     in_rect,
     rects_overlap,
+    rotate_2d,
     rotation_matrices,
     tilts_deg,
     yaws,
 )
+from factask.batch.grasp import rim_offsets
 from factask.batch.scene import BatchScene
 from factask.batch.status import BatchTaskStatus
 from factask.batch.targets import BatchTargets
@@ -184,6 +186,7 @@ class LockstepPlanner:
                 BatchTargets.stack(per_world),
                 np.array([index[o] for o in per_world[0].objects], dtype=int), meant))
         objs = [objects[n] for n in self.names]
+        self._objs = objs
         self._half = np.array([o.half for o in objs], dtype=float)  # (N, 3)
         self._half_xy = np.array([o.half_xy for o in objs], dtype=float)
         self._sphere = np.array([o.kind in SPHERE_KINDS for o in objs])
@@ -334,10 +337,11 @@ class LockstepPlanner:
         j_star = colc[rows, i_star]
         goal_pos = target_of[rows, i_star]
         goal_yaw = yaws(t.slot_quat[rows, j_star])
-        need(~self._rim[obj], "a receptacle, taken by its rim")
         need(self._sphere[obj] | (tilts_deg(cur_quat) <= MAX_TILT_DEG), "the object lies tilted")
+        spos, squat = scene.pos[sel], scene.quat[sel]  # (s, N, .)
+        bottoms, tops = self._z_ranges(spos, squat)
         for reason, hit in self._obstacles(k, f, sel, obj, goal_pos, goal_yaw, placed, scene,
-                                           status).items():
+                                           status, bottoms, tops).items():
             need(~hit, reason)
         need(self.attempts[sel, k, obj] + 1 <= MAX_ATTEMPTS_PER_OBJECT, "attempts used up")
         ok = why == ""
@@ -350,26 +354,44 @@ class LockstepPlanner:
         self.attempts[good, k, obj[ok]] += 1
         pick_yaw = yaws(cur_quat)
         place_yaw = yaw_toward(goal_yaw, pick_yaw, self._symmetry[obj])
-        top = self._z_ranges(cur_pos[:, None], cur_quat[:, None], obj)[1][:, 0]
-        pick = np.column_stack([cur_pos[:, 0], cur_pos[:, 1], top, pick_yaw])
-        place = np.column_stack([goal_pos[:, 0], goal_pos[:, 1],
+        # At the top centre, or a receptacle on its rim (the offset turned with the
+        # tool: the object ends centred on its target whatever point held it).
+        offset = np.zeros((s, 2))
+        for c in np.unique(obj[self._rim[obj]]):
+            which = obj == c
+            offset[which] = rim_offsets(int(c), self._objs, spos[which], squat[which],
+                                        tops[which])
+        turned = rotate_2d(offset, place_yaw - pick_yaw)
+        pick = np.column_stack([cur_pos[:, :2] + offset, tops[rows, obj], pick_yaw])
+        place = np.column_stack([goal_pos[:, :2] + turned,
                                  goal_pos[:, 2] + self._half[obj, 2], place_yaw])
         return ok, obj, pick, place
 
     def _obstacles(self, k: int, f: _Factor, sel: np.ndarray, obj: np.ndarray,
                    goal_pos: np.ndarray, goal_yaw: np.ndarray, placed: np.ndarray,
-                   scene: BatchScene, status: BatchTaskStatus) -> dict[str, np.ndarray]:
+                   scene: BatchScene, status: BatchTaskStatus, bottoms: np.ndarray,
+                   tops: np.ndarray) -> dict[str, np.ndarray]:
         """Worlds (len(sel),) where something rests on the chosen object, occupies its
         target, or lies under its target and a later goal moves it (the scalar
         oracle's ``resting_on``, ``occupying`` and ``beneath``), by reason."""
         s = len(sel)
         rows = np.arange(s)
         pos, quat = scene.pos[sel], scene.quat[sel]  # (s, N, .)
-        bottoms, tops = self._z_ranges(pos, quat)  # (s, N)
         others = self._obstacle[None, :] & (np.arange(len(self.names))[None, :] != obj[:, None])
         here = footprint_rects(self._half_xy[None], pos[..., :2], yaws(quat))  # (s, N, 4, 2)
         on_top = others & (np.abs(bottoms - tops[rows, obj][:, None]) < REST_EPS)
         on_top = _overlapping(on_top, here[rows, obj], here)
+        # A free receptacle also carries what lies in its hollow: that comes out first.
+        for c in np.unique(obj[self._rim[obj]]):
+            which = obj == c
+            o = self._objs[c]
+            floor = pos[which, c, 2] - o.half[2] + floor_thickness(o)
+            centre, yaw, half, rnd = placement_areas(o, pos[which, c], quat[which, c])
+            xy = pos[which][..., :2]
+            held_in = (in_disk(xy, centre, half[:, 0]) if rnd else in_rect(xy, centre, yaw, half))
+            b = bottoms[which]
+            on_top[which] |= (others[which] & held_in & (floor[:, None] - REST_EPS < b)
+                              & (b < tops[which, c][:, None]))
         # Where it goes: footprint shrunk by 2 mm, its bottom and top there.
         lo = goal_pos[:, 2] - self._half[obj, 2]
         hi = goal_pos[:, 2] + self._half[obj, 2]
