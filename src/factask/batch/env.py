@@ -53,9 +53,16 @@ _SEED_RANGE = 2**31 - 1
 
 def default_capacity(model: mujoco.MjModel) -> tuple[int, int]:
     """Per-world contact and constraint-row capacities (``nconmax``, ``njmax``) for a
-    factask scene: eight contacts per free body and a margin, six rows per contact."""
-    free = int(np.sum(model.jnt_type == mujoco.mjtJoint.mjJNT_FREE))
-    nconmax = max(64, 8 * (free + 2))
+    factask scene: four contacts per colliding geom of a free body (a box resting on
+    a face touches with four; a bowl is many wall geoms), eight per free body and a
+    margin, at least 64; six rows per contact."""
+    free_joint = model.jnt_type == mujoco.mjtJoint.mjJNT_FREE
+    free = int(np.sum(free_joint))
+    roots = {int(model.body_rootid[b]) for b in model.jnt_bodyid[free_joint]}
+    colliding = (model.geom_contype != 0) | (model.geom_conaffinity != 0)
+    on_free = sum(1 for g in np.flatnonzero(colliding)
+                  if int(model.body_rootid[model.geom_bodyid[g]]) in roots)
+    nconmax = max(64, 4 * on_free + 8 * (free + 2))
     return nconmax, 6 * nconmax
 
 
@@ -126,6 +133,9 @@ class BatchEnv:
                                    dtype=float)
             # The sleep tree of each world's held object (-1: none), kept awake each step.
             self._held_tree = wp.full(self.num_envs, -1, dtype=int)
+            # The most contacts / constraint rows any step had since the worlds' reset.
+            self._peak_nacon = wp.zeros(1, dtype=int)
+            self._peak_nefc = wp.zeros(self.num_envs, dtype=int)
             self._let_go = wp.full(self.num_envs, -1, dtype=int)
         self._sleep = bool(self.model.opt.enableflags & mujoco.mjtEnableBit.mjENBL_SLEEP)
         self._capture = capture
@@ -215,6 +225,11 @@ class BatchEnv:
             mjw.reset_data(self.wp_model, self.wp_data, reset=self._mask)
             mjw.set_state(self.wp_model, self.wp_data, self._state, STATE_SIG, self._mask)
             mjw.kinematics(self.wp_model, self.wp_data)
+            peaks = self._peak_nefc.numpy()
+            peaks[mask] = 0
+            self._peak_nefc.assign(peaks)
+            if mask.all():  # the contact pool is shared: its peak starts again with all
+                self._peak_nacon.zero_()
         self.command[mask] = self.home_command()[mask]
         if self._was_reset.all():
             self._targets = {f: BatchTargets.stack([self.solved[w][f]
@@ -235,6 +250,8 @@ class BatchEnv:
         if self._sleep:
             self._wake(self._held_tree)
         mjw.step(self.wp_model, data)
+        wp.launch(self._kernels.track_peaks, dim=self.num_envs,
+                  inputs=[data.nacon, data.nefc], outputs=[self._peak_nacon, self._peak_nefc])
 
     def _wake(self, trees: Any) -> None:
         """Wake (keep awake) each world's tree ``trees[w]`` (-1: none)."""
@@ -342,14 +359,17 @@ class BatchEnv:
 
     def physics_failures(self) -> list[str | None]:
         """Per world, why its simulation is no longer trustworthy, or None: positions or
-        velocities not finite, or more contacts or constraint rows than allocated
-        (``nconmax``, ``njmax``: MuJoCo Warp drops the rest; make a batch with more).
+        velocities not finite, or more contacts or constraint rows than allocated at any
+        step since the world's reset (``nconmax``, ``njmax``: MuJoCo Warp drops the rest;
+        make a batch with more). Contacts are counted over all worlds (one pool): an
+        overflow there marks every world.
         """
         data = self.wp_data
         finite = (np.isfinite(data.qpos.numpy()).all(axis=1)
                   & np.isfinite(data.qvel.numpy()).all(axis=1))
-        nefc = data.nefc.numpy()
-        contacts = int(data.nacon.numpy()[0])
+        # The peaks of every step since the worlds' reset, not only the last step's.
+        nefc = np.maximum(self._peak_nefc.numpy(), data.nefc.numpy())
+        contacts = max(int(self._peak_nacon.numpy()[0]), int(data.nacon.numpy()[0]))
         out: list[str | None] = []
         for w in range(self.num_envs):
             if not finite[w]:

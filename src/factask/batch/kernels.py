@@ -1,4 +1,5 @@
-"""Warp kernels of the batched env: each world's low-level command, held objects awake.
+"""Warp kernels of the batched env: each world's low-level command, held objects awake,
+the peak contact and constraint counts.
 
 Imported only once the backend is known to be installed
 (:func:`factask.batch.device.load_backend`): it imports Warp at module import.
@@ -30,6 +31,17 @@ def set_ctrl(cmd: wp.array2d(dtype=float),
     ctrl[w, k] = cmd[w, k]
 
 
+@wp.kernel
+def track_peaks(nacon: wp.array(dtype=int), nefc: wp.array(dtype=int),
+                peak_nacon: wp.array(dtype=int),
+                peak_nefc: wp.array(dtype=int)):  # pragma: no cover - device code
+    """Keep the most contacts (all worlds) and constraint rows (per world) any step had:
+    MuJoCo Warp counts past its capacities (and drops the excess), and a step in the
+    middle of a move can overflow where the state after it does not."""
+    w = wp.tid()
+    wp.atomic_max(peak_nefc, w, nefc[w])
+    if w == 0:
+        wp.atomic_max(peak_nacon, 0, nacon[0])
 
 
 @wp.kernel
@@ -58,4 +70,4 @@ def wake_trees(tree: wp.array(dtype=int), ntree: int, awake: int,
             break
 
 
-__all__ = ["set_ctrl", "set_mocap_xyzyaw", "wake_trees"]
+__all__ = ["set_ctrl", "set_mocap_xyzyaw", "track_peaks", "wake_trees"]

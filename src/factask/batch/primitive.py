@@ -6,11 +6,12 @@ The batched twin, in outline, of the single env's primitive
 grasp and at the release — and the same phases: up to a height that clears every
 object, over the pick, down to just above it, a guarded descent until the cup
 touches, suction on, up (clearing the held object too), over the place, a guarded
-descent until the held object touches or the tip reaches the place, suction off, a
-short retreat and a wait for the objects to rest. The moves are straight lines at
-the tool's speed limit rather than the single env's blended minimum-time profiles,
-the settle wait is fixed, and a phase lasts as long as its longest world (the others
-hold still meanwhile): the same action ends in a similar, not the same, state.
+descent until the held object touches or the tip reaches the place, a wait until
+everything is still, suction off, a short retreat and a wait for the objects to
+rest (the single env's rest tests). The moves are straight lines at the tool's speed
+limit rather than the single env's blended minimum-time profiles, and a phase lasts
+as long as its longest world (the others hold still meanwhile): the same action
+ends in a similar, not the same, state.
 
 Contacts are read on the host between steps of the guarded moves only.
 """
@@ -20,6 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import mujoco
 import numpy as np
 
 from factask.batch.geometry import box_z_range
@@ -30,11 +32,18 @@ from factask.sim.robots.primitive import (
     GUARDED_SPEED,
     MIN_TRAVEL_HEIGHT,
     PICK_OVERSHOOT,
+    RELEASE_MAX_TIME,
+    RELEASE_SPEED,
+    RELEASE_SPEED_FLAT,
+    REST_EVERY,
     REST_MAX_TIME,
+    REST_SPEED,
     RETREAT,
+    ROUND_TURN_RADIUS,
     TOOL_SPEED,
     YAW_RATE,
 )
+from factask.sim.robots.suction import REST_RADIUS
 from factask.vocabulary.errors import InvalidValueError
 
 #: Physics steps between two contact reads during a guarded move.
@@ -88,6 +97,47 @@ def _guarded(batch: LockstepWorlds, bottom: np.ndarray, active: np.ndarray, touc
             steps += 1
         moving &= ~check(batch.wp_data) & (batch.command[:, 2] > bottom + 1e-9)
     return steps
+
+
+def _free_dofs(model: mujoco.MjModel) -> tuple[np.ndarray, np.ndarray]:
+    """The linear and the angular velocity indices of every free joint."""
+    adr = model.jnt_dofadr[model.jnt_type == mujoco.mjtJoint.mjJNT_FREE]
+    return ((adr[:, None] + np.arange(3)).reshape(-1),
+            (adr[:, None] + 3 + np.arange(3)).reshape(-1))
+
+
+def _rolls(model: mujoco.MjModel) -> np.ndarray:
+    """Per body: its tree has a round geom (sphere, capsule, ellipsoid, cylinder) and,
+    set down while moving, may roll on."""
+    round_types = [mujoco.mjtGeom.mjGEOM_SPHERE, mujoco.mjtGeom.mjGEOM_CAPSULE,
+                   mujoco.mjtGeom.mjGEOM_ELLIPSOID, mujoco.mjtGeom.mjGEOM_CYLINDER]
+    out = np.zeros(model.nbody, dtype=bool)
+    for g in np.flatnonzero(np.isin(model.geom_type, round_types)):
+        out[model.body_rootid[model.geom_bodyid[g]]] = True
+    return out
+
+
+def _wait_for_rest(batch: LockstepWorlds, active: np.ndarray, speed: np.ndarray,
+                   radius: np.ndarray, max_time: float) -> int:
+    """Hold every command until, in every active world, no free object moves faster
+    than its world's ``speed`` (m/s; turning counts at ``radius``), at most
+    ``max_time`` seconds, tested every REST_EVERY steps: the single env's rest test,
+    a phase as long as its slowest world. Returns the physics steps taken."""
+    total = max(1, math.ceil(max_time / float(batch.model.opt.timestep)))
+    linear, angular = _free_dofs(batch.model)
+    done = 0
+    while done < total:
+        k = min(REST_EVERY, total - done)
+        batch.step(batch.command, substeps=k)
+        done += k
+        if not active.any() or not len(linear):
+            break
+        qvel = batch.wp_data.qvel.numpy()
+        moving = ((np.abs(qvel[:, linear]).max(axis=1) >= speed)
+                  | (np.abs(qvel[:, angular]).max(axis=1) * radius >= speed))
+        if not (moving & active).any():
+            break
+    return done
 
 
 def travel_heights(batch: LockstepWorlds) -> np.ndarray:
@@ -161,13 +211,21 @@ def pick_and_place(batch: LockstepWorlds, pick: np.ndarray, place: np.ndarray,
     still = batch.suction.held >= 0
     for k in np.flatnonzero(carrying & ~still):
         reasons[k] = "lost the object on the way"
+    # Let go only once everything is still (the single env's rule): a carried object
+    # hangs from a compliant weld and trails a fast move, tilted; let go as it first
+    # touches, it drops tilted and slides (a bowl held by its rim, 4 cm).
+    rolls = _rolls(batch.model)[np.maximum(batch.suction.held, 0)] & still
+    w = batch.num_envs
+    steps += _wait_for_rest(batch, carrying & still,
+                            np.where(rolls, RELEASE_SPEED, RELEASE_SPEED_FLAT),
+                            np.where(rolls, ROUND_TURN_RADIUS, REST_RADIUS),
+                            RELEASE_MAX_TIME)
     batch.suction_off(acted)
     retreat = batch.command.copy()
     retreat[:, 2] += RETREAT
     steps += _move(batch, retreat, acted, TOOL_SPEED)
-    settle = round(REST_MAX_TIME / float(batch.model.opt.timestep))
-    batch.step(batch.command, substeps=settle)
-    steps += settle
+    steps += _wait_for_rest(batch, acted, np.full(w, REST_SPEED), np.full(w, REST_RADIUS),
+                            REST_MAX_TIME)
     ok = carrying & still
     return BatchActionResult(ok, reasons, acted, steps)
 
