@@ -427,3 +427,20 @@ def test_make_vec_with_an_id_gives_the_batch_with_the_ids_spaces() -> None:
     sync = gym.make_vec(gid, num_envs=2, vectorization_mode="sync")
     assert sync.single_observation_space == single.observation_space
     sync.close()
+
+
+def test_a_contact_overflow_is_a_physics_failure_and_bowls_fit_the_default() -> None:
+    # A scene of bowls (a floor and sixteen wall geoms each, all resting on the table):
+    # the default capacity holds its contacts; a small one overflows and says so.
+    task = "color-coordinated-block-bowl-sorting"
+    roomy = make_batch(task, 1, device="cpu")
+    roomy.reset(seed=0)
+    roomy.step(roomy.home_command(), 3)
+    assert roomy.physics_failures() == [None]
+    tight = make_batch(task, 1, device="cpu", nconmax=32, njmax=192)
+    tight.reset(seed=0)
+    tight.step(tight.home_command(), 3)
+    failure = tight.physics_failures()[0]
+    assert failure is not None and "contacts" in failure
+    tight.reset(seed=0)  # a reset of every world starts the count again
+    assert tight.physics_failures() == [None]
