@@ -54,6 +54,9 @@ CASES: dict[str, tuple[list[str], int, bool]] = {
                        True),
     "import-cliport-batch": (["import-cliport-batch", "{tmp}/tasks", "-o", "{tmp}/r.jsonl",
                               "--json"], 0, True),
+    "import-libero": (["import-libero", str(ROOT / "src" / "factask" / "data" / "libero"
+                                            / "libero_goal" / "put_the_bowl_on_the_plate.bddl"),
+                       "-o", "{tmp}/l.json"], 0, False),
     # No LLM is called: a bad approach is refused first (bad usage, exit 2).
     "generate": (["generate", "x: y", "-a", "no-such-approach"], 2, False),
     "benchmark": (["benchmark", "-a", "no-such-approach", "-o", "{tmp}/b"], 2, False),

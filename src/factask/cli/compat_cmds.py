@@ -1,4 +1,5 @@
-"""Commands importing GenSim/CLIPort task files: ``import-cliport`` and its batch form.
+"""Commands importing outside task files: GenSim/CLIPort's (``import-cliport`` and its
+batch form) and LIBERO's BDDL files (``import-libero``).
 
 Task files are Python and **are executed**. ``import-cliport`` runs the file in
 this process; ``import-cliport-batch`` runs each file in a child process with a
@@ -24,6 +25,8 @@ from factask.cli.app import (
     fail,
     make_console,
 )
+from factask.graph import TaskGraph
+from factask.vocabulary.errors import FactaskError
 
 console = make_console()
 err_console = make_console(stderr=True)
@@ -154,3 +157,41 @@ def import_cliport_batch_cmd(
                                "imported": good, "records": records}))
         return
     console.print(escape(f"{good}/{len(records)} file(s) imported -> {out}"), highlight=False)
+
+
+def load_libero_task(file: str | Path) -> TaskGraph:
+    """A LIBERO ``.bddl`` file as a graph, its warnings printed; exit 2 with one line
+    when it cannot be read or imported (``run`` and the other task-loading commands)."""
+    from factask.compat.libero import import_libero
+
+    try:
+        result = import_libero(file)
+    except FactaskError as exc:
+        err_console.print(f"cannot import {file}: {exc}", style="red", markup=False)
+        raise typer.Exit(2) from None
+    for warning in result.warnings:
+        err_console.print(f"warning: {warning}", style="yellow", markup=False)
+    return result.graph
+
+
+@app.command("import-libero", help=(
+    "Import a LIBERO BDDL task file as a factask task graph: its objects become "
+    "factask stand-ins, its On/In goals on/inside factors. Articulated fixtures "
+    "(Open, Close, Turnon, drawers) are refused (exit 2)."))
+def import_libero_cmd(
+    file: Path = typer.Argument(..., help="The task's .bddl file."),
+    out: Path | None = typer.Option(None, "--out", "-o", help="Write the graph JSON here."),
+) -> None:
+    """Print a short summary of the import; write the graph with ``--out``."""
+    check_readable_file(file)
+    graph = load_libero_task(file)
+    if out is not None:
+        try:
+            out.write_text(graph.to_json(), encoding="utf-8")
+        except OSError as exc:
+            raise fail(f"cannot write {out}: {exc.strerror or exc}") from None
+    goals = ", ".join(f"{f.goal.type}({', '.join(f.goal.variable_names())})"
+                      for f in graph.factors)
+    console.print(escape(f"{file}: imported as {graph.name!r}: {len(graph.variables)} "
+                         f"variable(s), goals {goals}" + (f" -> {out}" if out else "")),
+                  highlight=False)

@@ -51,7 +51,8 @@ def load_task_source(spec: str, seed: int = 0,
     """A task and, for a CLIPort task file, its import result (None otherwise).
 
     Args:
-        spec: ``NAME`` (library), ``FILE.json``, or ``FILE.py[:ClassName]``.
+        spec: ``NAME`` (library), ``FILE.json``, ``FILE.py[:ClassName]`` or a LIBERO
+            ``FILE.bddl``.
         seed: Seed for CLIPort task files (their ``reset`` samples poses).
         time_limit: Seconds a CLIPort task file's own code may run (``--time-limit``;
             None: the loader's default).
@@ -60,8 +61,12 @@ def load_task_source(spec: str, seed: int = 0,
         typer.Exit: with code 2 and a message when the task cannot be loaded.
     """
     path_part, _, class_name = spec.partition(":") if ".py" in spec else (spec, "", "")
-    if path_part.endswith((".py", ".json")):  # a file, not a library name
+    if path_part.endswith((".py", ".json", ".bddl")):  # a file, not a library name
         check_readable_file(path_part)
+    if path_part.endswith(".bddl"):
+        from factask.cli.compat_cmds import load_libero_task
+
+        return load_libero_task(path_part), None
     if path_part.endswith(".py"):
         from factask.compat.cliport import import_cliport
 

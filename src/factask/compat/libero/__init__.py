@@ -2,8 +2,9 @@
 
 LIBERO (Liu et al., 2023) defines its manipulation tasks as BDDL problems. This
 package reads them (:func:`parse_bddl`, :func:`load_bddl`) into a
-:class:`BddlProblem` and writes them back (:func:`format_bddl`); turning a problem
-into a factask task graph comes later. Three of LIBERO's suites ship with factask,
+:class:`BddlProblem` and writes them back (:func:`format_bddl`);
+:func:`import_libero` turns a problem into a factask task graph, its objects mapped
+to factask stand-ins (:data:`LIBERO_KINDS`). Three of LIBERO's suites ship with factask,
 unchanged, for development and tests (``factask/data/libero``, MIT licence):
 :func:`shipped_bddl_files`.
 """
@@ -14,6 +15,13 @@ from importlib import resources
 from pathlib import Path
 
 from factask.compat.libero.bddl import load_bddl, parse_bddl
+from factask.compat.libero.importer import LiberoImport, import_libero
+from factask.compat.libero.kinds import (
+    LIBERO_KINDS,
+    LiberoKind,
+    LiberoUnsupported,
+    UnknownLiberoType,
+)
 from factask.compat.libero.model import BddlProblem, Predicate, Region, format_bddl
 from factask.compat.libero.sexpr import BddlError
 
@@ -50,6 +58,8 @@ def shipped_bddl_files(suite: str | None = None) -> list[Path]:
 
 
 __all__ = [
-    "SHIPPED_SUITES", "BddlError", "BddlProblem", "Predicate", "Region", "format_bddl",
-    "libero_data_dir", "load_bddl", "parse_bddl", "shipped_bddl_files",
+    "LIBERO_KINDS", "SHIPPED_SUITES", "BddlError", "BddlProblem", "LiberoImport",
+    "LiberoKind", "LiberoUnsupported", "Predicate", "Region", "UnknownLiberoType",
+    "format_bddl", "import_libero", "libero_data_dir", "load_bddl", "parse_bddl",
+    "shipped_bddl_files",
 ]

@@ -1,0 +1,274 @@
+"""A LIBERO BDDL problem → a factask task graph: :func:`import_libero`.
+
+What is taken in (everything else is a :class:`LiberoUnsupported` naming the
+predicate or object and why):
+
+* Every object becomes one state variable (its LIBERO name made snake_case), its
+  kind, size and colour from :data:`~factask.compat.libero.kinds.LIBERO_KINDS`.
+  Fixtures with a stand-in (stove, cabinet, wine rack) become fixed variables;
+  the table and the floor are factask's table.
+* ``:init``: ``(On obj <table>_<region>)`` → an :class:`InRegion` start around the
+  region's centre (see the coordinate map below); a fixture's own ``On`` → its
+  fixed pose (:class:`AtFixedPose`, yaw the middle of its ``yaw_rotation``);
+  ``(On obj other)`` → :class:`StartOn` (:class:`StartInside` when ``other`` is a
+  receptacle the object fits in); ``(On obj <fixture>_<top region>)`` → on the
+  fixture's stand-in; ``(In obj <receptacle>_<region>)`` → :class:`StartInside`.
+* ``:goal``: ``(On a b)`` → ``on`` when ``b`` is a support, ``inside`` when it is a
+  receptacle; ``(In a <receptacle>_<region>)`` → ``inside``.
+* The language line is the description; the task's name is the file's name.
+
+Coordinate map (one for every file). LIBERO's table frame has x forward away from
+the robot, y to the left, the origin at the table's centre and the robot's base at
+about x = -0.66 m; factask's robot base is the origin and the workspace is x 0.25
+to 0.75, y -0.5 to 0.5. The shipped files' region centres span x -0.42 to 0.21
+(0.63 m, more than the workspace's 0.5 m depth), so the map scales uniformly:
+``x' = OFFSET_X + SCALE * x``, ``y' = SCALE * y`` with ``SCALE = 0.75`` and
+``OFFSET_X = 0.58`` (x -0.42 → 0.265, 0.21 → 0.7375). Objects keep their real
+sizes, so the scene is more crowded than LIBERO's: LIBERO's 2 cm (5 cm on the
+floor) start regions are widened to :data:`MIN_REGION` square around their centre
+(clipped to the workspace), which gives the layout sampler room.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from factask.compat.libero.bddl import load_bddl
+from factask.compat.libero.kinds import LiberoKind, LiberoUnsupported, libero_kind
+from factask.compat.libero.model import BddlProblem, Predicate, Region
+from factask.graph import TaskGraph, parse_graph
+from factask.vocabulary.kinds import WALL_THICKNESS, kind_spec
+from factask.vocabulary.names import slugify, unique_name
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
+
+#: Uniform scale of LIBERO's table frame into factask's (see the module's docstring).
+SCALE = 0.75
+#: factask x of LIBERO's table centre (metres).
+OFFSET_X = 0.58
+#: factask y of LIBERO's table centre (metres).
+OFFSET_Y = 0.0
+#: Side (metres) of the square start region an object's LIBERO region is widened to.
+MIN_REGION = 0.20
+#: Fixture type → its regions that are the stand-in's top face (things stand there).
+TOP_REGIONS = {"flat_stove": frozenset({"cook_region"}),
+               "wooden_cabinet": frozenset({"top_side"})}
+#: Predicates of articulated fixtures.
+ARTICULATION = frozenset({"open", "close", "turnon", "turnoff"})
+_WHY_ARTICULATED = "articulated fixtures (drawers, doors, knobs) are not in factask yet"
+
+
+@dataclass(frozen=True)
+class LiberoImport:
+    """What :func:`import_libero` made.
+
+    Attributes:
+        graph: The validated task graph.
+        warnings: What was approximated, one line each.
+        names: LIBERO name → factask variable, for every object and fixture that
+            became a variable.
+        problem: The BDDL problem it came from.
+    """
+
+    graph: TaskGraph
+    warnings: list[str] = field(default_factory=list)
+    names: dict[str, str] = field(default_factory=dict)
+    problem: BddlProblem | None = None
+
+
+def to_factask_xy(x: float, y: float) -> tuple[float, float]:
+    """A point of LIBERO's table frame in factask's frame (metres)."""
+    return OFFSET_X + SCALE * x, OFFSET_Y + SCALE * y
+
+
+def _clip(lo: float, hi: float, bounds: tuple[float, float]) -> tuple[float, float]:
+    lo, hi = max(lo, bounds[0]), min(hi, bounds[1])
+    return lo, hi
+
+
+class _Importer:
+    def __init__(self, problem: BddlProblem, name: str) -> None:
+        self.p, self.task = problem, name
+        self.where = Path(problem.source).name
+        self.types: dict[str, str] = {**problem.fixtures, **problem.objects}
+        self.specs: dict[str, LiberoKind] = {n: libero_kind(t, n) for n, t in self.types.items()}
+        self.warnings: list[str] = []
+        taken: set[str] = set()
+        self.names = {n: unique_name(slugify(n, "_", 64, "obj"), taken)
+                      for n, s in self.specs.items() if s.kind is not None}
+        self.initial: dict[str, dict[str, Any]] = {}
+
+    def refuse(self, pred: Predicate | str, why: str) -> LiberoUnsupported:
+        return LiberoUnsupported(f"{self.where}: {pred}: {why}")
+
+    # ---- what a name is -------------------------------------------------------------
+    def is_table(self, name: str) -> bool:
+        return name in self.specs and self.specs[name].kind is None
+
+    def variable(self, name: str, pred: Predicate) -> str:
+        if name not in self.names:
+            raise self.refuse(pred, f"{name!r} is no object factask models")
+        return self.names[name]
+
+    def host_kind(self, name: str) -> str | None:
+        spec = self.specs.get(name)
+        return spec.kind if spec else None
+
+    def fits_inside(self, obj: str, host: str) -> bool:
+        o, h = self.specs[obj].size, self.specs[host].size
+        assert o is not None and h is not None
+        inner = sorted((h[0] - 2 * WALL_THICKNESS, h[1] - 2 * WALL_THICKNESS))
+        return all(a <= b for a, b in zip(sorted(o[:2]), inner, strict=True))
+
+    # ---- init -----------------------------------------------------------------------
+    def read_init(self) -> None:
+        for pred in self.p.init:
+            if pred.name in ARTICULATION:
+                raise self.refuse(pred, f"a fixture that starts {pred.name}: "
+                                  f"{_WHY_ARTICULATED}")
+            if pred.name not in ("on", "in") or len(pred.args) != 2:
+                raise self.refuse(pred, "no factask start placement for this predicate")
+            obj, host = (str(a) for a in pred.args)
+            if self.is_table(obj):
+                continue
+            var = self.variable(obj, pred)
+            self.initial[var] = self.start_of(pred, obj, host)
+        for libero, var in self.names.items():
+            if var not in self.initial:
+                self.warnings.append(f"{libero}: no start in :init; starts anywhere on "
+                                     "the table")
+
+    def start_of(self, pred: Predicate, obj: str, host: str) -> dict[str, Any]:
+        fixture = self.specs[obj].fixture
+        if self.is_table(host):
+            return {"type": "table"}
+        region = self.p.regions_by_full_name.get(host)
+        if region is not None:
+            if self.is_table(region.target):
+                return self.table_start(pred, region, fixture)
+            target_type = self.types.get(region.target, "")
+            if region.target in self.p.fixtures:
+                if pred.name == "on" and region.name in TOP_REGIONS.get(target_type, ()):
+                    return {"type": "on", "support": self.names[region.target]}
+                raise self.refuse(pred, f"{region.full_name} is a region of the "
+                                  f"{target_type} fixture: {_WHY_ARTICULATED}")
+            host = region.target
+        if host not in self.names:
+            raise self.refuse(pred, f"{host!r} is no object or region factask models")
+        spec = kind_spec(self.host_kind(host) or "")
+        if spec.receptacle and self.fits_inside(obj, host):
+            return {"type": "inside", "container": self.names[host]}
+        if spec.support and pred.name == "on":
+            return {"type": "on", "support": self.names[host]}
+        raise self.refuse(pred, f"{obj} cannot start {pred.name} {host} (a "
+                          f"{self.host_kind(host)} stand-in): an object resting on a "
+                          "receptacle it does not fit in is not modelled")
+
+    def table_start(self, pred: Predicate, region: Region, fixture: bool) -> dict[str, Any]:
+        if not region.ranges:
+            raise self.refuse(pred, f"table region {region.full_name} has no ranges")
+        x0, y0, x1, y1 = region.ranges[0]
+        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+        if fixture:
+            yaw = (math.degrees(sum(region.yaw_rotation[0]) / 2)
+                   if region.yaw_rotation else 0.0)
+            return {"type": "pose", "x": round(min(max(cx, WORKSPACE_X[0]), WORKSPACE_X[1]), 4),
+                    "y": round(min(max(cy, WORKSPACE_Y[0]), WORKSPACE_Y[1]), 4),
+                    "yaw_deg": round(yaw, 3)}
+        half_x = max(SCALE * abs(x1 - x0), MIN_REGION) / 2
+        half_y = max(SCALE * abs(y1 - y0), MIN_REGION) / 2
+        return {"type": "region",
+                "x": [round(v, 4) for v in _clip(cx - half_x, cx + half_x, WORKSPACE_X)],
+                "y": [round(v, 4) for v in _clip(cy - half_y, cy + half_y, WORKSPACE_Y)]}
+
+    # ---- goal -----------------------------------------------------------------------
+    def read_goal(self) -> list[dict[str, Any]]:
+        factors: list[dict[str, Any]] = []
+        taken: set[str] = set()
+        for pred in self.p.goal:
+            if pred.name in ARTICULATION:
+                raise self.refuse(pred, f"{pred.name} of a fixture: {_WHY_ARTICULATED}")
+            if pred.name not in ("on", "in") or len(pred.args) != 2:
+                raise self.refuse(pred, "no factask relation for this goal predicate")
+            obj, host = (str(a) for a in pred.args)
+            var = self.variable(obj, pred)
+            goal = self.goal_of(pred, var, host)
+            if self.specs[obj].fixed:
+                raise self.refuse(pred, f"{obj} is fixed in factask (a {self.specs[obj].kind} "
+                                  "stand-in); no goal may move it")
+            word = "in" if goal["type"] == "inside" else "on"
+            target = goal.get("container", goal.get("support"))
+            name = unique_name(slugify(f"put {var} {word} {target}", "_", 64, "goal"), taken)
+            factors.append({"name": name, "description": f"LIBERO goal {pred}", "goal": goal})
+        for f in factors:
+            f["weight"] = 1.0 / len(factors)
+        return factors
+
+    def goal_of(self, pred: Predicate, var: str, host: str) -> dict[str, Any]:
+        region = self.p.regions_by_full_name.get(host)
+        if region is not None:
+            if self.is_table(region.target):
+                raise self.refuse(pred, f"{host} is a place on the table: factask has no "
+                                  "goal on an unmarked table region")
+            if region.target in self.p.fixtures:
+                raise self.refuse(pred, f"{host} is a region of the "
+                                  f"{self.types[region.target]} fixture, whose stand-in is "
+                                  f"a plain box; {_WHY_ARTICULATED}")
+            host = region.target
+        elif pred.name == "in":
+            raise self.refuse(pred, f"{host!r} is no region: In needs a receptacle's region")
+        if self.is_table(host) or host not in self.names:
+            raise self.refuse(pred, f"{host!r} is no object factask models")
+        spec = kind_spec(self.host_kind(host) or "")
+        if spec.receptacle:
+            return {"type": "inside", "objects": [var], "container": self.names[host]}
+        if spec.support and pred.name == "on":
+            return {"type": "on", "objects": [var], "support": self.names[host]}
+        raise self.refuse(pred, f"{host} (a {self.host_kind(host)} stand-in) is neither a "
+                          "support nor a receptacle")
+
+    # ---- the graph ------------------------------------------------------------------
+    def variables(self) -> list[dict[str, Any]]:
+        out = []
+        for libero, var in self.names.items():
+            spec = self.specs[libero]
+            data: dict[str, Any] = {
+                "name": var, "kind": spec.kind, "size": list(spec.size or ()),
+                "color": spec.color, "initial": self.initial.get(var, {"type": "table"}),
+                "description": f"{spec.note} (LIBERO {libero} of type {self.types[libero]})"}
+            if spec.fixed is not None:
+                data["fixed"] = spec.fixed
+            out.append(data)
+        return out
+
+    def build(self) -> LiberoImport:
+        self.read_init()
+        factors = self.read_goal()
+        description = self.p.language or f"LIBERO task {self.task}"
+        graph = parse_graph({"name": self.task, "description": description,
+                             "variables": self.variables(), "factors": factors})
+        return LiberoImport(graph.ensure_valid(), self.warnings, dict(self.names), self.p)
+
+
+def import_libero(source: str | Path | BddlProblem, name: str | None = None) -> LiberoImport:
+    """Import a LIBERO BDDL task as a factask task graph.
+
+    Args:
+        source: A ``.bddl`` file, or a problem already read.
+        name: The task's name (default: the file's name, kebab-case).
+
+    Returns:
+        The graph, the warnings and the LIBERO → factask name map.
+
+    Raises:
+        BddlError: the file cannot be read as BDDL.
+        LiberoUnsupported: the task uses what factask does not model (an articulated
+            fixture, a fixture's region in the goal, an unknown type).
+        GraphValidationError: the graph made is not valid (a bug of the mapping).
+    """
+    problem = source if isinstance(source, BddlProblem) else load_bddl(source)
+    stem = Path(problem.source).stem if problem.source != "<string>" else problem.name
+    task = name or slugify(stem, "-", 100, "libero-task", letter_first=False)
+    return _Importer(problem, task).build()

@@ -1,0 +1,125 @@
+"""LIBERO's shipped BDDL files as factask task graphs (issue 38, part 4)."""
+
+from __future__ import annotations
+
+import pytest
+
+from factask.compat.libero import (
+    LIBERO_KINDS,
+    LiberoUnsupported,
+    UnknownLiberoType,
+    import_libero,
+    load_bddl,
+    parse_bddl,
+    shipped_bddl_files,
+)
+from factask.compat.libero.importer import to_factask_xy
+from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
+
+#: Every shipped file that LiberoUnsupported refuses → words its message must hold.
+UNSUPPORTED = {
+    "open_the_middle_drawer_of_the_cabinet": ("Open", "articulated"),
+    "open_the_top_drawer_and_put_the_bowl_inside": ("wooden_cabinet_1_top_region",
+                                                    "articulated"),
+    "push_the_plate_to_the_front_of_the_stove": ("main_table_stove_front_region", "table"),
+    "put_the_bowl_on_the_stove": ("flat_stove_1_cook_region", "articulated"),
+    "put_the_bowl_on_top_of_the_cabinet": ("wooden_cabinet_1_top_side", "articulated"),
+    "put_the_wine_bottle_on_the_rack": ("wine_rack_1_top_region", "articulated"),
+    "put_the_wine_bottle_on_top_of_the_cabinet": ("wooden_cabinet_1_top_side", "articulated"),
+    "turn_on_the_stove": ("Turnon flat_stove_1", "articulated"),
+    "pick_up_the_black_bowl_in_the_top_drawer_of_the_wooden_cabinet_and_place_it_on_the_plate":
+        ("wooden_cabinet_1_top_region", "articulated"),
+    "pick_up_the_black_bowl_on_the_ramekin_and_place_it_on_the_plate":
+        ("glazed_rim_porcelain_ramekin_1", "not modelled"),
+}
+FILES = {p.stem: p for p in shipped_bddl_files()}
+
+
+def test_the_table_names_shipped_files():
+    assert set(UNSUPPORTED) <= set(FILES)
+    assert len(FILES) == 30
+
+
+def test_kinds_table_covers_every_shipped_type():
+    for path in FILES.values():
+        problem = load_bddl(path)
+        for type_name in (*problem.objects.values(), *problem.fixtures.values()):
+            assert type_name in LIBERO_KINDS, (path.name, type_name)
+
+
+@pytest.mark.parametrize("stem", sorted(FILES))
+def test_every_shipped_file_imports_or_is_refused(stem):
+    if stem in UNSUPPORTED:
+        with pytest.raises(LiberoUnsupported) as info:
+            import_libero(FILES[stem])
+        for word in UNSUPPORTED[stem]:
+            assert word in str(info.value)
+        return
+    result = import_libero(FILES[stem])
+    graph = result.graph.ensure_valid()
+    problem = result.problem
+    assert graph.description == problem.language
+    assert graph.name == stem.replace("_", "-")
+    assert set(result.names) == {n for n, t in {**problem.objects, **problem.fixtures}.items()
+                                 if LIBERO_KINDS[t].kind is not None}
+    assert len(graph.factors) == len(problem.goal)
+
+
+def test_object_suite_goal_is_inside_the_basket():
+    for path in shipped_bddl_files("libero_object"):
+        graph = import_libero(path).graph
+        (factor,) = graph.factors
+        assert factor.goal.type == "inside" and factor.goal.container == "basket_1"
+
+
+def test_coordinate_map_puts_every_region_centre_in_the_workspace():
+    for path in FILES.values():
+        for region in load_bddl(path).regions:
+            for x0, y0, x1, y1 in region.ranges:
+                x, y = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+                assert WORKSPACE_X[0] <= x <= WORKSPACE_X[1], (path.name, region.full_name)
+                assert WORKSPACE_Y[0] <= y <= WORKSPACE_Y[1], (path.name, region.full_name)
+
+
+def test_unknown_type_is_a_typed_error():
+    text = FILES["put_the_bowl_on_the_plate"].read_text().replace(
+        "cream_cheese_1 - cream_cheese", "cream_cheese_1 - space_heater")
+    with pytest.raises(UnknownLiberoType, match="space_heater"):
+        import_libero(parse_bddl(text))
+    assert issubclass(UnknownLiberoType, FactaskError)
+
+
+@pytest.mark.parametrize("stem", sorted(p.stem for p in shipped_bddl_files("libero_object")))
+def test_oracle_completes_object_suite(stem):
+    from factask.sim.episode import run_episode
+
+    graph = import_libero(FILES[stem]).graph
+    results = [run_episode(graph, seed) for seed in range(4)]
+    wins = sum(r.success for r in results)
+    assert wins >= 3, [r.failure for r in results if not r.success]
+
+
+@pytest.mark.parametrize("stem", ["put_the_bowl_on_the_plate", "put_the_cream_cheese_in_the_bowl",
+                                  "pick_up_the_black_bowl_on_the_stove_and_place_it_on_the_plate"])
+def test_oracle_completes_table_tasks(stem):
+    from factask.sim.episode import run_episode
+
+    graph = import_libero(FILES[stem]).graph
+    assert sum(run_episode(graph, seed).success for seed in range(4)) >= 3
+
+
+def test_cli_import_libero_and_run_load(tmp_path):
+    from typer.testing import CliRunner
+
+    from factask.cli import app
+    from factask.cli.run_cmds import load_task_source
+
+    out = tmp_path / "g.json"
+    ok = CliRunner().invoke(app, ["import-libero", str(FILES["put_the_bowl_on_the_plate"]),
+                                  "--out", str(out)])
+    assert ok.exit_code == 0 and out.is_file(), ok.output
+    refused = CliRunner().invoke(app, ["import-libero", str(FILES["turn_on_the_stove"])])
+    assert refused.exit_code == 2
+    graph, extra = load_task_source(str(FILES["put_the_bowl_on_the_plate"]))
+    assert graph.name == "put-the-bowl-on-the-plate" and extra is None
