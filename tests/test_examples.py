@@ -33,6 +33,7 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "11_does_it_mean_the_proposal.py": ("11_meaning.json",),
     "12_reader_only.py": ("12_reader.json",),
     "13_reference_model.py": ("13_reference.json",),
+    "14_libero_task.py": ("14_libero.json", "14_libero_scene.png"),
 }
 #: Examples that compile MuJoCo Warp's kernels: with the batched env's tests in one
 #: xdist group, so one worker compiles them (once per machine, then cached).

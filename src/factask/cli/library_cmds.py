@@ -140,7 +140,7 @@ def _print_graph(graph: TaskGraph) -> None:
 def show(
     task: str = typer.Argument(..., help="Library task name (see `factask list`), graph "
                                "FILE.json (from generate, import-cliport, ...), or CLIPort "
-                               "FILE.py[:Class] (user code: it is executed)."),
+                               "FILE.py[:Class] (user code: it is executed), or LIBERO FILE.bddl."),
     as_json: bool = typer.Option(False, "--json",
                                  help="Print the graph JSON (what `factask validate` reads)."),
     png: Path | None = typer.Option(None, "--png", help="Also draw the graph to this PNG."),

@@ -171,8 +171,9 @@ def _recording(video: Path, fps: float, size: tuple[int, int], camera: str,
 
 @app.command()
 def run(
-    task: str = typer.Argument(..., help="Library task name, graph FILE.json, or "
-                               "CLIPort FILE.py[:Class] (user code: it is executed)."),
+    task: str = typer.Argument(..., help="Library task name, graph FILE.json, LIBERO "
+                               "FILE.bddl, or CLIPort FILE.py[:Class] (user code: it is "
+                               "executed)."),
     episodes: int = typer.Option(1, "--episodes", "-n", min=1, max=MAX_EPISODES,
                                  help="Oracle episodes."),
     seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED,
@@ -340,7 +341,8 @@ def eval_library(
 def demo(
     out: Path = typer.Option(Path("out/demo"), "--out", help="Folder for the demo's files."),
     task: str = typer.Option("stack-block-pyramid", "--task", help="Library task name, graph "
-                             "FILE.json, or CLIPort FILE.py[:Class] (user code: it is executed)."),
+                             "FILE.json, LIBERO FILE.bddl, or CLIPort FILE.py[:Class] (user "
+                             "code: it is executed)."),
     robot: str = typer.Option("floating", "--robot", "-r", help=ROBOT_HELP),
     seed: int = typer.Option(0, "--seed", "-s", min=0, max=MAX_SEED),
     as_json: bool = typer.Option(False, "--json", help=JSON_HELP),
@@ -408,7 +410,7 @@ def demo(
 @app.command()
 def render(
     task: str = typer.Argument(..., help="Library task name, graph FILE.json, or CLIPort "
-                               "FILE.py[:Class] (user code: it is executed)."),
+                               "FILE.py[:Class] (user code: it is executed), or LIBERO FILE.bddl."),
     out: Path = typer.Option(..., "--out", "-o", help="PNG file to write."),
     solved: bool = typer.Option(False, "--solved", help="Draw the oracle's end state "
                                 "instead of the reset scene."),
