@@ -152,7 +152,7 @@ def placement_areas(obj: SceneObject, pos: np.ndarray, quat: np.ndarray
     return centre, yaw, np.broadcast_to(obj.half_xy, (w, 2)), False
 
 
-def _contains(area: tuple[np.ndarray, np.ndarray, np.ndarray, bool],
+def area_contains(area: tuple[np.ndarray, np.ndarray, np.ndarray, bool],
               points: np.ndarray) -> np.ndarray:
     centre, yaw, half, rnd = area
     if rnd:
@@ -190,7 +190,7 @@ def check_region_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
         pts = footprint_points_batch(obj, pos, quat)
         bottom = box_z_range(obj, pos, quat)[0]
         for area, floor, rim in regions:
-            frac = _contains(area, pts).mean(axis=-1)
+            frac = area_contains(area, pts).mean(axis=-1)
             ok = frac + 1e-12 >= tol.region_fraction
             if goal.between_floor_and_rim:
                 ok &= ~((bottom < floor - tol.z) | (bottom >= rim))
@@ -244,7 +244,7 @@ def check_on_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene) -> Ba
     placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)
     for i, name in enumerate(t.objects):
         obj, pos, quat = scene.objects[name], scene.pos[:, cols[i]], scene.quat[:, cols[i]]
-        over = _contains(area, pos[:, None, :2])[:, 0]
+        over = area_contains(area, pos[:, None, :2])[:, 0]
         bottom = box_z_range(obj, pos, quat)[0]
         placed[:, i] = (over & (np.abs(bottom - surface) <= tol.z)
                         & (upright_tilts_deg(obj, quat) <= MAX_TILT_DEG))
@@ -358,7 +358,20 @@ def check_factor_batch(goal: RelationBase, targets: BatchTargets,
     return fn(goal, targets, scene)
 
 
-__all__ = ["BATCH_CHECKS", "BatchCheck", "BatchFactorStatus", "assign_slots",
-           "check_factor_batch", "check_on_batch", "check_pile_batch", "check_region_batch",
-           "check_rope_batch", "check_slots_batch", "group_areas", "placement_areas",
-           "rest_surfaces", "slot_fits"]
+__all__ = [
+    "BATCH_CHECKS",
+    "BatchCheck",
+    "BatchFactorStatus",
+    "area_contains",
+    "assign_slots",
+    "check_factor_batch",
+    "check_on_batch",
+    "check_pile_batch",
+    "check_region_batch",
+    "check_rope_batch",
+    "check_slots_batch",
+    "group_areas",
+    "placement_areas",
+    "rest_surfaces",
+    "slot_fits",
+]

@@ -33,14 +33,12 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 
 from factask.batch.assignment import assign_min_cost
-from factask.batch.checks import placement_areas
+from factask.batch.checks import area_contains, placement_areas, rest_surfaces
 from factask.batch.geometry import (
+    box_z_range,
     footprint_rects,
-    in_disk,
-    in_rect,
     rects_overlap,
     rotate_2d,
-    rotation_matrices,
     tilts_deg,
     yaws,
 )
@@ -53,7 +51,7 @@ from factask.graph.taskgraph import TaskGraph
 from factask.relations.solving import SolvedFactor
 from factask.relations.status import MAX_TILT_DEG
 from factask.scene.collision import REST_EPS
-from factask.scene.objects import SPHERE_KINDS, SceneObject, floor_thickness, footprint_radius
+from factask.scene.objects import SPHERE_KINDS, SceneObject, footprint_radius
 from factask.sim.layout.checks import TaskStatus, check_task
 from factask.sim.oracle.pick_points import takes_by_rim
 from factask.sim.oracle.scripted import MAX_ATTEMPTS_PER_OBJECT, Oracle, OracleAction
@@ -385,10 +383,9 @@ class LockstepPlanner:
         for c in np.unique(obj[self._rim[obj]]):
             which = obj == c
             o = self._objs[c]
-            floor = pos[which, c, 2] - o.half[2] + floor_thickness(o)
-            centre, yaw, half, rnd = placement_areas(o, pos[which, c], quat[which, c])
-            xy = pos[which][..., :2]
-            held_in = (in_disk(xy, centre, half[:, 0]) if rnd else in_rect(xy, centre, yaw, half))
+            floor = rest_surfaces(o, pos[which, c])
+            held_in = area_contains(placement_areas(o, pos[which, c], quat[which, c]),
+                                    pos[which][..., :2])
             b = bottoms[which]
             on_top[which] |= (others[which] & held_in & (floor[:, None] - REST_EPS < b)
                               & (b < tops[which, c][:, None]))
@@ -411,18 +408,10 @@ class LockstepPlanner:
                 "something stands at the target": occupy.any(axis=1),
                 "a later goal's object under the target": under.any(axis=1)}
 
-    def _z_ranges(self, pos: np.ndarray, quat: np.ndarray, which: np.ndarray | None = None
-                  ) -> tuple[np.ndarray, np.ndarray]:
-        """Lowest and highest points (s, k) of objects' boxes: every object (columns in
-        scene order), or per world the object ``which`` (s,) names (then k = 1)."""
-        half = self._half if which is None else self._half[which][:, None]  # (., k, 3)
-        rot_z = rotation_matrices(quat)[..., 2, :]  # (s, k, 3): the rows giving world z
-        # The box's extent along world z: sum over axes of |R_z,d| * half_d.
-        extent = np.einsum("skd,skd->sk", np.abs(rot_z), np.broadcast_to(half, rot_z.shape))
-        sphere = self._sphere if which is None else self._sphere[which][:, None]
-        extent = np.where(sphere, np.broadcast_to(half[..., 2], extent.shape), extent)
-        z = pos[..., 2]
-        return z - extent, z + extent
+    def _z_ranges(self, pos: np.ndarray, quat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Lowest and highest points (s, N) of every object's box (objects in scene order)."""
+        ranges = [box_z_range(o, pos[:, c], quat[:, c]) for c, o in enumerate(self._objs)]
+        return np.stack([r[0] for r in ranges], axis=1), np.stack([r[1] for r in ranges], axis=1)
 
     def _holds(self, pos: np.ndarray, quat: np.ndarray, corners: np.ndarray,
                lo: np.ndarray) -> np.ndarray:
@@ -432,11 +421,8 @@ class LockstepPlanner:
         out = np.zeros((s, nn), dtype=bool)
         for c in np.flatnonzero(self._receptacle):
             o = self.objects[self.names[c]]
-            floor = pos[:, c, 2] - o.half[2] + floor_thickness(o)
-            centre, yaw, half, rnd = placement_areas(o, pos[:, c], quat[:, c])
-            inside = (in_disk(corners, centre, half[:, 0]) if rnd
-                      else in_rect(corners, centre, yaw, half)).all(axis=1)
-            out[:, c] = inside & (lo >= floor - REST_EPS)
+            inside = area_contains(placement_areas(o, pos[:, c], quat[:, c]), corners)
+            out[:, c] = inside.all(axis=1) & (lo >= rest_surfaces(o, pos[:, c]) - REST_EPS)
         return out
 
     def _moved_later(self, k: int, sel: np.ndarray, placed: np.ndarray,
