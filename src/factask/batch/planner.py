@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
+from factask.batch.agreement import NOT_BATCHED
 from factask.batch.assignment import assign_min_cost
 from factask.batch.checks import area_contains, placement_areas, rest_surfaces
 from factask.batch.geometry import (
@@ -178,7 +179,7 @@ class LockstepPlanner:
                 for inst in {*s.supports, *s.support_group}:
                     if inst in index:
                         meant[w, index[inst]] = True
-            arrays = factor.goal.kind() not in ("pile_in_zone", "rope_along")
+            arrays = factor.goal.kind() not in NOT_BATCHED
             self._factors.append(_Factor(
                 fname, columns[fname], rank, bool(factor.milestone), arrays,
                 BatchTargets.stack(per_world),
