@@ -18,10 +18,8 @@ import time
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
+from factask.batch.planner import NOT_BATCHED
 from factask.graph.taskgraph import TaskGraph
-
-#: Relation kinds whose oracle actions the lockstep primitive does not run yet.
-NOT_BATCHED = frozenset({"pile_in_zone", "rope_along"})
 
 
 def batched(graph: TaskGraph) -> bool:

@@ -32,7 +32,6 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
-from factask.batch.agreement import NOT_BATCHED
 from factask.batch.assignment import assign_min_cost
 from factask.batch.checks import area_contains, placement_areas, rest_surfaces
 from factask.batch.geometry import (
@@ -61,6 +60,9 @@ from factask.vocabulary.kinds import yaw_symmetry_deg
 if TYPE_CHECKING:
     from factask.sim.env import FactaskEnv
 
+#: Relation kinds whose oracle actions (pushes, low carries) the lockstep primitive
+#: does not run yet: their worlds go to the scalar oracle, which asks for one and stops.
+NOT_BATCHED = frozenset({"pile_in_zone", "rope_along"})
 #: Assignment cost of a slot an object may not take (the scalar status's).
 _FORBIDDEN = 1e6
 #: Margin (m) the scalar occupancy checks shrink the moved object's footprint by.
@@ -496,4 +498,4 @@ def yaw_toward(target: np.ndarray, current: np.ndarray, symmetry_deg: np.ndarray
     return np.where(symmetry_deg > 0, np.arctan2(np.sin(turned), np.cos(turned)), current)
 
 
-__all__ = ["LockstepPlan", "LockstepPlanner", "WorldView", "round_mm", "yaw_toward"]
+__all__ = ["NOT_BATCHED", "LockstepPlan", "LockstepPlanner", "WorldView", "round_mm", "yaw_toward"]
