@@ -429,6 +429,11 @@ def test_make_vec_with_an_id_gives_the_batch_with_the_ids_spaces() -> None:
     sync.close()
 
 
+def test_a_task_with_drawers_is_refused_by_the_batch_with_a_typed_error() -> None:
+    with pytest.raises(InvalidValueError, match=r"drawers .* not in the batched env"):
+        make_batch("open-drawer", 1, device="cpu")
+
+
 def test_a_contact_overflow_is_a_physics_failure_and_bowls_fit_the_default() -> None:
     # A scene of bowls (a floor and sixteen wall geoms each, all resting on the table):
     # the default capacity holds its contacts; a small one overflows and says so.

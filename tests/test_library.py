@@ -151,7 +151,9 @@ def test_tasks_fit_the_workspace_and_the_oracle(graphs: dict[str, TaskGraph]) ->
             assert sx <= 0.35 and sy <= 0.35 and sz <= 0.3, (name, v.name)
             if not v.is_fixed:
                 assert max(sx, sy) <= 0.15, (name, v.name)  # a suction cup can carry it
-            if kind_spec(v.kind).collides:
+            # A drawer lies inside its cabinet's footprint (in front of it when open,
+            # where the layout keeps the table clear).
+            if kind_spec(v.kind).collides and v.kind != "drawer":
                 footprint += sx * sy * v.count
         # Leave most of the table free so initial layouts can be sampled.
         assert footprint < 0.35 * area, (name, footprint)

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from factask.geometry import Pose
 from factask.graph import TaskGraph
 from factask.library import get_task, task_names
 from factask.library.tags import task_tags
@@ -32,12 +33,21 @@ def _final_poses(graph: TaskGraph, poses: dict, solved: dict) -> dict:
     """The start poses with every object moved to its target in the factors that
     must hold at the end (later factors win, as the oracle would leave them)."""
     final = dict(poses)
+    where = dict(poses)  # every object's latest target, milestones included
+    riders: dict[str, tuple[str, np.ndarray]] = {}  # in a drawer: (drawer, offset)
     for name in graph.factor_order():
-        if graph.factor(name).milestone:
-            continue
         s = solved[name]
         for i, obj in enumerate(s.objects):
-            final[obj] = s.slots[s.assignment[i]]
+            slot = s.assignment[i]
+            where[obj] = s.slots[slot]
+            host = s.supports[slot] if s.supports else None
+            if host in graph.variable_names() and graph.variable(host).kind == "drawer":
+                riders[obj] = (host, where[obj].pos - where[host].pos)
+            if not graph.factor(name).milestone:
+                final[obj] = s.slots[slot]
+    # What rests in a drawer rides with it when a later goal slides it.
+    for obj, (host, offset) in riders.items():
+        final[obj] = Pose(final[host].pos + offset, final[obj].quat)
     return final
 
 

@@ -30,6 +30,7 @@ from factask.batch.geometry import (
     in_disk,
     in_rect,
     rotate_2d,
+    rotation_matrices,
     to_local_2d,
     upright_tilts_deg,
     yaw_errors_deg,
@@ -38,6 +39,7 @@ from factask.batch.geometry import (
 from factask.batch.scene import BatchScene
 from factask.batch.targets import BatchTargets
 from factask.relations.base import RelationBase
+from factask.relations.drawer import DrawerRelation
 from factask.relations.pile_in_zone import PileInZone, block_side
 from factask.relations.region import RegionRelation
 from factask.relations.rope import RopeAlong, segment_scores
@@ -49,6 +51,7 @@ from factask.scene.objects import (
     inner_half_xy,
 )
 from factask.vocabulary.errors import InvalidValueError
+from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
 from factask.vocabulary.world import TABLE_Z
 
 
@@ -316,6 +319,35 @@ def check_rope_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
     return BatchFactorStatus(np.where(ok, 1.0, score), ok, placed)
 
 
+# ------------------------------------------------------------------ drawers
+def drawer_openings(cabinet: SceneObject, cabinet_pos: np.ndarray, cabinet_quat: np.ndarray,
+                    drawer: SceneObject, pos: np.ndarray) -> np.ndarray:
+    """How far a drawer is pulled out in every world (W,), a fraction of its travel:
+    the batched twin of :func:`factask.scene.cabinet.drawer_opening` (its slide along
+    the cabinet's -x axis, 0 closed, not clipped)."""
+    local_x = np.einsum("wi,wi->w", rotation_matrices(cabinet_quat)[:, :, 0],
+                        pos - cabinet_pos)
+    closed_x = drawer_closed_offset(cabinet.size, 1, 0)[0]  # the same for every bay
+    return (closed_x - local_x) / drawer_travel(drawer.size)
+
+
+def check_drawer_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
+                       ) -> BatchFactorStatus:
+    """``open`` / ``closed``: each drawer's opening against the relation's threshold
+    (its own ``holds``, applied to the array); a held drawer never counts."""
+    assert isinstance(goal, DrawerRelation)
+    cols = scene.columns(t.objects)
+    placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)
+    for i, name in enumerate(t.objects):
+        cabinet = t.supports[i]
+        (c,) = scene.columns([cabinet])
+        opening = drawer_openings(scene.objects[cabinet], scene.pos[:, c], scene.quat[:, c],
+                                  scene.objects[name], scene.pos[:, cols[i]])
+        placed[:, i] = np.asarray(goal.holds(opening), dtype=bool)  # type: ignore[arg-type]
+    placed &= ~scene.held[:, cols]
+    return _from_placed(placed)
+
+
 #: Relation kind -> its batched check.
 BATCH_CHECKS: dict[str, BatchCheck] = {
     "at_pose": check_slots_batch,
@@ -328,6 +360,8 @@ BATCH_CHECKS: dict[str, BatchCheck] = {
     "on": check_on_batch,
     "pile_in_zone": check_pile_batch,
     "rope_along": check_rope_batch,
+    "open": check_drawer_batch,
+    "closed": check_drawer_batch,
 }
 
 
@@ -364,12 +398,14 @@ __all__ = [
     "BatchFactorStatus",
     "area_contains",
     "assign_slots",
+    "check_drawer_batch",
     "check_factor_batch",
     "check_on_batch",
     "check_pile_batch",
     "check_region_batch",
     "check_rope_batch",
     "check_slots_batch",
+    "drawer_openings",
     "group_areas",
     "placement_areas",
     "rest_surfaces",

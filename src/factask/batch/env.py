@@ -82,7 +82,7 @@ class BatchEnv:
     Raises:
         BatchBackendMissing: the ``gpu`` extra is not installed.
         DeviceUnavailableError: ``device`` asks for a GPU this machine lacks.
-        InvalidValueError: ``num_envs`` < 1 or a bad device name.
+        InvalidValueError: ``num_envs`` < 1, a bad device name, or a task with drawers.
         GraphValidationError, CompileError: the graph cannot be compiled.
     """
 
@@ -101,6 +101,12 @@ class BatchEnv:
         self.graph = graph
         #: The single env that resets worlds (its reset is the batch's reset).
         self.cpu_env = FactaskEnv(graph, robot=robot)
+        drawers = [n for n, h in self.cpu_env.scene.objects.items() if h.slide is not None]
+        if drawers:
+            raise InvalidValueError(
+                f"drawers ({', '.join(drawers)}) are not in the batched env yet (a drawer's "
+                "pose follows its slide joint, which the batch does not read): run this "
+                "task in the single env (FactaskEnv) or gymnasium's sync vector env")
         #: The batch's host model: the scene's, with one inactive weld per free object.
         self.model, welds = model_with_object_welds(self.cpu_env.scene)
         self.suction = WorldSuction(self.model, welds, int(num_envs))

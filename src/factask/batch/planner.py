@@ -60,9 +60,10 @@ from factask.vocabulary.kinds import yaw_symmetry_deg
 if TYPE_CHECKING:
     from factask.sim.env import FactaskEnv
 
-#: Relation kinds whose oracle actions (pushes, low carries) the lockstep primitive
-#: does not run yet: their worlds go to the scalar oracle, which asks for one and stops.
-NOT_BATCHED = frozenset({"pile_in_zone", "rope_along"})
+#: Relation kinds whose oracle actions (pushes, low carries, a drawer's slide) the
+#: lockstep primitive does not run yet: their worlds go to the scalar oracle, which
+#: asks for one and stops.
+NOT_BATCHED = frozenset({"pile_in_zone", "rope_along", "open", "closed"})
 #: Assignment cost of a slot an object may not take (the scalar status's).
 _FORBIDDEN = 1e6
 #: Margin (m) the scalar occupancy checks shrink the moved object's footprint by.

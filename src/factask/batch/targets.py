@@ -37,6 +37,8 @@ class BatchTargets:
         support_group: Support instances (``on``).
         check_yaw: Whether yaw is checked.
         chain: Slots form a column (slot k counts only if k - 1 does).
+        supports: Per slot, what the object there rests on or slides in (an instance
+            name or ``table``): a drawer's cabinet for ``open`` / ``closed``.
     """
 
     factor: str
@@ -50,6 +52,7 @@ class BatchTargets:
     support_group: tuple[str, ...]
     check_yaw: bool
     chain: bool
+    supports: tuple[str, ...] = ()
 
     @property
     def num_worlds(self) -> int:
@@ -78,11 +81,13 @@ class BatchTargets:
             same = (s.factor == first.factor and s.relation == first.relation
                     and s.objects == first.objects and len(s.slots) == len(first.slots)
                     and s.regions == first.regions and s.support_group == first.support_group
-                    and s.chain == first.chain and s.check_yaw == first.check_yaw)
+                    and s.chain == first.chain and s.check_yaw == first.check_yaw
+                    and s.supports == first.supports)
             if not same:
                 raise InvalidValueError(
                     f"factor {first.factor!r}: the worlds' solved targets differ in what the "
-                    "relation fixes (objects, anchors, slot count, chain or yaw check)")
+                    "relation fixes (objects, anchors, slot count, chain, yaw check or "
+                    "supports)")
         m = len(first.slots)
         pos = np.array([[p.pos for p in s.slots] for s in solved], dtype=float).reshape(-1, m, 3)
         quat = np.array([[p.quat for p in s.slots] for s in solved],
@@ -93,7 +98,7 @@ class BatchTargets:
         matches = np.array([np.asarray(s.matches, dtype=bool) for s in solved])
         return cls(first.factor, first.relation, tuple(first.objects), pos, quat, surf,
                    matches, tuple(first.regions), tuple(first.support_group),
-                   bool(first.check_yaw), bool(first.chain))
+                   bool(first.check_yaw), bool(first.chain), tuple(first.supports))
 
     def target_pos(self, objects: Mapping[str, SceneObject]) -> np.ndarray:
         """Target centre (W, n, m, 3) of object i when it takes slot j (see
@@ -113,7 +118,7 @@ class BatchTargets:
         return BatchTargets(self.factor, self.relation, self.objects, self.slot_pos[worlds],
                             self.slot_quat[worlds], self.surfaces[worlds],
                             self.matches[worlds], self.regions, self.support_group,
-                            self.check_yaw, self.chain)
+                            self.check_yaw, self.chain, self.supports)
 
 
 __all__ = ["BatchTargets"]

@@ -31,7 +31,14 @@ from factask.relations import RELATION_TYPES
 from factask.vocabulary.errors import FactaskError
 from factask.vocabulary.kinds import ASSET_KINDS
 from factask.vocabulary.palette import COLOR_NAMES
-from factask.vocabulary.variables import AtFixedPose, InRegion, OnTable, StartInside, StartOn
+from factask.vocabulary.variables import (
+    AtFixedPose,
+    InCabinet,
+    InRegion,
+    OnTable,
+    StartInside,
+    StartOn,
+)
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 _PLACEHOLDER_RE = re.compile(r"\{\{\s*([a-z_][a-z0-9_]*)\s*\}\}")
@@ -190,7 +197,7 @@ def relations_text() -> str:
 def placements_text() -> str:
     """Each initial placement of a variable (field ``initial``)."""
     lines = []
-    for cls in (OnTable, InRegion, StartOn, StartInside, AtFixedPose):
+    for cls in (OnTable, InRegion, StartOn, StartInside, AtFixedPose, InCabinet):
         kind = cls.model_fields["type"].default
         schema = compact_schema(cls)
         lines.append(f"- `{kind}`: {_doc(cls)} {json.dumps(schema, separators=(',', ':'))}")

@@ -22,9 +22,11 @@ from factask.relations import (
     Aligned,
     AtPose,
     Circle,
+    Closed,
     Inside,
     InZone,
     On,
+    Open,
     Relation,
     Row,
     Stack,
@@ -52,6 +54,7 @@ from factask.vocabulary.palette import COLOR_NAMES, COLORS, UnknownColorError, n
 from factask.vocabulary.tolerances import Tolerances
 from factask.vocabulary.variables import (
     AtFixedPose,
+    InCabinet,
     InRegion,
     OnTable,
     Placement,
@@ -62,10 +65,10 @@ from factask.vocabulary.variables import (
 
 __all__ = [
     "ASSET_KINDS", "COLORS", "COLOR_NAMES", "KIND_NAMES", "RELATION_TYPES",
-    "Aligned", "AssetKind", "AtFixedPose", "AtPose", "Circle", "CompositionError",
-    "FactaskError", "GraphValidationError", "InRegion", "InZone", "Inside",
+    "Aligned", "AssetKind", "AtFixedPose", "AtPose", "Circle", "Closed", "CompositionError",
+    "FactaskError", "GraphValidationError", "InCabinet", "InRegion", "InZone", "Inside",
     "InvalidValueError", "KindSpec",
-    "Limits", "On", "OnTable", "Placement", "Problem", "Relation", "Row", "Stack",
+    "Limits", "On", "OnTable", "Open", "Placement", "Problem", "Relation", "Row", "Stack",
     "StartInside", "StartOn", "StateVariable", "SubjectError", "SubtaskFactor", "SubtaskTemplate",
     "TargetPose", "TaskGraph", "TemplateSlot", "Tolerances", "UnknownColorError",
     "UnknownKindError", "compose", "empty_graph", "extract_fragment", "extract_template",

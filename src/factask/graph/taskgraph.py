@@ -30,7 +30,12 @@ from factask.vocabulary.errors import GraphValidationError, Problem, name_list
 from factask.vocabulary.kinds import kind_spec, shape_problem
 from factask.vocabulary.limits import MAX_FACTORS, MAX_OBJECTS, MAX_VARIABLES, Text, size_problem
 from factask.vocabulary.names import TaskName
-from factask.vocabulary.variables import StartInside, StateVariable
+from factask.vocabulary.variables import (
+    InCabinet,
+    StartInside,
+    StateVariable,
+    cabinet_problems,
+)
 
 #: Weights must sum to 1 within this absolute tolerance.
 WEIGHT_SUM_TOLERANCE = 1e-6
@@ -267,13 +272,14 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             elif ref not in variables:
                 out.append(Problem(v.name, "initial", f"starts on/inside unknown variable "
                                    f"{ref!r}", f"use one of {name_list(var_names)}"))
-            else:
+            elif not isinstance(v.initial, InCabinet):  # a drawer: cabinet_problems
                 need = "receptacle" if isinstance(v.initial, StartInside) else "support"
                 host = variables[ref]
                 if not getattr(kind_spec(host.kind), need):
                     out.append(Problem(v.name, "initial", f"starts {v.initial.type} {ref!r}, "
                                        f"a {host.kind}, which is not a {need}",
                                        "start it on the table or on/inside another variable"))
+    out.extend(cabinet_problems(graph.variables))
     starts = nx.DiGraph()
     for v in graph.variables:
         for ref in v.references():
@@ -315,7 +321,8 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             out.append(Problem(f.name, "goal.objects", f"{name!r} listed twice", "list it once"))
         for name in f.goal.objects:
             v = variables.get(name)
-            if v is not None and v.is_fixed:
+            # A drawer is fixed (never picked) but slides in its cabinet: 'open' moves it.
+            if v is not None and v.is_fixed and v.kind != "drawer":
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))
         out.extend(f.goal.problems(f.name, variables))

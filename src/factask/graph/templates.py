@@ -28,8 +28,9 @@ from factask.vocabulary.names import Name, TaskName
 from factask.vocabulary.variables import StateVariable
 
 #: Fields of relations (their anchors) and of start placements that hold a
-#: variable name (or, for a list anchor such as ``row``'s ``on``, a list of names).
-_NAME_FIELDS = tuple(dict.fromkeys((*ANCHOR_FIELDS, "support", "container")))
+#: variable name (or, for a list anchor such as ``row``'s ``on``, a list of names):
+#: ``cabinet`` is a drawer's ``in_cabinet`` start.
+_NAME_FIELDS = tuple(dict.fromkeys((*ANCHOR_FIELDS, "support", "container", "cabinet")))
 
 
 def _rename_value(value: Any, mapping: Mapping[str, str]) -> Any:

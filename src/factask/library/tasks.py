@@ -17,6 +17,7 @@ from factask.graph import FactaskError, TaskGraph
 # Importing the catalogue modules registers their builders.
 from factask.library import (  # noqa: F401
     catalog_arranging,
+    catalog_articulated,
     catalog_deformable,
     catalog_gensim_insertion,
     catalog_gensim_layers,

@@ -18,10 +18,12 @@ from factask.graph import (
     Aligned,
     AtPose,
     Circle,
+    Closed,
     CompositionError,
     Inside,
     InZone,
     On,
+    Open,
     Row,
     Stack,
     StateVariable,
@@ -41,7 +43,7 @@ STACKABLE = ["block", "box", "cylinder"]
 # Kinds usable as the footprint of an ``in_zone`` goal.
 REGIONS = ["zone", "pallet", "kit", "stand", "line", "bowl", "container", "fixture"]
 # Kinds one can put things inside.
-RECEPTACLES = ["container", "bowl", "fixture"]
+RECEPTACLES = ["container", "bowl", "fixture", "drawer"]
 # Kinds a column may stand on (``stack`` base: support or region; a corner marker
 # holds a column of ells, an ell carries an equal ell).
 BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinder", "corner",
@@ -90,6 +92,26 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
             name="put_in",
             description="put the {objects} into the {container}",
             goal=Inside(objects=["objects"], container="container"),
+        )],
+    ),
+    SubtaskTemplate(
+        name="open_drawer",
+        description="Open the {drawer}.",
+        slots=[slot("drawer", "the drawer to pull open", ["drawer"])],
+        factors=[SubtaskFactor(
+            name="open",
+            description="pull the {drawer} open",
+            goal=Open(objects=["drawer"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="close_drawer",
+        description="Close the {drawer}.",
+        slots=[slot("drawer", "the drawer to push shut", ["drawer"])],
+        factors=[SubtaskFactor(
+            name="close",
+            description="push the {drawer} shut",
+            goal=Closed(objects=["drawer"]),
         )],
     ),
     SubtaskTemplate(

@@ -22,9 +22,11 @@ from factask.relations.aligned import Aligned
 from factask.relations.at_pose import AtPose, TargetPose
 from factask.relations.base import RelationBase
 from factask.relations.circle import Circle
+from factask.relations.closed import Closed
 from factask.relations.in_zone import InZone
 from factask.relations.inside import Inside
 from factask.relations.on import On
+from factask.relations.open import Open
 from factask.relations.pile_in_zone import PileInZone
 from factask.relations.rope import RopeAlong
 from factask.relations.row import Row
@@ -32,7 +34,7 @@ from factask.relations.stack import Stack
 
 #: Every relation unit, in the order the schema and the prompts list them.
 _UNITS: tuple[type[RelationBase], ...] = (AtPose, InZone, On, Inside, Stack, Row, Circle,
-                                         Aligned, PileInZone, RopeAlong)
+                                         Aligned, PileInZone, RopeAlong, Open, Closed)
 
 #: The registry: relation kind (its ``type``) -> its class.
 RELATION_TYPES: dict[str, type[RelationBase]] = {cls.kind(): cls for cls in _UNITS}
@@ -53,5 +55,5 @@ ANCHOR_FIELDS: tuple[str, ...] = tuple(dict.fromkeys(
     field for cls in _UNITS for field in cls.anchor_fields))
 
 __all__ = ["ANCHOR_CAPABILITY", "ANCHOR_FIELDS", "RELATION_TYPES", "Aligned", "AtPose",
-           "Circle", "InZone", "Inside", "On", "PileInZone", "Relation", "RelationBase",
-           "RopeAlong", "Row", "Stack", "TargetPose"]
+           "Circle", "Closed", "InZone", "Inside", "On", "Open", "PileInZone", "Relation",
+           "RelationBase", "RopeAlong", "Row", "Stack", "TargetPose"]

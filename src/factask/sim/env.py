@@ -42,6 +42,7 @@ from factask.sim.layout.reset import reset_layout
 from factask.sim.robots.attach import SuctionRobot, make_robot
 from factask.sim.robots.health import physics_problem
 from factask.sim.robots.low_carry import low_pick_and_place
+from factask.sim.robots.slide_pull import slide_pull
 from factask.sim.robots.spatula import push
 from factask.vocabulary.errors import FactaskError, InvalidValueError
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
@@ -122,7 +123,9 @@ class FactaskEnv(gym.Env):
     ``start`` and ``end`` (x, y, z, yaw; only x, y are used): a push along the
     table (:mod:`factask.sim.robots.spatula`). A pick-and-place with ``lift`` (metres)
     carries the object only that high (:mod:`factask.sim.robots.low_carry`: a rope's
-    segment, Ravens' ``PickPlace(height=0.02)``).
+    segment, Ravens' ``PickPlace(height=0.02)``). An action with ``grasp`` and
+    ``slide_to`` (x, y, z, yaw) holds a drawer's handle at ``grasp`` and slides it
+    level until the tip is over ``slide_to``'s x, y (:mod:`factask.sim.robots.slide_pull`).
 
     Raises:
         GraphValidationError, CompileError: the graph cannot be compiled.
@@ -261,7 +264,9 @@ class FactaskEnv(gym.Env):
                    "targets": {o: p.to_list() for o, p in targets[name].items()}}
             for name, s in solved.items()}
         mujoco.mj_resetData(self.model, self.data)
-        for name, handle in self.scene.objects.items():
+        # A drawer's pose is set along its slide once its cabinet's is.
+        for name, handle in sorted(self.scene.objects.items(),
+                                   key=lambda item: item[1].slide is not None):
             set_object_pose(self.model, self.data, handle, layout[name])
         for (factor, slot), mocap in self.scene.markers.items():
             inst = self.scene.marker_objects[(factor, slot)]
@@ -305,10 +310,14 @@ class FactaskEnv(gym.Env):
         if self._status is None:
             raise ResetNeededError("call reset() before step()")
         pushing = isinstance(action, dict) and {"start", "end"} <= set(action)
-        if not pushing and (not isinstance(action, dict) or not {"pick", "place"} <= set(action)):
+        sliding = isinstance(action, dict) and {"grasp", "slide_to"} <= set(action)
+        if not (pushing or sliding) and (not isinstance(action, dict)
+                                         or not {"pick", "place"} <= set(action)):
             raise ActionError(f"action must be a dict with 'pick' and 'place' (or 'start' and "
-                              f"'end' of a push), got {action!r}")
-        first, second = ("start", "end") if pushing else ("pick", "place")
+                              f"'end' of a push, or 'grasp' and 'slide_to' of a drawer's "
+                              f"slide), got {action!r}")
+        first, second = (("start", "end") if pushing else ("grasp", "slide_to") if sliding
+                         else ("pick", "place"))
         pick = _pose4(action[first], first)
         place = _pose4(action[second], second)
         if self.failure is not None:
@@ -320,6 +329,9 @@ class FactaskEnv(gym.Env):
         if pushing:  # a spatula's push (factask.sim.robots.spatula)
             result = push(self.robot, pick, place, on_step=self.frame_callback,
                           max_steps=max_steps)
+        elif sliding:  # a drawer held by its handle (factask.sim.robots.slide_pull)
+            result = slide_pull(self.robot, pick, place, on_step=self.frame_callback,
+                                max_steps=max_steps)
         elif "lift" in action:  # a low carry (a rope's segment: factask.sim.robots.low_carry)
             lift = float(np.asarray(action["lift"], dtype=float).reshape(-1)[0])
             if not np.isfinite(lift) or not 0.0 < lift <= WORKSPACE_Z[1]:

@@ -41,6 +41,8 @@ AssetKind = Literal[
     "holed_box",
     "pile",
     "rope",
+    "cabinet",
+    "drawer",
 ]
 
 KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
@@ -118,6 +120,13 @@ _SPECS = [
     KindSpec("rope", "rope of count segments linked in a chain (Ravens' bead chain); size = "
              "one segment: (length along the rope, diameter, diameter)",
              (0.014, 0.01, 0.01), movable=True),
+    KindSpec("cabinet", "cabinet fixed to the table, its drawers stacked in it and opening "
+             "towards its -x side (their handles stick out there); size = outer extents",
+             (0.22, 0.28, 0.10), movable=False, asymmetric=True),
+    KindSpec("drawer", "open-top drawer sliding along -x out of its cabinet (starts "
+             "'in_cabinet'; its size follows from the cabinet's); its handle sticks out "
+             "of its -x face inside its size", (0.20, 0.26, 0.08), movable=False,
+             asymmetric=True, receptacle=True),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.
@@ -131,6 +140,19 @@ WALL_THICKNESS = 0.01
 #: The side of a ``holed_box``'s square hole as a fraction of its +x face's smaller
 #: extent (a "small hole": half the face's height on a box lower than it is wide).
 HOLE_FRACTION = 0.5
+#: A drawer's handle: how far it sticks out of the drawer's front wall (x), how wide
+#: (y) and how thick (z) it is, metres. It is a flat tab the suction cup holds from
+#: above; the handles of a cabinet's drawers are side by side, one per drawer, so
+#: none lies under another (a top-down cup reaches each).
+HANDLE_DEPTH = 0.035
+HANDLE_WIDTH = 0.035
+HANDLE_THICKNESS = 0.01
+#: Gap (m) between a drawer and its cabinet's panels, on every side.
+DRAWER_GAP = 0.004
+#: How far a drawer slides out, as a fraction of its depth (its joint's range).
+DRAWER_TRAVEL_FRACTION = 0.8
+#: Drawers one cabinet holds at most.
+MAX_DRAWERS = 3
 
 
 def side_hole(size: tuple[float, float, float]) -> tuple[float, float]:
@@ -138,6 +160,50 @@ def side_hole(size: tuple[float, float, float]) -> tuple[float, float]:
     (metres). The hole is square, in the middle of the +x face.
     """
     return HOLE_FRACTION * min(size[1], size[2]), size[2] / 2
+
+
+def cabinet_bay(size: tuple[float, float, float], bays: int, level: int) -> tuple[float, float]:
+    """Bay ``level`` (0: the bottom one) of a cabinet of ``size`` holding ``bays``
+    drawers: the height of its floor above the cabinet's centre and its inner height
+    (metres). The cabinet has a top, a bottom and a shelf between bays, each
+    :data:`WALL_THICKNESS` thick."""
+    inner = (size[2] - (bays + 1) * WALL_THICKNESS) / bays
+    return -size[2] / 2 + WALL_THICKNESS + level * (inner + WALL_THICKNESS), inner
+
+
+def drawer_size(cabinet_size: tuple[float, float, float],
+                bays: int) -> tuple[float, float, float]:
+    """The size a drawer of a cabinet of ``cabinet_size`` with ``bays`` drawers has:
+    the cabinet's depth less its back panel and a gap, plus the handle that sticks
+    out of the cabinet's front; its width less two side panels and gaps; its bay's
+    height less two gaps."""
+    _, inner = cabinet_bay(cabinet_size, bays, 0)
+    return (cabinet_size[0] - WALL_THICKNESS - DRAWER_GAP + HANDLE_DEPTH,
+            cabinet_size[1] - 2 * (WALL_THICKNESS + DRAWER_GAP), inner - 2 * DRAWER_GAP)
+
+
+def drawer_closed_offset(cabinet_size: tuple[float, float, float], bays: int,
+                         level: int) -> tuple[float, float, float]:
+    """Centre of drawer ``level``, closed, in its cabinet's frame: its front wall flush
+    with the cabinet's -x face (its handle out in front of it), a gap above its bay's
+    floor."""
+    size = drawer_size(cabinet_size, bays)
+    floor, _ = cabinet_bay(cabinet_size, bays, level)
+    return (-cabinet_size[0] / 2 - HANDLE_DEPTH + size[0] / 2, 0.0,
+            floor + DRAWER_GAP + size[2] / 2)
+
+
+def drawer_travel(size: tuple[float, float, float]) -> float:
+    """How far (m) a drawer of ``size`` slides out: its joint's range."""
+    return DRAWER_TRAVEL_FRACTION * (size[0] - HANDLE_DEPTH)
+
+
+def handle_top(size: tuple[float, float, float], bays: int,
+               level: int) -> tuple[float, float, float]:
+    """Centre of the top face of drawer ``level``'s handle in the drawer's frame: at
+    its -x end, flush with its rim, the cabinet's handles side by side along y."""
+    pitch = (size[1] - 2 * WALL_THICKNESS) / bays
+    return (-size[0] / 2 + HANDLE_DEPTH / 2, (level - (bays - 1) / 2) * pitch, size[2] / 2)
 
 
 class UnknownKindError(FactaskError, ValueError):
@@ -218,6 +284,14 @@ def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str
                     f"({WALL_THICKNESS} m thick)",
                     f"make size x and y larger than {walls:.3f} and z larger than "
                     f"{WALL_THICKNESS}")
+    if kind == "cabinet" and not (x > 0.1 and y > 3 * HANDLE_WIDTH and z > 0.05):
+        return (f"a cabinet of size {tuple(size)} has no room for a drawer",
+                "make size x larger than 0.1, y larger than "
+                f"{3 * HANDLE_WIDTH:.3f} and z larger than 0.05")
+    if kind == "drawer" and not (x > HANDLE_DEPTH + 4 * WALL_THICKNESS
+                                 and y > 2 * WALL_THICKNESS and z > 2 * WALL_THICKNESS):
+        return (f"a drawer of size {tuple(size)} has no room inside its walls and handle",
+                f"make size x larger than {HANDLE_DEPTH + 4 * WALL_THICKNESS:.3f}")
     if kind == "holed_box":
         side, _ = side_hole(size)
         if side > min(y, z) - 2 * WALL_THICKNESS:

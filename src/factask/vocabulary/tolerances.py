@@ -12,6 +12,10 @@ Z_TOLERANCE = 0.015
 YAW_TOLERANCE_DEG = 15.0
 #: Fraction of an object's footprint that must lie inside a zone/container.
 REGION_FRACTION = 1.0
+#: A drawer is ``open`` from this fraction of its travel out (its joint's range) ...
+DRAWER_OPEN_FRACTION = 0.9
+#: ... and ``closed`` up to this fraction (a 5 % gap reads as shut).
+DRAWER_CLOSED_FRACTION = 0.05
 #: Reward above which an episode counts as a success (the research's definition).
 SUCCESS_REWARD = 0.99
 #: Fraction of episodes that must succeed for a task to count as completed.

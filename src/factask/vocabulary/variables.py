@@ -7,8 +7,15 @@ from typing import Annotated, Literal, Protocol
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from factask.vocabulary.errors import InvalidValueError
-from factask.vocabulary.kinds import AssetKind, default_mass, kind_spec, yaw_symmetry_deg
+from factask.vocabulary.errors import InvalidValueError, Problem
+from factask.vocabulary.kinds import (
+    MAX_DRAWERS,
+    AssetKind,
+    default_mass,
+    drawer_size,
+    kind_spec,
+    yaw_symmetry_deg,
+)
 from factask.vocabulary.limits import MAX_COUNT, MAX_HORIZONTAL, MIN_LENGTH, Text
 from factask.vocabulary.names import Name, instance_names
 from factask.vocabulary.palette import normalize_color
@@ -75,6 +82,18 @@ class StartInside(_OnHost):
     container: Name
 
 
+class InCabinet(BaseModel):
+    """Start as drawer ``level`` (0: the bottom one) of the cabinet variable
+    ``cabinet``, pulled out by ``opening`` (a fraction of its travel: 0 closed, 1 all
+    the way out). Only a drawer starts so; its cabinet has one bay per drawer in it."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["in_cabinet"] = "in_cabinet"
+    cabinet: Name
+    level: int = Field(0, ge=0, le=MAX_DRAWERS - 1)
+    opening: Annotated[float, Field(ge=0, le=1, allow_inf_nan=False)] = 0.0
+
+
 class AtFixedPose(BaseModel):
     """Start at a given x, y (metres) and yaw (degrees), resting on the table."""
 
@@ -86,7 +105,8 @@ class AtFixedPose(BaseModel):
 
 
 Placement = Annotated[
-    OnTable | InRegion | StartOn | StartInside | AtFixedPose, Field(discriminator="type")
+    OnTable | InRegion | StartOn | StartInside | AtFixedPose | InCabinet,
+    Field(discriminator="type"),
 ]
 
 
@@ -183,6 +203,8 @@ class StateVariable(BaseModel):
             return [self.initial.support]
         if isinstance(self.initial, StartInside):
             return [self.initial.container]
+        if isinstance(self.initial, InCabinet):
+            return [self.initial.cabinet]
         return []
 
 
@@ -198,3 +220,72 @@ class VariableSet(Protocol):
     def variables(self) -> Sequence[StateVariable]: ...
 
     def variable(self, name: str) -> StateVariable: ...
+
+
+def drawers_of(variables: Sequence[StateVariable], cabinet: str) -> list[StateVariable]:
+    """The drawer variables that start in ``cabinet`` (:class:`InCabinet`), by level:
+    their number is the cabinet's number of bays.
+
+    Args:
+        variables: A graph's variables.
+        cabinet: The cabinet variable's name.
+    """
+    found = [v for v in variables
+             if isinstance(v.initial, InCabinet) and v.initial.cabinet == cabinet]
+    return sorted(found, key=lambda v: v.initial.level)  # type: ignore[union-attr]
+
+
+def cabinet_problems(variables: Sequence[StateVariable]) -> list[Problem]:
+    """What is wrong with the graph's cabinets and drawers: a drawer starts
+    ``in_cabinet`` of a cabinet variable (and nothing else does), both stand for one
+    object, a cabinet's drawers take its bays 0..n-1 once each, and a drawer's size
+    is the one its cabinet gives it (:func:`~factask.vocabulary.kinds.drawer_size`).
+
+    Args:
+        variables: A graph's variables.
+    """
+    out: list[Problem] = []
+    by_name = {v.name: v for v in variables}
+    for v in variables:
+        placed = isinstance(v.initial, InCabinet)
+        if v.kind == "drawer" and not placed:
+            out.append(Problem(v.name, "initial", "a drawer starts in a cabinet",
+                               'give initial {"type": "in_cabinet", "cabinet": <a cabinet '
+                               'variable>, "level": 0}'))
+        if placed and v.kind != "drawer":
+            out.append(Problem(v.name, "initial", f"only a drawer starts in_cabinet, not a "
+                               f"{v.kind}", "start it on the table or on/inside another "
+                               "variable"))
+        if v.kind in ("drawer", "cabinet") and v.count != 1:
+            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
+                               f"got count {v.count}", "give each its own variable"))
+        if v.kind == "drawer" and not v.is_fixed:
+            out.append(Problem(v.name, "fixed", "a drawer slides in its cabinet; it cannot be "
+                               "free", "leave fixed out"))
+        if placed and v.kind == "drawer":
+            host = by_name.get(v.initial.cabinet)  # type: ignore[union-attr]
+            if host is not None and host.kind != "cabinet":
+                out.append(Problem(v.name, "initial.cabinet", f"{host.name!r} is a "
+                                   f"{host.kind}, not a cabinet", "name a cabinet variable"))
+    for cab in (v for v in variables if v.kind == "cabinet"):
+        drawers = drawers_of(variables, cab.name)
+        if not drawers:
+            out.append(Problem(cab.name, "kind", "a cabinet holds at least one drawer",
+                               'add a drawer variable with initial {"type": "in_cabinet", '
+                               f'"cabinet": "{cab.name}", "level": 0}}'))
+            continue
+        levels = [d.initial.level for d in drawers]  # type: ignore[union-attr]
+        if levels != list(range(len(drawers))):
+            out.append(Problem(drawers[-1].name, "initial.level", f"the drawers of "
+                               f"{cab.name!r} take levels {levels}",
+                               f"give its {len(drawers)} drawers levels 0..{len(drawers) - 1}"
+                               ", one each"))
+            continue
+        want = drawer_size(cab.extents, len(drawers))
+        for d in drawers:
+            if any(abs(a - b) > 1e-6 for a, b in zip(d.extents, want, strict=True)):
+                out.append(Problem(d.name, "size", f"a drawer of {cab.name!r} (its "
+                                   f"{len(drawers)} drawer(s)) has size "
+                                   f"{tuple(round(w, 6) for w in want)}, got {d.extents}",
+                                   f"give size {[round(w, 6) for w in want]}"))
+    return out

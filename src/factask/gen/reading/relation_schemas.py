@@ -28,7 +28,9 @@ COORDINATE_RELATIONS = frozenset(["at_pose"])
 
 #: Relation types that move only variables of these kinds (the others never move them).
 OBJECT_KINDS: dict[str, frozenset[str]] = {"pile_in_zone": frozenset(["pile"]),
-                                           "rope_along": frozenset(["rope"])}
+                                           "rope_along": frozenset(["rope"]),
+                                           "open": frozenset(["drawer"]),
+                                           "closed": frozenset(["drawer"])}
 
 SPECIAL_KINDS = frozenset().union(*OBJECT_KINDS.values())
 

@@ -26,7 +26,15 @@ import numpy as np
 
 from factask.geometry import Pose, without_roll
 from factask.graph.taskgraph import TaskGraph
-from factask.scene.objects import SceneObject, points_in_rect, scene_objects
+from factask.scene.cabinet import drawer_seat
+from factask.scene.objects import SceneObject, objects_by_name, points_in_rect, scene_objects
+from factask.sim.build.cabinet import (
+    FURNITURE_KINDS,
+    SlideHandle,
+    add_drawer,
+    furniture_plan,
+    slide_handle,
+)
 from factask.sim.build.mjspec import BodyHandles, add_object, add_table, default_classes, new_spec
 from factask.sim.build.parts import (
     GEOM_SEPARATOR,
@@ -87,6 +95,8 @@ class ObjectHandle:
         qpos_adr: Address of its free joint in ``qpos`` (7 numbers), or None if fixed.
         qvel_adr: Address of its free joint in ``qvel`` (6 numbers), or None if fixed.
         mocap_id: Index into ``mocap_pos``/``mocap_quat`` if fixed, else None.
+        slide: A drawer's slide joint in its cabinet (its pose follows from it), else
+            None.
     """
 
     name: str
@@ -98,6 +108,7 @@ class ObjectHandle:
     qpos_adr: int | None
     qvel_adr: int | None
     mocap_id: int | None
+    slide: SlideHandle | None = None
 
     @property
     def fixed(self) -> bool:
@@ -249,6 +260,12 @@ def _marker_slots(graph: TaskGraph) -> list[tuple[str, int, str]]:
     return slots
 
 
+def drawer_cabinet(graph: TaskGraph, drawer: SceneObject) -> SceneObject:
+    """The scene object of the cabinet a drawer sits in."""
+    seat = drawer_seat(graph, drawer.variable)
+    return objects_by_name(graph)[seat.cabinet]
+
+
 _NAME_IN_ERROR = re.compile(r"name '([^']+)'")
 
 
@@ -275,21 +292,24 @@ def _scene_plans(graph: TaskGraph) -> tuple[list[SceneObject], list[ObjectPlan],
     plans = []
     for obj, pos in zip(objects, positions, strict=True):
         try:
-            plans.append(plan_object(obj.name, obj.kind, obj.size, obj.color, obj.mass,
-                                     obj.fixed, hollow=hollows.get(obj.variable, "ell"),
-                                     pos=pos))
+            plan = plan_object(obj.name, obj.kind, obj.size, obj.color, obj.mass,
+                               obj.fixed, hollow=hollows.get(obj.variable, "ell"), pos=pos)
         except AssetError as exc:
             raise CompileError(obj.variable, exc.message, exc.fix) from None
+        plans.append(furniture_plan(plan, obj, graph) if obj.kind in FURNITURE_KINDS else plan)
     index = {o.name: i for i, o in enumerate(objects)}
     markers = []
     for factor, slot, inst in _marker_slots(graph):
         obj = objects[index[inst]]
         pos = positions[index[inst]]
         # Hidden under the table top until the environment moves it to the target.
-        markers.append(plan_object(
+        marker = plan_object(
             f"{MARKER_PREFIX}:{factor}:{slot}", obj.kind, obj.size, obj.color,
             hollow=hollows.get(obj.variable, "ell"), pos=(pos[0], pos[1], -TABLE_HEIGHT / 2),
-            visual_only=True, alpha=MARKER_ALPHA, group=MARKER_GROUP))
+            visual_only=True, alpha=MARKER_ALPHA, group=MARKER_GROUP)
+        if obj.kind in FURNITURE_KINDS:
+            marker = furniture_plan(marker, obj, graph, moving=False)
+        markers.append(marker)
     return objects, plans, markers
 
 
@@ -365,7 +385,16 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating",
     spec = new_spec(graph.name, timestep, GRAVITY, IMPRATIO)
     add_table(spec)
     classes = default_classes(spec)
-    handles = [add_object(spec, plan, classes) for plan in plans]
+    # A drawer's body goes inside its cabinet's, so cabinets come first.
+    by_name: dict[str, BodyHandles] = {}
+    for obj, plan in sorted(zip(objects, plans, strict=True), key=lambda p: p[0].kind == "drawer"):
+        if obj.kind == "drawer":
+            cab = drawer_cabinet(graph, obj)
+            by_name[obj.name] = add_drawer(spec, plan, obj, graph, by_name[cab.name], cab,
+                                           classes[0])
+        else:
+            by_name[obj.name] = add_object(spec, plan, classes)
+    handles = [by_name[o.name] for o in objects]
     markers = [add_object(spec, plan, classes) for plan in marker_plans]
     add_rope_links(spec, graph)  # a rope's segments, linked in a chain
     if robot is not None:
@@ -410,8 +439,18 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
     jnt = np.asarray(joint_ids, dtype=np.int64)
     qpos_adrs = np.where(jnt >= 0, model.jnt_qposadr[jnt], -1).tolist()
     dof_adrs = np.where(jnt >= 0, model.jnt_dofadr[jnt], -1).tolist()
+    bodies_of = {o.name: h for o, h in zip(objects, bodies, strict=True)}
     for index, obj in enumerate(objects):
         geoms = geom_ids[index]
+        if obj.kind == "drawer":  # on a slide joint inside its cabinet
+            geom_object[list(geoms)] = index
+            cab = drawer_cabinet(graph, obj)
+            handles[obj.name] = ObjectHandle(
+                name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size,
+                body_id=body_ids[index], geom_ids=geoms, qpos_adr=None, qvel_adr=None,
+                mocap_id=None, slide=slide_handle(model, obj, graph, bodies[index], cab,
+                                                  bodies_of[cab.name]))
+            continue
         geom_object[list(geoms)] = index
         mocap, qpos_adr, dof_adr = mocap_ids[index], qpos_adrs[index], dof_adrs[index]
         handles[obj.name] = ObjectHandle(
@@ -452,6 +491,9 @@ def set_object_pose(model: mujoco.MjModel, data: mujoco.MjData, handle: ObjectHa
     if handle.body_id >= model.nbody:
         raise CompileError(handle.variable, f"object {handle.name!r} is not in this model",
                            "use a handle from the CompiledScene of this model")
+    if handle.slide is not None:  # its cabinet's pose must be set first
+        handle.slide.set_pose(data, pose)
+        return
     if handle.mocap_id is not None:
         data.mocap_pos[handle.mocap_id] = pose.pos
         data.mocap_quat[handle.mocap_id] = pose.quat
@@ -473,6 +515,8 @@ def get_object_pose(data: mujoco.MjData, handle: ObjectHandle) -> Pose:
         Its world pose (bounding-box centre and orientation; a log's orientation
         without its roll about its axis, :func:`~factask.geometry.without_roll`).
     """
+    if handle.slide is not None:
+        return handle.slide.pose(data)
     if handle.mocap_id is not None:
         return Pose(data.mocap_pos[handle.mocap_id].copy(),
                     data.mocap_quat[handle.mocap_id].copy())

@@ -31,6 +31,7 @@ from typing import Any, Literal
 import numpy as np
 
 from factask.geometry import quat_from_axis_angle, quat_from_yaw, quat_mul
+from factask.scene.cabinet import cabinet_boxes, drawer_boxes
 from factask.scene.objects import corner_arm_width
 from factask.vocabulary.errors import SubjectError
 from factask.vocabulary.kinds import (
@@ -391,6 +392,9 @@ def kind_parts(
         return _holed_box_parts(size)
     if kind == "pallet":
         return _pallet_parts(size)
+    if kind in ("cabinet", "drawer"):  # alone: one bay (compile builds a cabinet's own)
+        boxes = cabinet_boxes(size, 1) if kind == "cabinet" else drawer_boxes(size, 1, 0)
+        return [_box(*b) for b in boxes]
     # block, box, zone, line, stand, kit: one box of the full extents.
     return [_box("body", (-x, -y, -z), (x, y, z))]
 

@@ -20,6 +20,7 @@ import numpy as np
 from factask.geometry import Pose
 from factask.graph.taskgraph import TaskGraph
 from factask.relations.base import Reserve
+from factask.scene.cabinet import drawer_pose, drawer_seat, front_reserve
 from factask.scene.collision import (
     CLEARANCE,
     MAX_TRIES_PER_OBJECT,
@@ -46,7 +47,15 @@ from factask.scene.objects import (
 )
 from factask.sim.layout.pile import is_pile, layout_area, place_pile
 from factask.sim.layout.rope import is_rope, place_rope
-from factask.vocabulary.variables import AtFixedPose, InRegion, StartInside, StartOn
+from factask.vocabulary.kinds import drawer_size
+from factask.vocabulary.variables import (
+    AtFixedPose,
+    InCabinet,
+    InRegion,
+    StartInside,
+    StartOn,
+    drawers_of,
+)
 from factask.vocabulary.world import TABLE_Z
 
 #: Whole-layout restarts before :func:`sample_layout` gives up.
@@ -145,6 +154,14 @@ def _layout_reserves(graph: TaskGraph) -> dict[str, list[Reserve]]:
     for f in graph.factors:
         for r in f.goal.layout_reserves(variables):
             out.setdefault(r.anchor, []).append(r)
+    # A cabinet keeps the table in front of it clear: its drawers slide out there.
+    objs = objects_by_name(graph)
+    for v in graph.variables:
+        drawers = drawers_of(graph.variables, v.name) if v.kind == "cabinet" else []
+        if drawers:
+            depth = drawer_size(v.extents, len(drawers))[0]
+            x, y, size = front_reserve(objs[v.instances[0]], depth)
+            out.setdefault(v.name, []).append(Reserve(v.name, x, y, size))
     return out
 
 
@@ -265,6 +282,14 @@ def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
         hosts = graph.variable(host_var).instances
         by_host: dict[str, list[tuple[str, bool]]] = {}
         for v in group:
+            if isinstance(v.initial, InCabinet):  # its place in its cabinet is a fact
+                seat = drawer_seat(graph, v.name)
+                cabinet = objs[seat.cabinet]
+                pose = drawer_pose(cabinet, poses[seat.cabinet], seat, objs[v.name],
+                                   v.initial.opening)
+                poses[v.name] = pose
+                occ.put(v.name, objs[v.name], pose)
+                continue
             inside = isinstance(v.initial, StartInside)
             if v.initial.offset is not None:  # an author's place: a fact
                 _place_given(objs, occ, poses, hosts[0], v.instances[0], v.initial)

@@ -440,15 +440,34 @@ class SuctionGripper:
         return (float(np.abs(qvel[self._linear_dofs]).max()) < speed
                 and float(np.abs(qvel[self._angular_dofs]).max()) * turn_radius < speed)
 
-    def grasp(self) -> bool:
+    def touched_sliders(self) -> list[int]:
+        """Bodies moved by a slide joint of their own (drawers) whose geoms touch the
+        cup geom now, closest first."""
+        found: list[tuple[float, int]] = []
+        m, d = self.model, self.data
+        for k in range(d.ncon):
+            c = d.contact[k]
+            if c.dist > TOUCH_DISTANCE or self.cup_geom not in (c.geom1, c.geom2):
+                continue
+            body = int(m.geom_bodyid[c.geom2 if c.geom1 == self.cup_geom else c.geom1])
+            if m.body_jntnum[body] == 1 and int(m.jnt_type[m.body_jntadr[body]]) == int(
+                    mujoco.mjtJoint.mjJNT_SLIDE):
+                found.append((float(c.dist), body))
+        return list(dict.fromkeys(b for _, b in sorted(found)))
+
+    def grasp(self, slider: bool = False) -> bool:
         """Switch suction on: weld the closest touching free object where it is.
+
+        Args:
+            slider: Hold a body that slides on a joint of its own (a drawer, by its
+                handle) instead of a free object.
 
         Returns:
             True when an object is held after the call.
         """
         if self._held is not None:
             return True
-        touched = self.touched_objects()
+        touched = self.touched_sliders() if slider else self.touched_objects()
         if not touched:
             return False
         obj = touched[0]

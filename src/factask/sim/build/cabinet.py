@@ -1,0 +1,151 @@
+"""Cabinets and drawers in a compiled scene: their bodies, the slide joints, the poses.
+
+A cabinet is a mocap body like every fixed object; each of its drawers is a body
+*inside* the cabinet's body, moved by one slide joint along the cabinet's -x axis
+(range 0 .. :func:`~factask.vocabulary.kinds.drawer_travel`), so the drawer goes
+wherever its cabinet is put and its opening is one number of ``qpos``. MuJoCo
+leaves out contacts between a body and its parent: a drawer never rubs on its
+cabinet (the gaps of :data:`~factask.vocabulary.kinds.DRAWER_GAP` keep it off its
+neighbours), and only the joint holds it. Their panels come from
+:mod:`factask.scene.cabinet`, the one description of their shapes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import mujoco
+import numpy as np
+
+from factask.geometry import Pose, rotation_matrix
+from factask.scene.cabinet import cabinet_boxes, drawer_boxes, drawer_seat
+from factask.scene.objects import SceneObject
+from factask.sim.build.mjspec import GEOM_TYPES, BodyHandles
+from factask.sim.build.parts import GEOM_SEPARATOR, GeomPlan, ObjectPlan, fmt
+from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
+from factask.vocabulary.variables import VariableSet, drawers_of
+
+#: Kinds built here rather than from their stand-alone parts.
+FURNITURE_KINDS = ("cabinet", "drawer")
+#: Damping (N s/m) of a drawer's slide: it stops within a few mm once let go.
+SLIDE_DAMPING = 20.0
+#: Dry friction (N) of a drawer's slide: it stays where it is left, though nudged.
+SLIDE_FRICTION = 1.0
+#: Armature (kg) of a drawer's slide: steadies the joint under the suction weld.
+SLIDE_ARMATURE = 0.05
+
+
+@dataclass(frozen=True)
+class SlideHandle:
+    """Where a drawer's state lives in a compiled model.
+
+    Attributes:
+        qpos_adr: Address of its slide joint in ``qpos`` (metres pulled out).
+        qvel_adr: Address of the joint in ``qvel``.
+        cabinet_mocap: Mocap id of its cabinet.
+        closed: Its centre, closed, in the cabinet's frame (3,).
+        travel: The joint's range (m).
+    """
+
+    qpos_adr: int
+    qvel_adr: int
+    cabinet_mocap: int
+    closed: tuple[float, float, float]
+    travel: float
+
+    def pose(self, data: mujoco.MjData) -> Pose:
+        """The drawer's world pose: its cabinet's, moved out by the joint."""
+        quat = data.mocap_quat[self.cabinet_mocap].copy()
+        local = np.array(self.closed) - np.array([float(data.qpos[self.qpos_adr]), 0.0, 0.0])
+        return Pose(data.mocap_pos[self.cabinet_mocap] + rotation_matrix(quat) @ local, quat)
+
+    def set_pose(self, data: mujoco.MjData, pose: Pose) -> None:
+        """Slide the drawer to where ``pose`` is along its joint (its cabinet stays;
+        the rest of ``pose`` follows from the cabinet's), and stop it."""
+        quat = data.mocap_quat[self.cabinet_mocap]
+        local = rotation_matrix(quat).T @ (pose.pos - data.mocap_pos[self.cabinet_mocap])
+        data.qpos[self.qpos_adr] = float(np.clip(self.closed[0] - local[0], 0.0, self.travel))
+        data.qvel[self.qvel_adr] = 0.0
+
+
+def _geoms(plan: ObjectPlan, boxes: list, mass: float | None) -> tuple[GeomPlan, ...]:
+    """The plan's geoms rebuilt from ``boxes`` (colour and group kept); ``mass``
+    shared by volume (None: a mocap or visual body)."""
+    first = plan.geoms[0]
+    halves = [np.subtract(hi, lo) / 2 for _, lo, hi in boxes]
+    volumes = [float(np.prod(2 * h)) for h in halves]
+    total = sum(volumes)
+    return tuple(
+        GeomPlan(f"{plan.name}{GEOM_SEPARATOR}{name}", "box", fmt(h),
+                 fmt(np.add(lo, hi) / 2), None, first.rgba, first.group,
+                 None if mass is None else round(mass * v / total, 12))
+        for (name, lo, hi), h, v in zip(boxes, halves, volumes, strict=True))
+
+
+def furniture_plan(plan: ObjectPlan, obj: SceneObject, graph: VariableSet,
+                   moving: bool = True) -> ObjectPlan:
+    """The plan of a cabinet (with its number of bays) or a drawer (its handle where
+    its level puts it), from the stand-alone plan of its kind.
+
+    Args:
+        plan: The plan :func:`~factask.sim.build.parts.plan_object` made.
+        obj: The scene object it is of.
+        graph: The task graph (a cabinet's drawers, a drawer's seat).
+        moving: A drawer's own body (False: its goal marker).
+    """
+    if obj.kind == "cabinet":
+        bays = len(drawers_of(graph.variables, obj.variable))
+        return replace(plan, geoms=_geoms(plan, cabinet_boxes(obj.size, max(bays, 1)), None))
+    seat = drawer_seat(graph, obj.variable)
+    boxes = drawer_boxes(obj.size, seat.bays, seat.level)
+    if not moving:
+        return replace(plan, geoms=_geoms(plan, boxes, None))
+    return replace(plan, mocap=False, geoms=_geoms(plan, boxes, obj.mass))
+
+
+def add_drawer(spec: mujoco.MjSpec, plan: ObjectPlan, obj: SceneObject, graph: VariableSet,
+               cabinet: BodyHandles, cabinet_obj: SceneObject,
+               obj_cls: mujoco.MjsDefault) -> BodyHandles:
+    """Add a drawer's body inside its cabinet's, with its slide joint.
+
+    Args:
+        spec: The scene's spec.
+        plan: The drawer's plan (:func:`furniture_plan`).
+        obj: The drawer.
+        graph: The task graph.
+        cabinet: Its cabinet's body.
+        cabinet_obj: Its cabinet.
+        obj_cls: The spec's default class of object geoms.
+
+    Returns:
+        Handles of the body, its geoms and its slide joint.
+    """
+    seat = drawer_seat(graph, obj.variable)
+    closed = drawer_closed_offset(cabinet_obj.size, seat.bays, seat.level)
+    body = cabinet.body.add_body(name=plan.name, pos=list(fmt(closed)))
+    joint = body.add_joint(name=f"{plan.name}{GEOM_SEPARATOR}slide",
+                           type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[-1.0, 0.0, 0.0],
+                           range=[0.0, drawer_travel(obj.size)],
+                           limited=mujoco.mjtLimited.mjLIMITED_TRUE, damping=SLIDE_DAMPING,
+                           frictionloss=SLIDE_FRICTION, armature=SLIDE_ARMATURE)
+    geoms = []
+    for g in plan.geoms:
+        geom = body.add_geom(obj_cls, name=g.name, type=GEOM_TYPES[g.type], size=g.size,
+                             pos=g.pos, rgba=g.rgba, group=g.group)
+        if g.mass is not None:
+            geom.mass = g.mass
+        geoms.append(geom)
+    return BodyHandles(body, tuple(geoms), joint)
+
+
+def slide_handle(model: mujoco.MjModel, obj: SceneObject, graph: VariableSet,
+                 drawer: BodyHandles, cabinet_obj: SceneObject,
+                 cabinet: BodyHandles) -> SlideHandle:
+    """The :class:`SlideHandle` of a compiled drawer."""
+    assert drawer.joint is not None
+    seat = drawer_seat(graph, obj.variable)
+    return SlideHandle(int(model.jnt_qposadr[drawer.joint.id]),
+                       int(model.jnt_dofadr[drawer.joint.id]),
+                       int(model.body_mocapid[cabinet.body.id]),
+                       drawer_closed_offset(cabinet_obj.size, seat.bays, seat.level),
+                       drawer_travel(obj.size))
