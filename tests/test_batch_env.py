@@ -305,6 +305,36 @@ def test_no_world_reports_a_physics_failure_and_nan_is_one(batch: BatchEnv) -> N
     assert batch.physics_failures() == [None] * len(SEEDS)
 
 
+def test_a_contact_decimetres_deep_is_a_physics_failure(batch: BatchEnv) -> None:
+    # The narrowphase failure the batch guards against (factask.batch.model): finite
+    # positions, a contact far deeper than any resting one. Made here by pushing
+    # world 1's block 5 cm into the table top.
+    batch.reset(seed=SEEDS)
+    batch.step(batch.home_command(), substeps=2)
+    assert batch.physics_failures() == [None] * len(SEEDS)
+    block = next(n for n in batch.object_names if batch.objects[n].kind == "block")
+    adr = batch.cpu_env.scene.objects[block].qpos_adr
+    qpos = batch.wp_data.qpos.numpy().copy()
+    qpos[1, adr + 2] -= 0.05
+    batch.wp_data.qpos.assign(qpos)
+    batch.step(batch.command, substeps=1)
+    failures = batch.physics_failures()
+    assert failures[0] is None and failures[2] is None
+    assert failures[1] is not None and "deep" in failures[1]
+    batch.reset(seed=SEEDS)
+    assert batch.physics_failures() == [None] * len(SEEDS)
+
+
+def test_the_batch_table_top_is_a_plane_at_the_scene_tables_top_face(batch: BatchEnv) -> None:
+    scene_model = batch.cpu_env.scene.model
+    table = mujoco.mj_name2id(batch.model, mujoco.mjtObj.mjOBJ_GEOM, "table")
+    assert scene_model.geom_type[table] == mujoco.mjtGeom.mjGEOM_BOX
+    assert batch.model.geom_type[table] == mujoco.mjtGeom.mjGEOM_PLANE
+    top = scene_model.geom_pos[table][2] + scene_model.geom_size[table][2]
+    assert batch.model.geom_pos[table][2] == pytest.approx(top, abs=1e-12)
+    assert batch.model.ngeom == scene_model.ngeom and batch.model.nbody == scene_model.nbody
+
+
 @pytest.mark.slow  # the arm's kernels: about 100 s more compilation on a cold cache
 def test_an_arm_batch_holds_its_home_pose_as_cpu_mujoco_does() -> None:
     arm = make_batch(small_task(), 2, device="cpu", robot="arm")

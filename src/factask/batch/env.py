@@ -32,10 +32,11 @@ import mujoco
 import numpy as np
 
 from factask.batch.device import announce_cpu_compile, load_backend, resolve_device
+from factask.batch.model import batch_model
 from factask.batch.primitive import BatchActionResult, pick_and_place
 from factask.batch.scene import BatchScene
 from factask.batch.status import BatchTaskStatus, check_task_batch
-from factask.batch.suction import WorldSuction, model_with_object_welds
+from factask.batch.suction import WorldSuction
 from factask.batch.targets import BatchTargets
 from factask.geometry import Pose
 from factask.graph.taskgraph import TaskGraph
@@ -47,6 +48,9 @@ from factask.vocabulary.errors import InvalidValueError
 #: The MuJoCo state a reset copies into a world: everything that integrates but the
 #: equalities' switches (the batch's model has more welds; reset turns them all off).
 STATE_SIG = int(mujoco.mjtState.mjSTATE_INTEGRATION) & ~int(mujoco.mjtState.mjSTATE_EQ_ACTIVE)
+#: A contact deeper than this (m) at any step is a physics failure: resting and
+#: pressed contacts in factask's scenes are under 1 mm deep, a hard push a few mm.
+DEEP_CONTACT = 0.02
 #: Seeds drawn for worlds reset without one are below this.
 _SEED_RANGE = 2**31 - 1
 
@@ -107,8 +111,9 @@ class BatchEnv:
                 f"drawers ({', '.join(drawers)}) are not in the batched env yet (a drawer's "
                 "pose follows its slide joint, which the batch does not read): run this "
                 "task in the single env (FactaskEnv) or gymnasium's sync vector env")
-        #: The batch's host model: the scene's, with one inactive weld per free object.
-        self.model, welds = model_with_object_welds(self.cpu_env.scene)
+        #: The batch's host model: the scene's, with one inactive weld per free object
+        #: and the table top as a plane (factask.batch.model).
+        self.model, welds = batch_model(self.cpu_env.scene)
         self.suction = WorldSuction(self.model, welds, int(num_envs))
         self.object_names: list[str] = list(self.cpu_env.object_names)
         self.objects = self.cpu_env.objects
@@ -142,6 +147,8 @@ class BatchEnv:
             # The most contacts / constraint rows any step had since the worlds' reset.
             self._peak_nacon = wp.zeros(1, dtype=int)
             self._peak_nefc = wp.zeros(self.num_envs, dtype=int)
+            # The deepest contact distance (m, <= 0) any step had since the world's reset.
+            self._deepest = wp.zeros(self.num_envs, dtype=float)
             self._let_go = wp.full(self.num_envs, -1, dtype=int)
         self._sleep = bool(self.model.opt.enableflags & mujoco.mjtEnableBit.mjENBL_SLEEP)
         self._capture = capture
@@ -236,6 +243,9 @@ class BatchEnv:
             self._peak_nefc.assign(peaks)
             if mask.all():  # the contact pool is shared: its peak starts again with all
                 self._peak_nacon.zero_()
+            deepest = self._deepest.numpy()
+            deepest[mask] = 0.0
+            self._deepest.assign(deepest)
         self.command[mask] = self.home_command()[mask]
         if self._was_reset.all():
             self._targets = {f: BatchTargets.stack([self.solved[w][f]
@@ -258,6 +268,9 @@ class BatchEnv:
         mjw.step(self.wp_model, data)
         wp.launch(self._kernels.track_peaks, dim=self.num_envs,
                   inputs=[data.nacon, data.nefc], outputs=[self._peak_nacon, self._peak_nefc])
+        wp.launch(self._kernels.track_deepest, dim=int(data.contact.dist.shape[0]),
+                  inputs=[data.nacon, data.contact.dist, data.contact.worldid],
+                  outputs=[self._deepest])
 
     def _wake(self, trees: Any) -> None:
         """Wake (keep awake) each world's tree ``trees[w]`` (-1: none)."""
@@ -367,8 +380,9 @@ class BatchEnv:
         """Per world, why its simulation is no longer trustworthy, or None: positions or
         velocities not finite, or more contacts or constraint rows than allocated at any
         step since the world's reset (``nconmax``, ``njmax``: MuJoCo Warp drops the rest;
-        make a batch with more). Contacts are counted over all worlds (one pool): an
-        overflow there marks every world.
+        make a batch with more), or a contact deeper than :data:`DEEP_CONTACT` at any
+        step (a narrowphase failure: positions stay finite, objects fly). Contacts are
+        counted over all worlds (one pool): an overflow there marks every world.
         """
         data = self.wp_data
         finite = (np.isfinite(data.qpos.numpy()).all(axis=1)
@@ -376,10 +390,14 @@ class BatchEnv:
         # The peaks of every step since the worlds' reset, not only the last step's.
         nefc = np.maximum(self._peak_nefc.numpy(), data.nefc.numpy())
         contacts = max(int(self._peak_nacon.numpy()[0]), int(data.nacon.numpy()[0]))
+        deepest = self._deepest.numpy()
         out: list[str | None] = []
         for w in range(self.num_envs):
             if not finite[w]:
                 out.append("physics: positions or velocities are not finite")
+            elif deepest[w] < -DEEP_CONTACT:
+                out.append(f"physics: a contact {-deepest[w] * 100:.0f} cm deep (more than "
+                           f"{DEEP_CONTACT * 100:.0f} cm: the narrowphase failed)")
             elif nefc[w] > data.njmax:
                 out.append(f"physics: {int(nefc[w])} constraint rows, more than njmax = "
                            f"{data.njmax}")
@@ -516,4 +534,4 @@ def make_batch(task: TaskGraph | str, num_envs: int, device: str | None = None,
     return BatchEnv(task, num_envs, robot=robot, device=device, **kwargs)
 
 
-__all__ = ["STATE_SIG", "BatchEnv", "default_capacity", "make_batch"]
+__all__ = ["DEEP_CONTACT", "STATE_SIG", "BatchEnv", "default_capacity", "make_batch"]

@@ -1,5 +1,5 @@
 """Warp kernels of the batched env: each world's low-level command, held objects awake,
-the peak contact and constraint counts.
+the peak contact and constraint counts, the deepest contact.
 
 Imported only once the backend is known to be installed
 (:func:`factask.batch.device.load_backend`): it imports Warp at module import.
@@ -45,6 +45,18 @@ def track_peaks(nacon: wp.array(dtype=int), nefc: wp.array(dtype=int),
 
 
 @wp.kernel
+def track_deepest(nacon: wp.array(dtype=int), dist: wp.array(dtype=float),
+                  worldid: wp.array(dtype=int),
+                  deepest: wp.array(dtype=float)):  # pragma: no cover - device code
+    """Keep, per world, the deepest contact (most negative distance) any step had: a
+    narrowphase that answers a penetration of decimetres is a physics failure, even
+    where the positions stay finite."""
+    i = wp.tid()
+    if i < nacon[0]:
+        wp.atomic_min(deepest, worldid[i], dist[i])
+
+
+@wp.kernel
 def wake_trees(tree: wp.array(dtype=int), ntree: int, awake: int,
                tree_asleep: wp.array2d(dtype=int)):  # pragma: no cover - device code
     """Keep world w's tree ``tree[w]`` awake (none where it is -1): a sleeping tree is
@@ -70,4 +82,4 @@ def wake_trees(tree: wp.array(dtype=int), ntree: int, awake: int,
             break
 
 
-__all__ = ["set_ctrl", "set_mocap_xyzyaw", "track_peaks", "wake_trees"]
+__all__ = ["set_ctrl", "set_mocap_xyzyaw", "track_deepest", "track_peaks", "wake_trees"]

@@ -5,7 +5,7 @@ object it grasps (:mod:`factask.sim.robots.suction`). A batch shares one model b
 its worlds, and MuJoCo Warp cannot give ``eq_obj2id`` a value per world; it can
 give ``eq_data`` (the weld's relative pose) and ``eq_active`` one. So the batch's
 model is the scene's spec with one more weld per free object — cup body to that
-object, inactive (:func:`model_with_object_welds`) — and a grasp in world *w*
+object, inactive (:func:`factask.batch.model.batch_model`) — and a grasp in world *w*
 writes the current cup-to-object pose into that world's ``eq_data`` row and
 switches that world's weld on (:class:`WorldSuction`). Inactive welds add no
 constraint rows: the physics of a world that grasps nothing is the single env's.
@@ -24,53 +24,15 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from factask.sim.build.compile import CompiledScene
-from factask.sim.robots.suction import CUP_GEOM, SUCTION_WELD, TOUCH_DISTANCE
+from factask.sim.robots.suction import CUP_GEOM, TOUCH_DISTANCE
 from factask.vocabulary.errors import InvalidValueError
-
-#: Name prefix of the per-object welds (``suction__<instance>``).
-WELD_PREFIX = "suction__"
-
-
-def model_with_object_welds(scene: CompiledScene) -> tuple[mujoco.MjModel, dict[int, int]]:
-    """The scene's model with one inactive cup-to-object weld per free object.
-
-    Args:
-        scene: The compiled scene (its spec is copied, not changed).
-
-    Returns:
-        (the model, free object body id -> its weld's equality id). Bodies, joints,
-        geoms and their ids are the scene model's.
-
-    Raises:
-        InvalidValueError: the scene has no ``suction`` weld (no robot).
-    """
-    spec = scene.spec.copy()
-    base = next((e for e in spec.equalities if e.name == SUCTION_WELD), None)
-    if base is None:
-        raise InvalidValueError("the scene has no suction weld: compile it with a robot")
-    names = {}
-    for inst, handle in scene.objects.items():
-        if handle.mocap_id is not None or handle.qpos_adr is None:
-            continue
-        body = scene.model.body(handle.body_id).name
-        spec.add_equality(name=f"{WELD_PREFIX}{inst}", type=mujoco.mjtEq.mjEQ_WELD,
-                          objtype=mujoco.mjtObj.mjOBJ_BODY, name1=base.name1, name2=body,
-                          active=False, solref=list(base.solref), solimp=list(base.solimp))
-        names[handle.body_id] = f"{WELD_PREFIX}{inst}"
-    model = spec.compile()
-    if model.nbody != scene.model.nbody or model.nq != scene.model.nq:
-        raise InvalidValueError("adding the object welds changed the scene's bodies")
-    welds = {body: mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_EQUALITY, name)
-             for body, name in names.items()}
-    return model, welds
 
 
 class WorldSuction:
     """Suction on and off per world, on a batch's MuJoCo Warp model and data.
 
     Args:
-        model: The batch's host model (:func:`model_with_object_welds`).
+        model: The batch's host model (:func:`factask.batch.model.batch_model`).
         welds: Free object body id -> its weld's equality id.
         num_envs: Number of worlds.
 
@@ -207,4 +169,4 @@ class WorldSuction:
         data.eq_active.assign(active)
 
 
-__all__ = ["WELD_PREFIX", "WorldSuction", "model_with_object_welds"]
+__all__ = ["WorldSuction"]
