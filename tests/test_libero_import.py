@@ -22,16 +22,22 @@ UNSUPPORTED = {
     "open_the_middle_drawer_of_the_cabinet": ("Open", "articulated"),
     "open_the_top_drawer_and_put_the_bowl_inside": ("wooden_cabinet_1_top_region",
                                                     "articulated"),
-    "push_the_plate_to_the_front_of_the_stove": ("main_table_stove_front_region", "table"),
-    "put_the_bowl_on_the_stove": ("flat_stove_1_cook_region", "articulated"),
-    "put_the_bowl_on_top_of_the_cabinet": ("wooden_cabinet_1_top_side", "articulated"),
-    "put_the_wine_bottle_on_the_rack": ("wine_rack_1_top_region", "articulated"),
-    "put_the_wine_bottle_on_top_of_the_cabinet": ("wooden_cabinet_1_top_side", "articulated"),
     "turn_on_the_stove": ("Turnon flat_stove_1", "articulated"),
     "pick_up_the_black_bowl_in_the_top_drawer_of_the_wooden_cabinet_and_place_it_on_the_plate":
         ("wooden_cabinet_1_top_region", "articulated"),
     "pick_up_the_black_bowl_on_the_ramekin_and_place_it_on_the_plate":
         ("glazed_rim_porcelain_ramekin_1", "not modelled"),
+}
+#: Files that import but whose layout the reset cannot sample → words of its failure.
+RESET_FAILS = {
+    # The 16 cm plate (made movable: the goal moves it) has no room in its start
+    # region beside the cabinet and clear of the 19 cm goal zone (docs/libero.md).
+    "push_the_plate_to_the_front_of_the_stove": "no free spot",
+}
+#: Files the arm completes in fewer than 3 of 4 episodes (docs/libero.md) → why.
+ARM_BELOW_BAR = {
+    "put_the_bowl_on_the_plate": "the 12 cm bowl tilts in the arm's carry (2 of 4)",
+    "put_the_cream_cheese_in_the_bowl": "the flat pack tips over in the bowl (2 of 4)",
 }
 FILES = {p.stem: p for p in shipped_bddl_files()}
 
@@ -90,23 +96,60 @@ def test_unknown_type_is_a_typed_error():
     assert issubclass(UnknownLiberoType, FactaskError)
 
 
-@pytest.mark.parametrize("stem", sorted(p.stem for p in shipped_bddl_files("libero_object")))
-def test_oracle_completes_object_suite(stem):
+IMPORTED = sorted(set(FILES) - set(UNSUPPORTED) - set(RESET_FAILS))
+
+
+def _wins(stem: str, robot: str) -> tuple[int, list[str | None]]:
     from factask.sim.episode import run_episode
 
     graph = import_libero(FILES[stem]).graph
-    results = [run_episode(graph, seed) for seed in range(4)]
-    wins = sum(r.success for r in results)
-    assert wins >= 3, [r.failure for r in results if not r.success]
+    results = [run_episode(graph, seed, robot=robot) for seed in range(4)]
+    return sum(r.success for r in results), [r.failure for r in results if not r.success]
 
 
-@pytest.mark.parametrize("stem", ["put_the_bowl_on_the_plate", "put_the_cream_cheese_in_the_bowl",
-                                  "pick_up_the_black_bowl_on_the_stove_and_place_it_on_the_plate"])
-def test_oracle_completes_table_tasks(stem):
+@pytest.mark.parametrize("stem", IMPORTED)
+def test_the_floating_oracle_completes_every_imported_file(stem):
+    wins, failures = _wins(stem, "floating")
+    assert wins >= 3, failures
+
+
+@pytest.mark.parametrize("stem", [pytest.param(s, marks=pytest.mark.xfail(
+    reason=ARM_BELOW_BAR[s], strict=False)) if s in ARM_BELOW_BAR else s for s in IMPORTED])
+def test_the_arm_oracle_completes_every_imported_file(stem):
+    wins, failures = _wins(stem, "arm")
+    assert wins >= 3, failures
+
+
+@pytest.mark.parametrize("stem", sorted(RESET_FAILS))
+def test_a_file_whose_layout_cannot_be_sampled_says_why(stem):
     from factask.sim.episode import run_episode
 
-    graph = import_libero(FILES[stem]).graph
-    assert sum(run_episode(graph, seed).success for seed in range(4)) >= 3
+    result = run_episode(import_libero(FILES[stem]).graph, 0)
+    assert not result.success and RESET_FAILS[stem] in (result.failure or "")
+
+
+def test_goals_on_fixture_tops_and_table_regions_become_on_and_in_zone():
+    graph = import_libero(FILES["put_the_bowl_on_the_stove"]).graph
+    (factor,) = graph.factors
+    assert factor.goal.type == "on" and factor.goal.support == "flat_stove_1"
+    graph = import_libero(FILES["put_the_wine_bottle_on_the_rack"]).graph
+    assert graph.factors[0].goal.support == "wine_rack_1"
+    result = import_libero(FILES["push_the_plate_to_the_front_of_the_stove"])
+    (factor,) = result.graph.factors
+    assert factor.goal.type == "in_zone"
+    zone = result.graph.variable(factor.goal.zone)
+    plate = result.graph.variable("plate_1")
+    assert zone.kind == "zone" and not plate.fixed
+    # The zone is the region's centre, grown to take the whole plate.
+    assert min(zone.size[:2]) >= max(plate.size[:2])
+    assert any("goal zone" in w for w in result.warnings)
+
+
+def test_a_goal_that_moves_a_fixture_is_refused():
+    text = FILES["put_the_bowl_on_the_plate"].read_text().replace(
+        "(On akita_black_bowl_1 plate_1)", "(On flat_stove_1 plate_1)")
+    with pytest.raises(LiberoUnsupported, match="fixture"):
+        import_libero(parse_bddl(text))
 
 
 def test_cli_import_libero_and_run_load(tmp_path):

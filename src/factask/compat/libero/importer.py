@@ -14,7 +14,11 @@ predicate or object and why):
   receptacle the object fits in); ``(On obj <fixture>_<top region>)`` → on the
   fixture's stand-in; ``(In obj <receptacle>_<region>)`` → :class:`StartInside`.
 * ``:goal``: ``(On a b)`` → ``on`` when ``b`` is a support, ``inside`` when it is a
-  receptacle; ``(In a <receptacle>_<region>)`` → ``inside``.
+  receptacle; ``(In a <receptacle>_<region>)`` → ``inside``; ``(On a <fixture>_<top
+  region>)`` → ``on`` the fixture (:data:`TOP_REGIONS`); ``(On a <table>_<region>)`` →
+  ``in_zone`` of a goal zone made for the region (:meth:`_Importer.goal_zone`). A
+  stand-in fixed by default that a goal moves becomes movable; a goal that moves a
+  fixture is refused.
 * The language line is the description; the task's name is the file's name.
 
 Coordinate map (one for every file). LIBERO's table frame has x forward away from
@@ -26,7 +30,9 @@ to 0.75, y -0.5 to 0.5. The shipped files' region centres span x -0.42 to 0.21
 ``OFFSET_X = 0.58`` (x -0.42 → 0.265, 0.21 → 0.7375). Objects keep their real
 sizes, so the scene is more crowded than LIBERO's: LIBERO's 2 cm (5 cm on the
 floor) start regions are widened to :data:`MIN_REGION` square around their centre
-(clipped to the workspace), which gives the layout sampler room.
+(:data:`START_SLACK` more than the object's larger side where that is larger),
+clipped to the workspace, which gives the layout sampler room. A fixture's centre
+is moved in so that its whole footprint is on the workspace.
 """
 
 from __future__ import annotations
@@ -52,9 +58,19 @@ OFFSET_X = 0.58
 OFFSET_Y = 0.0
 #: Side (metres) of the square start region an object's LIBERO region is widened to.
 MIN_REGION = 0.20
+#: ... or to the object's larger side plus this (metres), if that is larger: a 16 cm
+#: plate in a 20 cm square has 4 cm to move in, too little beside a fixture.
+START_SLACK = 0.10
 #: Fixture type → its regions that are the stand-in's top face (things stand there).
 TOP_REGIONS = {"flat_stove": frozenset({"cook_region"}),
-               "wooden_cabinet": frozenset({"top_side"})}
+               "wooden_cabinet": frozenset({"top_side"}),
+               "wine_rack": frozenset({"top_region"})}
+#: A goal zone (a goal on a bare table region) is at least the object's larger side
+#: plus this (metres): factask's region check wants the whole footprint inside, LIBERO's
+#: the object's centre, so a 6 cm region gets a zone a 16 cm plate fits in.
+ZONE_MARGIN = 0.03
+#: Colour of the goal zones made from table regions.
+ZONE_COLOR = "gray"
 #: Predicates of articulated fixtures.
 ARTICULATION = frozenset({"open", "close", "turnon", "turnoff"})
 _WHY_ARTICULATED = "articulated fixtures (drawers, doors, knobs) are not in factask yet"
@@ -99,6 +115,11 @@ class _Importer:
         self.names = {n: unique_name(slugify(n, "_", 64, "obj"), taken)
                       for n, s in self.specs.items() if s.kind is not None}
         self.initial: dict[str, dict[str, Any]] = {}
+        #: Goal zones made from table regions (variables of their own).
+        self.zones: list[dict[str, Any]] = []
+        self.taken_names = set(self.names.values())
+        #: Objects whose stand-in is fixed but that a goal moves: made movable.
+        self.moved: set[str] = set()
 
     def refuse(self, pred: Predicate | str, why: str) -> LiberoUnsupported:
         return LiberoUnsupported(f"{self.where}: {pred}: {why}")
@@ -147,7 +168,7 @@ class _Importer:
         region = self.p.regions_by_full_name.get(host)
         if region is not None:
             if self.is_table(region.target):
-                return self.table_start(pred, region, fixture)
+                return self.table_start(pred, region, obj, fixture)
             target_type = self.types.get(region.target, "")
             if region.target in self.p.fixtures:
                 if pred.name == "on" and region.name in TOP_REGIONS.get(target_type, ()):
@@ -166,19 +187,26 @@ class _Importer:
                           f"{self.host_kind(host)} stand-in): an object resting on a "
                           "receptacle it does not fit in is not modelled")
 
-    def table_start(self, pred: Predicate, region: Region, fixture: bool) -> dict[str, Any]:
+    def table_start(self, pred: Predicate, region: Region, obj: str,
+                    fixture: bool) -> dict[str, Any]:
         if not region.ranges:
             raise self.refuse(pred, f"table region {region.full_name} has no ranges")
         x0, y0, x1, y1 = region.ranges[0]
         cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+        size = self.specs[obj].size
+        assert size is not None
         if fixture:
             yaw = (math.degrees(sum(region.yaw_rotation[0]) / 2)
                    if region.yaw_rotation else 0.0)
-            return {"type": "pose", "x": round(min(max(cx, WORKSPACE_X[0]), WORKSPACE_X[1]), 4),
-                    "y": round(min(max(cy, WORKSPACE_Y[0]), WORKSPACE_Y[1]), 4),
+            turned = round(abs(math.sin(math.radians(yaw)))) == 1  # a quarter turn
+            half_x, half_y = (size[1], size[0]) if turned else (size[0], size[1])
+            x = min(max(cx, WORKSPACE_X[0] + half_x / 2), WORKSPACE_X[1] - half_x / 2)
+            y = min(max(cy, WORKSPACE_Y[0] + half_y / 2), WORKSPACE_Y[1] - half_y / 2)
+            return {"type": "pose", "x": round(x, 4), "y": round(y, 4),
                     "yaw_deg": round(yaw, 3)}
-        half_x = max(SCALE * abs(x1 - x0), MIN_REGION) / 2
-        half_y = max(SCALE * abs(y1 - y0), MIN_REGION) / 2
+        least = max(MIN_REGION, max(size[0], size[1]) + START_SLACK)
+        half_x = max(SCALE * abs(x1 - x0), least) / 2
+        half_y = max(SCALE * abs(y1 - y0), least) / 2
         return {"type": "region",
                 "x": [round(v, 4) for v in _clip(cx - half_x, cx + half_x, WORKSPACE_X)],
                 "y": [round(v, 4) for v in _clip(cy - half_y, cy + half_y, WORKSPACE_Y)]}
@@ -195,11 +223,15 @@ class _Importer:
             obj, host = (str(a) for a in pred.args)
             var = self.variable(obj, pred)
             goal = self.goal_of(pred, var, host)
+            if self.specs[obj].fixture:
+                raise self.refuse(pred, f"{obj} is a fixture (a {self.specs[obj].kind} "
+                                  "stand-in fixed to the table); no goal may move it")
             if self.specs[obj].fixed:
-                raise self.refuse(pred, f"{obj} is fixed in factask (a {self.specs[obj].kind} "
-                                  "stand-in); no goal may move it")
-            word = "in" if goal["type"] == "inside" else "on"
-            target = goal.get("container", goal.get("support"))
+                self.moved.add(var)
+                self.warnings.append(f"{obj}: its stand-in is fixed by default; a goal moves "
+                                     "it, so it is movable here")
+            word = "in" if goal["type"] in ("inside", "in_zone") else "on"
+            target = goal.get("container", goal.get("support", goal.get("zone")))
             name = unique_name(slugify(f"put {var} {word} {target}", "_", 64, "goal"), taken)
             factors.append({"name": name, "description": f"LIBERO goal {pred}", "goal": goal})
         for f in factors:
@@ -210,12 +242,18 @@ class _Importer:
         region = self.p.regions_by_full_name.get(host)
         if region is not None:
             if self.is_table(region.target):
-                raise self.refuse(pred, f"{host} is a place on the table: factask has no "
-                                  "goal on an unmarked table region")
+                if pred.name != "on":
+                    raise self.refuse(pred, f"{host} is a place on the table: nothing is "
+                                      "in it, an object is on it")
+                return {"type": "in_zone", "objects": [var],
+                        "zone": self.goal_zone(pred, region, pred.args[0])}
             if region.target in self.p.fixtures:
-                raise self.refuse(pred, f"{host} is a region of the "
-                                  f"{self.types[region.target]} fixture, whose stand-in is "
-                                  f"a plain box; {_WHY_ARTICULATED}")
+                target_type = self.types[region.target]
+                if pred.name == "on" and region.name in TOP_REGIONS.get(target_type, ()):
+                    return {"type": "on", "objects": [var],
+                            "support": self.names[region.target]}
+                raise self.refuse(pred, f"{host} is a region of the {target_type} fixture, "
+                                  f"not its top; {_WHY_ARTICULATED}")
             host = region.target
         elif pred.name == "in":
             raise self.refuse(pred, f"{host!r} is no region: In needs a receptacle's region")
@@ -229,6 +267,38 @@ class _Importer:
         raise self.refuse(pred, f"{host} (a {self.host_kind(host)} stand-in) is neither a "
                           "support nor a receptacle")
 
+    def goal_zone(self, pred: Predicate, region: Region, obj: str) -> str:
+        """A zone variable marking table region ``region`` (made once per region): at
+        the region's mapped centre, as large as the mapped region or as the object's
+        larger side plus :data:`ZONE_MARGIN`, whichever is larger."""
+        name = slugify(region.name, "_", 64, "zone")
+        for zone in self.zones:
+            if zone["libero"] == region.full_name:
+                return str(zone["name"])
+        if not region.ranges:
+            raise self.refuse(pred, f"table region {region.full_name} has no ranges")
+        x0, y0, x1, y1 = region.ranges[0]
+        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+        size = self.specs[str(obj)].size
+        assert size is not None
+        least = max(size[0], size[1]) + ZONE_MARGIN
+        sx, sy = max(SCALE * abs(x1 - x0), least), max(SCALE * abs(y1 - y0), least)
+        if sx > SCALE * abs(x1 - x0) + 1e-9 or sy > SCALE * abs(y1 - y0) + 1e-9:
+            self.warnings.append(
+                f"{region.full_name}: the goal zone is {sx * 100:.0f} x {sy * 100:.0f} cm "
+                f"(the region maps to {SCALE * abs(x1 - x0) * 100:.0f} x "
+                f"{SCALE * abs(y1 - y0) * 100:.0f} cm) so that {obj} fits in it whole")
+        var = unique_name(name, self.taken_names)
+        self.zones.append({
+            "libero": region.full_name, "name": var, "kind": "zone",
+            "size": [round(sx, 4), round(sy, 4), 0.001], "color": ZONE_COLOR,
+            "initial": {"type": "pose",
+                        "x": round(min(max(cx, WORKSPACE_X[0]), WORKSPACE_X[1]), 4),
+                        "y": round(min(max(cy, WORKSPACE_Y[0]), WORKSPACE_Y[1]), 4),
+                        "yaw_deg": 0.0},
+            "description": f"goal zone: LIBERO table region {region.full_name}"})
+        return var
+
     # ---- the graph ------------------------------------------------------------------
     def variables(self) -> list[dict[str, Any]]:
         out = []
@@ -238,9 +308,12 @@ class _Importer:
                 "name": var, "kind": spec.kind, "size": list(spec.size or ()),
                 "color": spec.color, "initial": self.initial.get(var, {"type": "table"}),
                 "description": f"{spec.note} (LIBERO {libero} of type {self.types[libero]})"}
-            if spec.fixed is not None:
+            if var in self.moved:
+                data["fixed"] = False
+            elif spec.fixed is not None:
                 data["fixed"] = spec.fixed
             out.append(data)
+        out.extend({k: v for k, v in zone.items() if k != "libero"} for zone in self.zones)
         return out
 
     def build(self) -> LiberoImport:

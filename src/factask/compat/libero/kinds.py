@@ -8,10 +8,9 @@ colour. These are **stand-ins**: the graph keeps what the task is about (what is
 picked, what it goes on or in, which objects are in the way), not the look or
 the exact shape of LIBERO's meshes. The choices worth knowing:
 
-* ``plate`` → a fixed ``kit`` (factask's flat plate): a 16 x 16 x 1 cm square
-  support. factask has no round flat support; the kit is flat, can be stood on
-  (``on``) and is fixed, as no importable goal moves a plate (pushing the plate is
-  a goal on a table region, refused by the importer).
+* ``plate`` → a ``kit`` (factask's flat plate): a 16 x 16 x 1 cm square support.
+  factask has no round flat support; the kit is flat, can be stood on (``on``) and
+  is fixed, unless a goal moves the plate (the importer then makes it movable).
 * ``basket`` → a fixed ``container`` (open box, thin walls). LIBERO's basket is an
   object, but no shipped goal moves it.
 * bowls (``akita_black_bowl``) and the ``glazed_rim_porcelain_ramekin`` → ``bowl``
@@ -21,9 +20,10 @@ the exact shape of LIBERO's meshes. The choices worth knowing:
 * fixtures: ``table`` and ``floor`` are factask's table (no variable). A
   ``flat_stove`` is a fixed low box (its cook region is its top), a
   ``wooden_cabinet`` a fixed box whose top things can stand on (its drawers are
-  not modelled), a ``wine_rack`` a fixed box. Goals on these fixtures' regions
-  (and ``Open``/``Close``/``Turnon``/``Turnoff``) are refused by the importer:
-  articulated fixtures are not in factask yet.
+  not modelled), a ``wine_rack`` a fixed box (its top region is its top). Goals on
+  those top regions are ``on`` the stand-in; ``Open``/``Close``/``Turnon``/``Turnoff``
+  and the drawers' regions are refused by the importer: articulated fixtures are
+  not in factask yet.
 
 An unknown type is a :class:`UnknownLiberoType`.
 """
