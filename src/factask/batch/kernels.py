@@ -46,14 +46,20 @@ def track_peaks(nacon: wp.array(dtype=int), nefc: wp.array(dtype=int),
 
 @wp.kernel
 def track_deepest(nacon: wp.array(dtype=int), dist: wp.array(dtype=float),
-                  worldid: wp.array(dtype=int),
+                  worldid: wp.array(dtype=int), geom: wp.array(dtype=wp.vec2i),
+                  robot_geom: wp.array(dtype=int),
                   deepest: wp.array(dtype=float)):  # pragma: no cover - device code
-    """Keep, per world, the deepest contact (most negative distance) any step had: a
-    narrowphase that answers a penetration of decimetres is a physics failure, even
-    where the positions stay finite."""
+    """Keep, per world, the deepest contact (most negative distance) any step had
+    between two geoms not of the robot (``robot_geom[g]`` 1): a narrowphase that
+    answers a penetration of decimetres is a physics failure, even where the
+    positions stay finite. The robot's contacts are left out: the cup is moved
+    kinematically and its weld is compliant, so its cup and stem press centimetres
+    into a bowl held by the rim, by design."""
     i = wp.tid()
     if i < nacon[0]:
-        wp.atomic_min(deepest, worldid[i], dist[i])
+        g = geom[i]
+        if robot_geom[g[0]] == 0 and robot_geom[g[1]] == 0:
+            wp.atomic_min(deepest, worldid[i], dist[i])
 
 
 @wp.kernel
