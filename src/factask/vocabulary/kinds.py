@@ -121,8 +121,9 @@ _SPECS = [
              "one segment: (length along the rope, diameter, diameter)",
              (0.014, 0.01, 0.01), movable=True),
     KindSpec("cabinet", "cabinet fixed to the table, its drawers stacked in it and opening "
-             "towards its -x side (their handles stick out there); size = outer extents",
-             (0.22, 0.28, 0.10), movable=False, asymmetric=True),
+             "towards its -x side (their handles stick out there); things can stand on "
+             "its top; size = outer extents",
+             (0.22, 0.28, 0.10), movable=False, asymmetric=True, support=True),
     KindSpec("drawer", "open-top drawer sliding along -x out of its cabinet (starts "
              "'in_cabinet'; its size follows from the cabinet's); its handle sticks out "
              "of its -x face inside its size", (0.20, 0.26, 0.08), movable=False,

@@ -19,6 +19,12 @@ predicate or object and why):
   ``in_zone`` of a goal zone made for the region (:meth:`_Importer.goal_zone`). A
   stand-in fixed by default that a goal moves becomes movable; a goal that moves a
   fixture is refused.
+* Drawers: a cabinet type with drawer regions (:attr:`LiberoKind.drawers`) gets one
+  ``drawer`` variable per region (``<cabinet>_<level>_drawer``, ``in_cabinet``, pulled
+  out where ``:init`` says ``Open``); ``Open`` / ``Close`` of a drawer region are
+  ``open`` / ``closed``; ``In`` / ``On`` a drawer region is ``inside`` the drawer; a
+  put into a drawer that starts shut gets an ``open`` milestone first
+  (:meth:`_Importer.open_before_putting_inside`).
 * The language line is the description; the task's name is the file's name.
 
 Coordinate map (one for every file). LIBERO's table frame has x forward away from
@@ -46,7 +52,7 @@ from factask.compat.libero.bddl import load_bddl
 from factask.compat.libero.kinds import LiberoKind, LiberoUnsupported, libero_kind
 from factask.compat.libero.model import BddlProblem, Predicate, Region
 from factask.graph import TaskGraph, parse_graph
-from factask.vocabulary.kinds import WALL_THICKNESS, kind_spec
+from factask.vocabulary.kinds import WALL_THICKNESS, drawer_size, kind_spec
 from factask.vocabulary.names import slugify, unique_name
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
@@ -73,7 +79,9 @@ ZONE_MARGIN = 0.03
 ZONE_COLOR = "gray"
 #: Predicates of articulated fixtures.
 ARTICULATION = frozenset({"open", "close", "turnon", "turnoff"})
-_WHY_ARTICULATED = "articulated fixtures (drawers, doors, knobs) are not in factask yet"
+#: Those factask models: a drawer's ``Open`` / ``Close`` → ``open`` / ``closed``.
+DRAWER_GOALS = {"open": "open", "close": "closed"}
+_WHY_ARTICULATED = "switches and hinged doors are not in factask yet (drawers are)"
 
 
 @dataclass(frozen=True)
@@ -120,6 +128,15 @@ class _Importer:
         self.taken_names = set(self.names.values())
         #: Objects whose stand-in is fixed but that a goal moves: made movable.
         self.moved: set[str] = set()
+        #: A cabinet's drawer region (full name) → (drawer variable, cabinet, level).
+        self.drawers: dict[str, tuple[str, str, int]] = {}
+        for libero, spec in self.specs.items():
+            for level, region in enumerate(spec.drawers):
+                word = region.removesuffix("_region")
+                var = unique_name(f"{self.names[libero]}_{word}_drawer", self.taken_names)
+                self.drawers[f"{libero}_{region}"] = (var, libero, level)
+        #: Drawer variable → how far it starts pulled out (``Open`` in ``:init``).
+        self.openings: dict[str, float] = {}
 
     def refuse(self, pred: Predicate | str, why: str) -> LiberoUnsupported:
         return LiberoUnsupported(f"{self.where}: {pred}: {why}")
@@ -146,6 +163,11 @@ class _Importer:
     # ---- init -----------------------------------------------------------------------
     def read_init(self) -> None:
         for pred in self.p.init:
+            if pred.name in DRAWER_GOALS and len(pred.args) == 1 \
+                    and str(pred.args[0]) in self.drawers:
+                drawer = self.drawers[str(pred.args[0])][0]
+                self.openings[drawer] = 1.0 if pred.name == "open" else 0.0
+                continue
             if pred.name in ARTICULATION:
                 raise self.refuse(pred, f"a fixture that starts {pred.name}: "
                                   f"{_WHY_ARTICULATED}")
@@ -165,6 +187,8 @@ class _Importer:
         fixture = self.specs[obj].fixture
         if self.is_table(host):
             return {"type": "table"}
+        if host in self.drawers:
+            return {"type": "inside", "container": self.drawers[host][0]}
         region = self.p.regions_by_full_name.get(host)
         if region is not None:
             if self.is_table(region.target):
@@ -198,6 +222,10 @@ class _Importer:
         if fixture:
             yaw = (math.degrees(sum(region.yaw_rotation[0]) / 2)
                    if region.yaw_rotation else 0.0)
+            if self.specs[obj].drawers:
+                # factask's cabinet opens towards its -x side: turned to face the robot
+                # whatever LIBERO's yaw (its cabinet model's front is its own +x).
+                yaw = 0.0
             turned = round(abs(math.sin(math.radians(yaw)))) == 1  # a quarter turn
             half_x, half_y = (size[1], size[0]) if turned else (size[0], size[1])
             x = min(max(cx, WORKSPACE_X[0] + half_x / 2), WORKSPACE_X[1] - half_x / 2)
@@ -216,6 +244,15 @@ class _Importer:
         factors: list[dict[str, Any]] = []
         taken: set[str] = set()
         for pred in self.p.goal:
+            if pred.name in DRAWER_GOALS and len(pred.args) == 1 \
+                    and str(pred.args[0]) in self.drawers:
+                drawer = self.drawers[str(pred.args[0])][0]
+                relation = DRAWER_GOALS[pred.name]
+                name = unique_name(f"{'open' if relation == 'open' else 'close'}_{drawer}",
+                                   taken)
+                factors.append({"name": name, "description": f"LIBERO goal {pred}",
+                                "goal": {"type": relation, "objects": [drawer]}})
+                continue
             if pred.name in ARTICULATION:
                 raise self.refuse(pred, f"{pred.name} of a fixture: {_WHY_ARTICULATED}")
             if pred.name not in ("on", "in") or len(pred.args) != 2:
@@ -234,11 +271,42 @@ class _Importer:
             target = goal.get("container", goal.get("support", goal.get("zone")))
             name = unique_name(slugify(f"put {var} {word} {target}", "_", 64, "goal"), taken)
             factors.append({"name": name, "description": f"LIBERO goal {pred}", "goal": goal})
+        self.open_before_putting_inside(factors, taken)
         for f in factors:
             f["weight"] = 1.0 / len(factors)
         return factors
 
+    def open_before_putting_inside(self, factors: list[dict[str, Any]], taken: set[str]
+                                   ) -> None:
+        """A goal that puts something into a drawer that starts shut needs the drawer
+        opened first: LIBERO's goal names only the end (``In bowl top_region``), its
+        language the steps ("open the top drawer and put the bowl inside"). Such a
+        drawer gets an ``open`` milestone before the put (a ``Close`` goal of the same
+        drawer then comes after the put), unless a goal opens it already."""
+        drawers = {v for v, _, _ in self.drawers.values()}
+        for f in list(factors):
+            goal = f["goal"]
+            drawer = goal.get("container")
+            if goal["type"] != "inside" or drawer not in drawers:
+                continue
+            if self.openings.get(drawer, 0.0) > 0.0 or any(
+                    g["goal"]["type"] == "open" and drawer in g["goal"]["objects"]
+                    for g in factors):
+                continue
+            name = unique_name(f"open_{drawer}", taken)
+            factors.insert(factors.index(f), {
+                "name": name, "milestone": True,
+                "description": f"open {drawer} first (it starts shut)",
+                "goal": {"type": "open", "objects": [drawer]}})
+            self.warnings.append(f"{drawer}: starts shut and a goal puts something in it: "
+                                 f"an 'open' milestone ({name}) comes first")
+            for g in factors:
+                if g["goal"]["type"] == "closed" and drawer in g["goal"]["objects"]:
+                    g.setdefault("after", []).append(f["name"])
+
     def goal_of(self, pred: Predicate, var: str, host: str) -> dict[str, Any]:
+        if host in self.drawers:  # In / On a cabinet's drawer region: inside the drawer
+            return {"type": "inside", "objects": [var], "container": self.drawers[host][0]}
         region = self.p.regions_by_full_name.get(host)
         if region is not None:
             if self.is_table(region.target):
@@ -313,6 +381,16 @@ class _Importer:
             elif spec.fixed is not None:
                 data["fixed"] = spec.fixed
             out.append(data)
+        for var, libero, level in self.drawers.values():
+            spec = self.specs[libero]
+            assert spec.size is not None
+            out.append({
+                "name": var, "kind": "drawer", "color": spec.color,
+                "size": list(drawer_size(spec.size, len(spec.drawers))),
+                "initial": {"type": "in_cabinet", "cabinet": self.names[libero],
+                            "level": level, "opening": self.openings.get(var, 0.0)},
+                "description": f"drawer {level} (bottom 0) of {libero}: LIBERO region "
+                               f"{spec.drawers[level]}"})
         out.extend({k: v for k, v in zone.items() if k != "libero"} for zone in self.zones)
         return out
 

@@ -19,11 +19,12 @@ the exact shape of LIBERO's meshes. The choices worth knowing:
   bottles and cartons → an upright ``cylinder`` of their diameter and height.
 * fixtures: ``table`` and ``floor`` are factask's table (no variable). A
   ``flat_stove`` is a fixed low box (its cook region is its top), a
-  ``wooden_cabinet`` a fixed box whose top things can stand on (its drawers are
-  not modelled), a ``wine_rack`` a fixed box (its top region is its top). Goals on
-  those top regions are ``on`` the stand-in; ``Open``/``Close``/``Turnon``/``Turnoff``
-  and the drawers' regions are refused by the importer: articulated fixtures are
-  not in factask yet.
+  ``wooden_cabinet`` a ``cabinet`` of three drawers on slide joints (its bottom,
+  middle and top regions; 7 cm deep inside, so a bowl fits and the drawer still
+  shuts) whose top things can stand on, a ``wine_rack`` a fixed box (its top region
+  is its top). Goals on those top regions are ``on`` the stand-in; ``Open`` and
+  ``Close`` of a drawer are ``open`` / ``closed``; ``Turnon`` / ``Turnoff`` (the
+  stove's knob) are refused by the importer: switches are not in factask yet.
 
 An unknown type is a :class:`UnknownLiberoType`.
 """
@@ -57,6 +58,8 @@ class LiberoKind:
         fixed: Fixed to the table (None: the kind's default).
         fixture: LIBERO declares it under ``:fixtures``.
         note: What it is and why this stand-in.
+        drawers: For a cabinet: the LIBERO regions that are its drawers, bottom
+            first (each becomes a ``drawer`` variable on a slide joint).
     """
 
     kind: str | None
@@ -65,6 +68,7 @@ class LiberoKind:
     fixed: bool | None = None
     fixture: bool = False
     note: str = ""
+    drawers: tuple[str, ...] = ()
 
 
 def _can(d: float, h: float, color: str, note: str) -> LiberoKind:
@@ -82,11 +86,15 @@ _TABLE: dict[str, LiberoKind] = {
     "flat_stove": LiberoKind("box", (0.18, 0.18, 0.03), "silver", fixed=True, fixture=True,
                              note="flat stove: a fixed low box; its cook region is its top "
                                   "(no burner, no knob)"),
-    "wooden_cabinet": LiberoKind("box", (0.18, 0.22, 0.22), "brown", fixed=True,
-                                 fixture=True, note="wooden cabinet: a fixed box whose top "
-                                 "side things can stand on (no drawers)"),
-    "wine_rack": LiberoKind("box", (0.12, 0.20, 0.12), "tan", fixed=True, fixture=True,
-                            note="wine rack: a fixed box (no slots)"),
+    "wooden_cabinet": LiberoKind("cabinet", (0.22, 0.24, 0.27), "brown", fixed=True,
+                                 fixture=True, note="wooden cabinet: a cabinet of three "
+                                 "drawers (its bottom, middle and top regions) whose top "
+                                 "side things can stand on",
+                                 drawers=("bottom_region", "middle_region", "top_region")),
+    "wine_rack": LiberoKind("box", (0.12, 0.20, 0.09), "tan", fixed=True, fixture=True,
+                            note="wine rack: a fixed low box (no slots); 9 cm high, so "
+                                 "that the cabinet's middle drawer slides out over it (the "
+                                 "0.75 map puts the rack 4 cm in front of the cabinet)"),
     # receptacles and supports
     "akita_black_bowl": LiberoKind("bowl", (0.12, 0.12, 0.05), "black", fixed=False,
                                    note="black bowl, 12 cm across"),
