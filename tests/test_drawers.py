@@ -170,9 +170,17 @@ def test_library_cabinet_builder_gives_valid_drawers() -> None:
     assert not [p for p in graph.problems() if p.field != "factors"]
 
 
+#: The cabinet tasks beyond the first four: other drawers, two drawers, blocks
+#: taken out of a drawer, a bowl put on the cabinet's top.
+MORE_DRAWER_TASKS = ["open-top-drawer", "open-bottom-drawer", "close-top-drawer",
+                     "open-two-drawers", "put-two-blocks-in-open-drawer",
+                     "open-drawer-and-take-block-out", "take-block-out-of-drawer-to-zone",
+                     "put-bowl-on-cabinet-and-close-drawer"]
+
+
 @pytest.mark.parametrize("task", ["open-drawer", "close-drawer",
                                   "open-drawer-and-put-block-inside",
-                                  "put-block-in-drawer-and-close-it"])
+                                  "put-block-in-drawer-and-close-it", *MORE_DRAWER_TASKS])
 def test_library_drawer_tasks_succeed_with_the_oracle(task: str) -> None:
     graph = get_task(task)
     for seed in (10, 11):
@@ -182,3 +190,8 @@ def test_library_drawer_tasks_succeed_with_the_oracle(task: str) -> None:
 def test_arm_opens_a_drawer_and_puts_a_block_inside() -> None:
     result = run_episode(get_task("open-drawer-and-put-block-inside"), seed=4, robot="arm")
     assert result.success
+
+
+@pytest.mark.parametrize("task", MORE_DRAWER_TASKS)
+def test_arm_does_the_other_drawer_tasks(task: str) -> None:
+    assert run_episode(get_task(task), seed=4, robot="arm").success, task

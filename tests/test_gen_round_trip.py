@@ -64,7 +64,11 @@ MISREAD: dict[str, tuple[str, ...]] = {
         "move-kit-from-zone-to-cylinder",),
     "the reading does not know cabinets, drawers, open and closed yet (issue 38, "
     "generation)": ("open-drawer", "close-drawer", "open-drawer-and-put-block-inside",
-                    "put-block-in-drawer-and-close-it"),
+                    "put-block-in-drawer-and-close-it", "open-top-drawer",
+                    "open-bottom-drawer", "close-top-drawer", "open-two-drawers",
+                    "put-two-blocks-in-open-drawer", "open-drawer-and-take-block-out",
+                    "take-block-out-of-drawer-to-zone",
+                    "put-bowl-on-cabinet-and-close-drawer"),
 }
 _WHY = {task: why for why, tasks in MISREAD.items() for task in tasks}
 

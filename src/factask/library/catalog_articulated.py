@@ -10,8 +10,8 @@ drawer rides in it when the drawer is shut.
 from __future__ import annotations
 
 from factask.graph import InCabinet, StateVariable, TaskGraph
-from factask.library.builders import assemble, register, use, var
-from factask.library.conventions import BLOCK
+from factask.library.builders import assemble, register, start_inside, use, var
+from factask.library.conventions import BLOCK, BOWL, ZONE
 from factask.vocabulary.kinds import drawer_size
 
 #: A cabinet of three drawers (4.6 cm deep inside each) and one of two, whose drawers
@@ -93,4 +93,111 @@ def put_block_in_drawer_and_close_it() -> TaskGraph:
         opened, put,
         use("close_drawer", drawer=drawers["top"], after=[put]),
         extra=[box, drawers["bottom"]],
+    )
+
+
+@register("open-top-drawer")
+def open_top_drawer() -> TaskGraph:
+    box, drawers = cabinet(THREE_DRAWERS)
+    return assemble(
+        "open-top-drawer",
+        "Open the top drawer of the cabinet.",
+        use("open_drawer", drawer=drawers["top"]),
+        extra=[box, drawers["bottom"], drawers["middle"]],
+    )
+
+
+@register("open-bottom-drawer")
+def open_bottom_drawer() -> TaskGraph:
+    # Two drawers: the arm's wrist cannot get down to the handle of the bottom one of
+    # three (7 cm up, under 24 cm of cabinet) without hitting the cabinet's top.
+    box, drawers = cabinet(TWO_DRAWERS)
+    return assemble(
+        "open-bottom-drawer",
+        "Open the bottom drawer of the cabinet.",
+        use("open_drawer", drawer=drawers["bottom"]),
+        extra=[box, drawers["top"]],
+    )
+
+
+@register("close-top-drawer")
+def close_top_drawer() -> TaskGraph:
+    box, drawers = cabinet(THREE_DRAWERS, opened={"top": 1.0})
+    return assemble(
+        "close-top-drawer",
+        "Close the top drawer of the cabinet.",
+        use("close_drawer", drawer=drawers["top"]),
+        extra=[box, drawers["bottom"], drawers["middle"]],
+    )
+
+
+@register("open-two-drawers")
+def open_two_drawers() -> TaskGraph:
+    # The lower drawer first: a drawer pulled out above a shut one covers its handle.
+    box, drawers = cabinet(TWO_DRAWERS)
+    bottom = use("open_drawer", drawer=drawers["bottom"])
+    return assemble(
+        "open-two-drawers",
+        "Open both drawers of the cabinet, the bottom one first.",
+        bottom,
+        use("open_drawer", drawer=drawers["top"], after=[bottom]),
+        extra=[box],
+    )
+
+
+@register("put-two-blocks-in-open-drawer")
+def put_two_blocks_in_open_drawer() -> TaskGraph:
+    box, drawers = cabinet(TWO_DRAWERS, opened={"top": 1.0})
+    blocks = [var(f"{c}_block", "block", c, BLOCK) for c in ("red", "blue")]
+    return assemble(
+        "put-two-blocks-in-open-drawer",
+        "Put the red block and the blue block inside the open top drawer of the cabinet.",
+        use("put_in_container", objects=blocks, container=drawers["top"]),
+        extra=[box, drawers["bottom"]],
+    )
+
+
+@register("open-drawer-and-take-block-out")
+def open_drawer_and_take_block_out() -> TaskGraph:
+    # The drawer starts half open: the reset places a block inside a drawer only
+    # where the drawer stands out of its cabinet.
+    box, drawers = cabinet(TWO_DRAWERS, opened={"top": 0.5})
+    block = var("red_block", "block", "red", BLOCK, initial=start_inside(drawers["top"]))
+    zone = var("green_zone", "zone", "green", ZONE)
+    opened = use("open_drawer", drawer=drawers["top"])
+    return assemble(
+        "open-drawer-and-take-block-out",
+        "Pull the half-open top drawer of the cabinet all the way open, take the red "
+        "block out of it and place it in the green zone.",
+        opened,
+        use("place_in_zone", objects=block, zone=zone, after=[opened]),
+        extra=[box, drawers["bottom"]],
+    )
+
+
+@register("take-block-out-of-drawer-to-zone")
+def take_block_out_of_drawer_to_zone() -> TaskGraph:
+    box, drawers = cabinet(TWO_DRAWERS, opened={"top": 1.0})
+    block = var("red_block", "block", "red", BLOCK, initial=start_inside(drawers["top"]))
+    zone = var("green_zone", "zone", "green", ZONE)
+    return assemble(
+        "take-block-out-of-drawer-to-zone",
+        "Take the red block out of the open top drawer of the cabinet and place it in "
+        "the green zone.",
+        use("place_in_zone", objects=block, zone=zone),
+        extra=[box, *drawers.values()],
+    )
+
+
+@register("put-bowl-on-cabinet-and-close-drawer")
+def put_bowl_on_cabinet_and_close_drawer() -> TaskGraph:
+    box, drawers = cabinet(TWO_DRAWERS, opened={"bottom": 1.0})
+    bowl = var("blue_bowl", "bowl", "blue", BOWL, fixed=False)
+    on = use("place_on_top", objects=bowl, support=box)
+    return assemble(
+        "put-bowl-on-cabinet-and-close-drawer",
+        "Put the blue bowl on top of the cabinet and then close its open bottom drawer.",
+        on,
+        use("close_drawer", drawer=drawers["bottom"], after=[on]),
+        extra=[drawers["top"]],
     )

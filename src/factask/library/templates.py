@@ -48,8 +48,9 @@ RECEPTACLES = ["container", "bowl", "fixture", "drawer"]
 # holds a column of ells, an ell carries an equal ell).
 BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinder", "corner",
          "ell"]
-# Kinds objects may rest on (``on`` support: support or receptacle).
-SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "bowl"]
+# Kinds objects may rest on (``on`` support: support or receptacle; a cabinet's top).
+SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "bowl",
+            "cabinet"]
 
 #: Centre distance of a bridge's two pillars (m): with 4 cm pillars the gap is
 #: 4 cm, so a deck at least 12 cm long spans it with 2 cm resting on each pillar.
