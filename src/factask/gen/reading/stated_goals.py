@@ -128,14 +128,23 @@ def fit_sizes(goals: Sequence[ReadGoal], found: Sequence[Mention]) -> list[Menti
         anchor = out[k]
         if anchor.movable or not kind_spec(anchor.kind).region:
             continue
+        checks = [data]
         if len({d["type"] for d in data}) == 1:
             # Goals of one relation on one anchor hold all their objects at once: laid
-            # out as one goal (the joint search may run out of time, which proves nothing).
-            data = [{**data[0], "objects": [o for d in data for o in d["objects"]]}]
+            # out as one goal (the joint search may run out of time, which proves nothing)
+            # -- and then as the goals the graph will have, one after the other: "put
+            # the red block into the container, then the blue one, ..." places each
+            # block where the ones before left room, which needs more than one packing
+            # ("no free spot"). The joint search's answer is the one the grammar's
+            # check (:func:`factask.gen.reading.capacity.prune`) finds again (cached),
+            # so the reading does not hang on whether the search ran out of time.
+            checks = [[{**data[0], "objects": [o for d in data for o in d["objects"]]}]] \
+                + ([data] if len(data) > 1 else [])
         sx, sy, sz = anchor.size or kind_spec(anchor.kind).default_size
         for _ in range(MAX_GROWTH_STEPS + 1):
-            problem = layout_problem(data[0], out) if len(data) == 1 \
-                else goals_problem(data, out)
+            problem = next((p for goals in checks
+                            if (p := layout_problem(goals[0], out) if len(goals) == 1
+                                else goals_problem(goals, out)) is not None), None)
             if problem is None:
                 break
             if not _ROOM.search(problem) or min(sx, sy) * GROWTH > MAX_GROWN_SIDE:
