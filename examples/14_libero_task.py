@@ -9,8 +9,8 @@ values (``load_bddl``), then ``import_libero`` turns it into a factask task grap
 objects become state variables (stand-in kinds from one table), ``:init`` becomes
 their starts, ``:goal`` becomes factors, the language line the description. The
 files of three LIBERO suites ship with factask (MIT licence). A file that needs
-what factask does not have yet (drawers, doors, switches) is refused with a typed
-error naming the predicate.
+what factask does not have yet (hinged doors, switches) is refused with a typed
+error naming the predicate; the cabinet's drawers are drawer variables (example 15).
 """
 
 # %% Imports and the output folder
@@ -61,7 +61,7 @@ env.close()
 episodes = [run_episode(graph, seed) for seed in range(2)]
 print("oracle:", [(e.success, e.steps) for e in episodes])
 
-# %% A file that needs an articulated fixture is refused, and says why
+# %% A file that needs a switch (the stove's knob) is refused, and says why
 refused = {}
 for p in shipped_bddl_files("libero_goal"):
     try:
