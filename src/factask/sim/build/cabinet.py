@@ -20,7 +20,7 @@ import numpy as np
 from factask.geometry import Pose, rotation_matrix
 from factask.scene.cabinet import cabinet_boxes, drawer_boxes, drawer_seat
 from factask.scene.objects import SceneObject
-from factask.sim.build.mjspec import GEOM_TYPES, BodyHandles
+from factask.sim.build.mjspec import BodyHandles, add_plan_geoms
 from factask.sim.build.parts import GEOM_SEPARATOR, GeomPlan, ObjectPlan, fmt
 from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
 from factask.vocabulary.variables import VariableSet, drawers_of
@@ -128,14 +128,7 @@ def add_drawer(spec: mujoco.MjSpec, plan: ObjectPlan, obj: SceneObject, graph: V
                            range=[0.0, drawer_travel(obj.size)],
                            limited=mujoco.mjtLimited.mjLIMITED_TRUE, damping=SLIDE_DAMPING,
                            frictionloss=SLIDE_FRICTION, armature=SLIDE_ARMATURE)
-    geoms = []
-    for g in plan.geoms:
-        geom = body.add_geom(obj_cls, name=g.name, type=GEOM_TYPES[g.type], size=g.size,
-                             pos=g.pos, rgba=g.rgba, group=g.group)
-        if g.mass is not None:
-            geom.mass = g.mass
-        geoms.append(geom)
-    return BodyHandles(body, tuple(geoms), joint)
+    return BodyHandles(body, add_plan_geoms(body, plan, obj_cls), joint)
 
 
 def slide_handle(model: mujoco.MjModel, obj: SceneObject, graph: VariableSet,

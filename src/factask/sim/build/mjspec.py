@@ -216,6 +216,17 @@ def add_object(spec: mujoco.MjSpec, plan: ObjectPlan,
         body.quat = plan.quat
     joint = None if plan.mocap else body.add_freejoint(name=plan.joint_name)
     cls = obj_cls if plan.collides else marker_cls
+    return BodyHandles(body, add_plan_geoms(body, plan, cls), joint)
+
+
+def add_plan_geoms(body: mujoco.MjsBody, plan: ObjectPlan,
+                   cls: mujoco.MjsDefault) -> tuple[mujoco.MjsGeom, ...]:
+    """Add a plan's geoms to ``body`` (an object's own body, or a drawer's inside its
+    cabinet: :mod:`factask.sim.build.cabinet`) in default class ``cls``.
+
+    Returns:
+        The geoms, in the plan's order.
+    """
     geoms = []
     # Sizes are zero-padded by MuJoCo and tuples are taken as they are: no conversions.
     for g in plan.geoms:
@@ -229,7 +240,7 @@ def add_object(spec: mujoco.MjSpec, plan: ObjectPlan,
         if g.mass is not None:
             geom.mass = g.mass
         geoms.append(geom)
-    return BodyHandles(body, tuple(geoms), joint)
+    return tuple(geoms)
 
 
 def default_classes(spec: mujoco.MjSpec) -> tuple[mujoco.MjsDefault, mujoco.MjsDefault]:
