@@ -24,6 +24,7 @@ from factask.graph import (
     compose,
     parse_graph,
 )
+from factask.relations import RELATION_TYPES
 
 runner = CliRunner()
 
@@ -103,6 +104,27 @@ def test_anchor_kind_must_fit_the_relation() -> None:
     data["factors"][0]["goal"] = {"type": "on", "objects": ["red_block"], "support": "ball"}
     with pytest.raises(GraphValidationError, match="cannot serve as support"):
         parse_graph(data)
+
+
+@pytest.mark.parametrize("relation", sorted(
+    k for k, cls in RELATION_TYPES.items() if cls.moves_kinds is not None))
+def test_a_relation_that_moves_only_some_kinds_names_the_object_and_the_fix(
+        relation: str) -> None:
+    """Every relation with ``moves_kinds`` refuses a block as its object, naming the
+    field, the object's kind and the relation's own fix (one rule, in the base)."""
+    cls = RELATION_TYPES[relation]
+    variables, goal = cls.example()
+    data = goal.model_dump(mode="json", exclude_defaults=True)
+    data["type"] = relation
+    data["objects"] = ["odd_block"]
+    graph = {"name": "t", "description": "t",
+             "variables": [*variables, {"name": "odd_block", "kind": "block"}],
+             "factors": [{"name": "f", "description": "f", "goal": data}]}
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(graph)
+    text = str(err.value)
+    assert "goal.objects" in text and "'odd_block' is a block" in text
+    assert cls.other_kinds_fix in text
 
 
 def test_cycle_in_order_is_reported() -> None:

@@ -61,7 +61,7 @@ def test_a_pile_at_a_fixed_pose_is_centred_there() -> None:
 
 
 def test_pile_in_zone_moves_piles_only() -> None:
-    with pytest.raises(Exception, match="pile_in_zone moves piles"):
+    with pytest.raises(Exception, match="'pile_in_zone' moves only pile"):
         parse_graph({
             "name": "bad",
             "variables": [{"name": "b", "kind": "block"}, {"name": "z", "kind": "zone"}],

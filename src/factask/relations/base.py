@@ -80,6 +80,13 @@ class RelationBase(BaseModel, abc.ABC):
     #: None: no start placement meets it by itself.
     met_by_starting_in: ClassVar[str | None] = None
 
+    #: The kinds of the variables this relation moves, when it moves only some kinds
+    #: (``pile_in_zone`` pushes piles, ``open`` slides drawers); None: any movable
+    #: kind that no relation claims. Validation and the reading both read it.
+    moves_kinds: ClassVar[frozenset[str] | None] = None
+    #: What to do instead when an object is not of :attr:`moves_kinds` (the fix).
+    other_kinds_fix: ClassVar[str] = "choose another relation"
+
     objects: list[Name] = Field(
         min_length=1, description="Variables this goal moves (all instances of each)."
     )
@@ -123,7 +130,7 @@ class RelationBase(BaseModel, abc.ABC):
             factor: Name of the factor whose goal this is (the problems' node).
             variables: The graph's variables by name.
         """
-        out = []
+        out = self._mover_kind_problems(factor, variables)
         for fname, caps in self.anchor_fields.items():
             for name in self.anchor_names(fname):
                 if not caps or name not in variables:
@@ -139,6 +146,18 @@ class RelationBase(BaseModel, abc.ABC):
                                        f"{' or '.join(caps)}{_or_kinds(self.anchor_kinds, fname)})",
                                        "choose another variable or relation"))
         return out
+
+    def _mover_kind_problems(self, factor: str,
+                             variables: Mapping[str, StateVariable]) -> list[Problem]:
+        """Objects whose kind this relation does not move (see :attr:`moves_kinds`)."""
+        if self.moves_kinds is None:
+            return []
+        wanted = " or ".join(sorted(self.moves_kinds))
+        return [Problem(factor, "goal.objects",
+                        f"{name!r} is a {v.kind}; '{self.kind()}' moves only {wanted}",
+                        self.other_kinds_fix)
+                for name in self.objects
+                if (v := variables.get(name)) is not None and v.kind not in self.moves_kinds]
 
     def met_at_start(self, variables: Mapping[str, StateVariable]) -> str | None:
         """The host every object of the goal starts on or in, when that start alone

@@ -13,8 +13,7 @@ yet.
 from __future__ import annotations
 
 import abc
-from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -23,12 +22,8 @@ from factask.relations.solving import Plan, SolveContext, SolvedFactor, make_pla
 from factask.relations.status import CheckScene, Verdict
 from factask.scene.cabinet import drawer_opening, drawer_pose, drawer_seat
 from factask.scene.objects import SceneObject
-from factask.vocabulary.errors import Problem
 from factask.vocabulary.kinds import drawer_size, kind_spec
 from factask.vocabulary.variables import drawers_of
-
-if TYPE_CHECKING:
-    from factask.vocabulary.variables import StateVariable
 
 #: The kind whose variables these relations move.
 DRAWER_KIND = "drawer"
@@ -48,22 +43,15 @@ def drawer_example(opening: float) -> list[dict[str, Any]]:
 class DrawerRelation(RelationBase):
     """Base of the relations that slide drawers to an opening."""
 
+    moves_kinds: ClassVar[frozenset[str] | None] = frozenset([DRAWER_KIND])
+    other_kinds_fix: ClassVar[str] = "name a drawer variable (kind drawer, initial in_cabinet)"
+
     #: The opening each drawer is solved to (the slot), a fraction of its travel.
     target_opening: ClassVar[float]
 
     @abc.abstractmethod
     def holds(self, opening: float) -> bool:
         """Whether a drawer pulled out by ``opening`` (a fraction) meets the goal."""
-
-    def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
-        out = super().problems(factor, variables)
-        for name in self.objects:
-            v = variables.get(name)
-            if v is not None and v.kind != DRAWER_KIND:
-                out.append(Problem(factor, "goal.objects",
-                                   f"{name!r} is a {v.kind}; '{self.kind()}' slides drawers",
-                                   "name a drawer variable (kind drawer, initial in_cabinet)"))
-        return out
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         """One slot per drawer: its pose at :attr:`target_opening` in its cabinet as

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import replace
-from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field
@@ -41,11 +41,7 @@ from factask.scene.objects import (
     resting_pose,
     yaw_rotation_2d,
 )
-from factask.vocabulary.errors import Problem
 from factask.vocabulary.names import Name
-
-if TYPE_CHECKING:
-    from factask.vocabulary.variables import StateVariable
 
 #: The kind whose variables this relation moves.
 PILE_KIND = "pile"
@@ -132,6 +128,8 @@ class PileInZone(RelationBase):
     ``fraction``; satisfied, with progress 1, once at least ``fraction`` of them are."""
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {"zone": ("region",)}
+    moves_kinds: ClassVar[frozenset[str] | None] = frozenset([PILE_KIND])
+    other_kinds_fix: ClassVar[str] = "use in_zone for other kinds, or make it a pile"
 
     type: Literal["pile_in_zone"] = "pile_in_zone"
     zone: Name
@@ -142,16 +140,6 @@ class PileInZone(RelationBase):
         return ([{"name": "red_pile", "kind": "pile", "count": 20, "color": "red"},
                  {"name": "green_zone", "kind": "zone", "color": "green"}],
                 cls(objects=["red_pile"], zone="green_zone", fraction=1.0))
-
-    def problems(self, factor: str, variables: Mapping[str, StateVariable]) -> list[Problem]:
-        out = super().problems(factor, variables)
-        for name in self.objects:
-            v = variables.get(name)
-            if v is not None and v.kind != PILE_KIND:
-                out.append(Problem(factor, "goal.objects",
-                                   f"{name!r} is a {v.kind}; pile_in_zone moves piles",
-                                   "use in_zone for other kinds, or make it a pile"))
-        return out
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         """Nominal slots on a grid over the region (markers, obstacles for later

@@ -66,6 +66,8 @@ class RopeAlong(RelationBase):
 
     anchor_fields: ClassVar[Mapping[str, tuple[str, ...]]] = {
         "along": ("region",), "start": (), "end": ()}
+    moves_kinds: ClassVar[frozenset[str] | None] = frozenset([ROPE_KIND])
+    other_kinds_fix: ClassVar[str] = "use row or at_pose for other kinds"
 
     type: Literal["rope_along"] = "rope_along"
     along: Name | None = None
@@ -103,11 +105,8 @@ class RopeAlong(RelationBase):
                                "one factor per rope"))
         for name in self.objects:
             v = variables.get(name)
-            if v is not None and v.kind != ROPE_KIND:
-                out.append(Problem(factor, "goal.objects",
-                                   f"{name!r} is a {v.kind}; rope_along moves ropes",
-                                   "use row or at_pose for other kinds"))
-            elif v is not None and self.points is not None and len(self.points) != v.count:
+            if (v is not None and v.kind == ROPE_KIND and self.points is not None
+                    and len(self.points) != v.count):
                 out.append(Problem(factor, "goal.points",
                                    f"{name!r} has {v.count} segment(s) but "
                                    f"{len(self.points)} point(s) are given",

@@ -26,11 +26,10 @@ Schema = ss.Schema
 #: the library computes (the system prompt says so) and a tiny model invents.
 COORDINATE_RELATIONS = frozenset(["at_pose"])
 
-#: Relation types that move only variables of these kinds (the others never move them).
-OBJECT_KINDS: dict[str, frozenset[str]] = {"pile_in_zone": frozenset(["pile"]),
-                                           "rope_along": frozenset(["rope"]),
-                                           "open": frozenset(["drawer"]),
-                                           "closed": frozenset(["drawer"])}
+#: Relation types that move only variables of these kinds (the others never move
+#: them): each relation's own :attr:`~factask.relations.base.RelationBase.moves_kinds`.
+OBJECT_KINDS: dict[str, frozenset[str]] = {
+    kind: cls.moves_kinds for kind, cls in RELATION_TYPES.items() if cls.moves_kinds is not None}
 
 SPECIAL_KINDS = frozenset().union(*OBJECT_KINDS.values())
 
