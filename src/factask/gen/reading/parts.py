@@ -1,0 +1,549 @@
+"""Articulated furniture in words: the drawers of a cabinet, named by level, opened
+and shut.
+
+A drawer is no free object: it is a *part* seated in a *host* (a cabinet) at a level
+(0: the bottom one), and the relations ``open`` / ``closed`` slide it. The words
+name it by its level and its host -- "the top drawer of the brown cabinet", "the
+middle drawer", "the lower drawer", "the second drawer from the top", "its bottom
+drawer" -- say how it starts ("the half-open top drawer", "the drawer that is open")
+and what to do with it ("open", "pull out", "close", "shut", "push in", "push ...
+closed"; "put the block in the drawer" is ``inside`` it).
+
+Everything here reads one table, :data:`PART_KINDS` (a part kind -> its
+:class:`PartKind`: its host, the start its variables take, its names by level,
+its sizes, the verbs and particles of each relation, its start words). A second
+articulated kind (a microwave's door, a stove's switch) is one more entry: the
+mentions (:func:`seat_parts`), the clause reading (:func:`part_referents`,
+:func:`actuation`), the accounting (:func:`judge_part_word`) and the description
+(:mod:`factask.gen.reading.describe`) read the table, not the kind.
+
+How many parts a host has is read from the words: "a cabinet with three drawers",
+else the most any level word asks ("top" or "bottom": two; "middle": three), else
+"both drawers" / "the two drawers", else one. A level no host can have ("the fourth
+drawer") names no part: the clause reading then states no goal over it, and the
+accounting reports the word unread.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+
+from factask.gen.reading.mentions import Mention
+from factask.gen.reading.read_goal import ReadGoal
+from factask.gen.reading.words import count_of, kind_of
+from factask.graph.taskgraph import TaskGraph
+from factask.library.catalog_articulated import THREE_DRAWERS, TWO_DRAWERS
+from factask.vocabulary.kinds import MAX_DRAWERS, drawer_size, kind_spec
+from factask.vocabulary.palette import COLOR_NAMES
+
+Size = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class PartKind:
+    """An articulated kind: parts seated in a host, each at a level.
+
+    Attributes:
+        part: The parts' kind (``drawer``).
+        host: The host's kind (``cabinet``).
+        start: The start type of a part (``in_cabinet``).
+        host_field: The start's field naming the host (``cabinet``).
+        most: The most parts a host holds.
+        names: Number of parts -> their level names, the bottom one first ("" for
+            a lone part: "the drawer").
+        host_sizes: Number of parts -> the host's size (None: its kind's default).
+        part_size: The size of a part, from its host's size and number of parts.
+        verbs: Relation -> the verbs that say it ("open", "pull" / "close", "shut",
+            "push").
+        particles: Relation -> the words after a verb or the part that say it
+            ("pull ... out", "push ... in", "slide ... shut").
+        neutral: Verbs that say the relation only with a particle ("slide", "move").
+        states: Start word -> how far the part starts open (a fraction).
+    """
+
+    part: str
+    host: str
+    start: str
+    host_field: str
+    most: int
+    names: dict[int, tuple[str, ...]]
+    host_sizes: dict[int, Size | None]
+    part_size: Callable[[Size, int], Size]
+    verbs: dict[str, frozenset[str]]
+    particles: dict[str, frozenset[str]]
+    neutral: frozenset[str]
+    states: dict[str, float]
+
+    def level_name(self, level: int, count: int) -> str:
+        """``top``, ``middle``, ``bottom`` ("" for a lone part)."""
+        return self.names[count][level]
+
+
+DRAWERS = PartKind(
+    part="drawer", host="cabinet", start="in_cabinet", host_field="cabinet",
+    most=MAX_DRAWERS,
+    names={1: ("",), 2: ("bottom", "top"), 3: ("bottom", "middle", "top")},
+    host_sizes={1: None, 2: TWO_DRAWERS, 3: THREE_DRAWERS},
+    part_size=drawer_size,
+    verbs={"open": frozenset({"open", "opens", "pull", "pulls", "unshut"}),
+           "closed": frozenset({"close", "closes", "shut", "shuts", "push", "pushes"})},
+    particles={"open": frozenset({"out", "open", "up"}),
+               "closed": frozenset({"in", "shut", "closed", "back"})},
+    neutral=frozenset({"slide", "slides", "move", "draw", "get", "leave"}),
+    states={"open": 1.0, "opened": 1.0, "ajar": 0.5, "half": 0.5, "partly": 0.5,
+            "partially": 0.5, "slightly": 0.5, "closed": 0.0, "shut": 0.0},
+)
+#: Part kind -> its table entry: the one place an articulated kind is described.
+PART_KINDS: dict[str, PartKind] = {DRAWERS.part: DRAWERS}
+#: Host kind -> the entry of its parts.
+HOST_KINDS: dict[str, PartKind] = {p.host: p for p in PART_KINDS.values()}
+
+#: Level words -> (counted from: "bottom" / "top", rank, fewest parts it asks).
+LEVEL_WORDS: dict[str, tuple[str, int, int]] = {
+    "top": ("top", 0, 2), "upper": ("top", 0, 2), "uppermost": ("top", 0, 2),
+    "highest": ("top", 0, 2), "topmost": ("top", 0, 2),
+    "bottom": ("bottom", 0, 2), "lower": ("bottom", 0, 2), "lowest": ("bottom", 0, 2),
+    "bottommost": ("bottom", 0, 2), "middle": ("bottom", 1, 3), "center": ("bottom", 1, 3),
+    "centre": ("bottom", 1, 3), "central": ("bottom", 1, 3)}
+#: Ordinal words -> rank (counted from the bottom unless "from the top" follows).
+ORDINALS: dict[str, int] = {"first": 0, "second": 1, "third": 2, "fourth": 3, "fifth": 4,
+                            "sixth": 5}
+#: Words that say a part stands beside another, which stacked parts never do.
+SIDE_WORDS = frozenset({"left", "right", "leftmost", "rightmost", "front", "back", "far",
+                        "near"})
+#: Words that start a phrase naming a part, or qualify it.
+DETERMINERS = frozenset({"the", "a", "an", "its", "their", "this", "that", "each", "every",
+                         "both", "all", "one", "these", "those", "his", "her"})
+#: Every word that may stand inside a part's phrase, before its kind word.
+PHRASE_WORDS = (DETERMINERS | LEVEL_WORDS.keys() | ORDINALS.keys() | SIDE_WORDS
+                | {w for p in PART_KINDS.values() for w in p.states})
+#: Words between a verb and its particle's end: "pull it all the way out".
+_WAY = frozenset({"all", "the", "way", "fully", "completely", "wide", "again", "it", "them"})
+
+
+@dataclass(frozen=True)
+class Phrase:
+    """What the words say of one part they name.
+
+    Attributes:
+        first: Index of the phrase's first word.
+        last: Index of its last word (its host's phrase and a relative clause included).
+        level: (counted from "bottom" / "top", rank), or None: no level named.
+        fewest: The fewest parts its host must have for the level.
+        state: How far it starts open, where the words say (None: not said).
+        host: Index of the host's kind word the phrase names ("of the cabinet"), or None.
+        plural: The phrase names several parts ("both drawers").
+        count: The count it gives ("the two drawers"; 0: none).
+        unplaced: A level word no host can have ("the fourth drawer", "the left drawer").
+        stated: The phrase only counts a host's parts ("a cabinet with three drawers").
+    """
+
+    first: int
+    last: int
+    level: tuple[str, int] | None = None
+    fewest: int = 1
+    state: float | None = None
+    host: int | None = None
+    plural: bool = False
+    count: int = 0
+    unplaced: bool = False
+    stated: bool = False
+
+
+def _is_part(word: str) -> PartKind | None:
+    kind = kind_of(word)[0]
+    return PART_KINDS.get(kind) if kind else None
+
+
+def phrase_at(words: Sequence[str], i: int) -> Phrase:
+    """The phrase whose part word is ``words[i]`` (see :class:`Phrase`)."""
+    spec = _is_part(words[i])
+    assert spec is not None
+    plural = kind_of(words[i])[1]
+    j, level, fewest, state, count, unplaced, half = i - 1, None, 1, None, 0, False, False
+    while j >= 0 and (words[j] in PHRASE_WORDS or words[j] in COLOR_NAMES
+                      or count_of(words[j])):
+        w = words[j]
+        if w in LEVEL_WORDS:
+            end, rank, fewest = LEVEL_WORDS[w]
+            level = (end, rank)
+        elif w in ORDINALS:
+            level, fewest = ("bottom", ORDINALS[w]), max(2, ORDINALS[w] + 1)
+        elif w in SIDE_WORDS:
+            unplaced = True
+        elif w in spec.states:
+            half = half or spec.states[w] not in (0.0, 1.0)
+            state = spec.states[w] if state is None or half else state
+        elif count_of(w) and w not in ("a", "an", "one"):
+            count = count_of(w)
+        if w in DETERMINERS and j and words[j - 1] not in DETERMINERS:
+            break  # "open the drawer": the verb before the article is no start word
+        j -= 1
+    if j >= 0 and words[j] in DETERMINERS:
+        first = j
+    else:
+        first = j + 1
+    if half:
+        state = 0.5
+    if level and fewest > spec.most:
+        unplaced = True
+    # "a cabinet with three drawers", "the cabinet has two drawers": a count, no part.
+    stated = count > 0 and first >= 2 and words[first - 1] in ("with", "has", "have",
+                                                                "having", "of") \
+        and kind_of(words[first - 2])[0] == spec.host
+    k = i + 1
+    if level and words[k:k + 3] in (["from", "the", "top"], ["from", "the", "bottom"]):
+        level = ("top" if words[k + 2] == "top" else "bottom", level[1])
+        k += 3
+    host = None
+    if words[k:k + 1] == ["of"] or words[k:k + 1] == ["in"]:
+        h = k + 1
+        while h < len(words) and (words[h] in DETERMINERS or words[h] in COLOR_NAMES):
+            h += 1
+        if h < len(words) and kind_of(words[h])[0] == spec.host:
+            host, k = h, h + 1
+    if first >= 2 and words[first - 1] == "s" and kind_of(words[first - 2])[0] == spec.host:
+        host = first - 2  # "the cabinet's top drawer"
+    if words[k:k + 2] in (["that", "is"], ["which", "is"], ["that", "are"]):
+        r = k + 2
+        half = False
+        while r < len(words) and words[r] in spec.states:
+            half = half or spec.states[words[r]] not in (0.0, 1.0)
+            state = 0.5 if half else spec.states[words[r]]
+            r += 1
+        k = r if r > k + 2 else k
+    return Phrase(first, k - 1, level, fewest, state, host, plural or count > 1,
+                  count, unplaced, stated)
+
+
+def _host_count(words: Sequence[str], h: int, spec: PartKind) -> int:
+    """The parts a host's own words give it: "the cabinet with three drawers" (0: none)."""
+    rest = words[h + 1:h + 4]
+    if len(rest) == 3 and rest[0] in ("with", "has", "having", "of") and count_of(rest[1]) \
+            and _is_part(rest[2]) is spec:
+        return count_of(rest[1])
+    return 0
+
+
+def _host_of(words: Sequence[str], at: int | None, i: int, hosts: list[Mention],
+             positions: dict[str, int]) -> Mention:
+    """The host a phrase names (its host word's colour), else the one named last before
+    it, else the first."""
+    if at is not None:
+        colour = words[at - 1] if at and words[at - 1] in COLOR_NAMES else None
+        same = [m for m in hosts if colour is None or m.color == colour]
+        if same:
+            return same[0]
+    before = [m for m in hosts if positions.get(m.name, len(words)) < i]
+    return max(before, key=lambda m: positions[m.name]) if before else hosts[0]
+
+
+def _positions(words: Sequence[str], hosts: list[Mention]) -> dict[str, int]:
+    out: dict[str, int] = {}
+    for m in hosts:
+        for k, w in enumerate(words):
+            if kind_of(w)[0] == m.kind and (m.color is None or (k and words[k - 1] == m.color)):
+                out[m.name] = k
+                break
+    return out
+
+
+def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
+    """``found`` with its parts seated: each host with as many parts as the words ask,
+    every part a mention of its own (one per level, named by it: ``top_drawer``) that
+    starts in its host at its level, as open as the words say.
+
+    The mentions the scan made of part words ("the two brown drawers") are replaced by
+    these; a part named with no host named gets one (uncoloured), and a host named
+    with no part gets one.
+
+    Args:
+        words: The proposal's words (:func:`factask.gen.reading.words.words_of`).
+        found: Its mentions.
+
+    Returns:
+        The mentions, each host followed by its parts.
+    """
+    if not any(m.kind in PART_KINDS or m.kind in HOST_KINDS for m in found):
+        return list(found)
+    out = list(found)
+    for spec in PART_KINDS.values():
+        out = _seat(words, out, spec)
+    return out
+
+
+def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Mention]:
+    hosts = [m for m in found if m.kind == spec.host]
+    phrases = [(i, phrase_at(words, i)) for i, w in enumerate(words) if _is_part(w) is spec]
+    if not hosts and not phrases:
+        return found
+    if not hosts:
+        hosts = [Mention(spec.host, spec.host, None, 1)]
+    positions = _positions(words, hosts)
+    counts = {m.name: max([_host_count(words, k, spec) for k in range(len(words))
+                           if kind_of(words[k])[0] == spec.host and _host_of(
+                               words, k, k, hosts, positions) is m] or [0]) for m in hosts}
+    fewest = dict.fromkeys(counts, 1)
+    starts: dict[tuple[str, str, int], float] = {}
+    seated = [(p, _host_of(words, p.host, i, hosts, positions)) for i, p in phrases]
+    for p, host in seated:
+        if p.stated:
+            counts[host.name] = max(counts[host.name], p.count)
+        elif not p.unplaced:
+            fewest[host.name] = max(fewest[host.name], p.fewest, p.count,
+                                    2 if p.plural else 1)
+    total = {n: min(max(counts[n], fewest[n]), spec.most) for n in counts}
+    for p, host in seated:
+        if p.state is None or p.stated or p.unplaced:
+            continue
+        n = total[host.name]
+        levels = [resolve(p, n)] if p.level else list(range(n))
+        for level in levels:
+            if level is not None:
+                starts.setdefault((host.name, spec.part, level), p.state)
+    out: list[Mention] = []
+    done: set[str] = set()
+    first_part = next((k for k, m in enumerate(found) if m.kind == spec.part), len(found))
+    for k, m in enumerate([*found, None]):
+        if k == first_part or m is None:
+            for host in hosts:
+                if host.name not in done:
+                    out.extend(_host_and_parts(host, total[host.name], spec, starts,
+                                               len(hosts) > 1))
+                    done.add(host.name)
+        if m is None or m.kind == spec.part:
+            continue
+        if m.kind == spec.host:
+            if m.name not in done:
+                out.extend(_host_and_parts(m, total[m.name], spec, starts, len(hosts) > 1))
+                done.add(m.name)
+            continue
+        out.append(m)
+    return out
+
+
+def resolve(p: Phrase, count: int) -> int | None:
+    """The level (0: the bottom one) a phrase names in a host of ``count`` parts (None:
+    no such level, or none named)."""
+    if p.level is None or p.unplaced or p.fewest > count:
+        return None
+    end, rank = p.level
+    level = rank if end == "bottom" else count - 1 - rank
+    return level if 0 <= level < count else None
+
+
+def part_name(host: Mention, level: int, count: int, spec: PartKind, prefixed: bool) -> str:
+    """``top_drawer``, ``drawer`` (a lone one), ``red_cabinet_top_drawer`` (of several hosts)."""
+    base = "_".join(w for w in (spec.level_name(level, count), spec.part) if w)
+    return f"{host.name}_{base}" if prefixed else base
+
+
+def _host_and_parts(host: Mention, count: int, spec: PartKind,
+                    starts: dict[tuple[str, str, int], float], prefixed: bool) -> list[Mention]:
+    size = spec.host_sizes.get(count) or host.size or kind_spec(spec.host).default_size
+    out = [replace(host, size=spec.host_sizes.get(count) or host.size)]
+    for level in range(count):
+        start = (("type", spec.start), (spec.host_field, host.name), ("level", level),
+                 ("opening", starts.get((host.name, spec.part, level), 0.0)))
+        out.append(Mention(part_name(host, level, count, spec, prefixed), spec.part,
+                           host.color, 1, size=spec.part_size(size, count), start=start))
+    return out
+
+
+def _seated(m: Mention) -> tuple[str, int] | None:
+    start = dict(m.start)
+    spec = PART_KINDS.get(m.kind)
+    if spec is None or spec.host_field not in start:
+        return None
+    return str(start[spec.host_field]), int(start["level"])
+
+
+def part_referents(words: Sequence[str], i: int, found: Sequence[Mention]) -> list[Mention]:
+    """The seated parts the part word ``words[i]`` names: the one at the level its
+    phrase names in its host, or every one of its host (plural, or a lone part); none
+    for a count ("a cabinet with three drawers") or a level no host has.
+
+    Args:
+        words: The part's words.
+        i: The index of its part word.
+        found: The mentions (:func:`seat_parts`).
+    """
+    spec = _is_part(words[i])
+    p = phrase_at(words, i)
+    if spec is None or p.stated or p.unplaced:
+        return []
+    hosts = [m for m in found if m.kind == spec.host]
+    if not hosts:
+        return []
+    host = _host_of(words, p.host, i, hosts, _positions(words, hosts))
+    parts = [m for m in found if m.kind == spec.part and (s := _seated(m)) and s[0] == host.name]
+    if p.level is None:
+        return parts if p.plural or len(parts) == 1 else []
+    level = resolve(p, len(parts))
+    return [m for m in parts if (s := _seated(m)) and s[1] == level]
+
+
+def actuation(words: Sequence[str], first: int, last: int) -> str | None:
+    """The relation a verb gives the part(s) named by ``words[first:last + 1]``: "open
+    the drawer", "pull out the drawer", "push the drawer in", "slide it shut", "open the
+    bottom drawer and the top drawer"; None: no verb acts on it."""
+    j, particle = first - 1, None
+    if j >= 1 and words[j] in _PARTICLES and words[j - 1] in _ALL_VERBS | _NEUTRAL:
+        particle, j = words[j], j - 1  # "pull out the drawer", "open up the drawer"
+    if j >= 1 and words[j] in ("and", "or") and _is_part(words[j - 1]):
+        p = phrase_at(words, j - 1)  # "open the bottom drawer and the top drawer"
+        return actuation(words, p.first, p.last)
+    verb = words[j] if j >= 0 else None
+    if verb not in _ALL_VERBS and verb not in _NEUTRAL:
+        return None
+    k = last + 1
+    while k < len(words) and words[k] in _WAY:
+        k += 1
+    for said in (particle, words[k] if k < len(words) else None):
+        for relation, ps in _PARTICLE_OF.items():
+            if said in ps:
+                return relation
+    return next((r for r, verbs in _VERBS_OF.items() if verb in verbs), None)
+
+
+def _merged(field: str) -> dict[str, frozenset[str]]:
+    out: dict[str, frozenset[str]] = {}
+    for spec in PART_KINDS.values():
+        for relation, ws in getattr(spec, field).items():
+            out[relation] = out.get(relation, frozenset()) | ws
+    return out
+
+
+#: Relation -> its verbs / particles, over every part kind.
+_VERBS_OF = _merged("verbs")
+_PARTICLE_OF = _merged("particles")
+_ALL_VERBS = frozenset().union(*_VERBS_OF.values())
+_PARTICLES = frozenset().union(*_PARTICLE_OF.values())
+_NEUTRAL = frozenset().union(*(p.neutral for p in PART_KINDS.values()))
+
+
+def acted(words: Sequence[str], found: Sequence[Mention] | None = None) -> bool:
+    """Whether a verb in ``words`` acts on a part ("open the drawer", "close it": a
+    pronoun only where ``found``, if given, has a part)."""
+    for i, w in enumerate(words):
+        if _is_part(w):
+            p = phrase_at(words, i)
+            if not p.stated and actuation(words, p.first, p.last) is not None:
+                return True
+        elif w in ("it", "them") and acts_on_pronoun(words, i) and (
+                found is None or any(m.kind in PART_KINDS for m in found)):
+            return True
+    return False
+
+
+def acts_on_pronoun(words: Sequence[str], i: int) -> bool:
+    """Whether a verb of a part's relation governs the pronoun ``words[i]`` ("and close
+    it"): it means the part named last, not the object moved last."""
+    return actuation(words, i, i) is not None
+
+
+def bare_inside(words: Sequence[str], i: int) -> bool:
+    """Whether ``words[i]`` is "inside" / "in" with no object after it ("open the top
+    drawer and put the bowl inside"): into the part named last."""
+    if words[i] not in ("inside", "in", "into", "within"):
+        return False
+    nxt = words[i + 1] if i + 1 < len(words) else None
+    return nxt is None or nxt in ("and", "then", "too", "as", "well", "first", "after")
+
+
+def sequence_parts(goals: list[ReadGoal], found: Sequence[Mention]) -> list[ReadGoal]:
+    """Goals renumbered so that two goals of one step that act on the same part (slide it,
+    or put something in it) follow the words' order: "put the block in the drawer and
+    close it" puts first, then closes."""
+    kinds = {m.name: m.kind for m in found}
+
+    def touched(g: ReadGoal) -> set[str]:
+        names = {*g.objects, *([g.anchor] if g.anchor else [])}
+        return {n for n in names if kinds.get(n) in PART_KINDS}
+
+    out: list[ReadGoal] = []
+    step, old, group = -1, None, set()
+    for g in goals:
+        parts = touched(g)
+        if g.step != old or parts & group:
+            step, group = step + 1, set()
+        old = g.step
+        group |= parts
+        out.append(replace(g, step=step))
+    return out
+
+
+def still_parts(found: Sequence[Mention]) -> set[str]:
+    """The hosts and parts: furniture, still wherever no goal names it."""
+    return {m.name for m in found if m.kind in PART_KINDS or m.kind in HOST_KINDS}
+
+
+def with_hosts(used: set[str], found: Sequence[Mention]) -> set[str]:
+    """``used`` with the hosts of its parts and all their parts: a part is no variable
+    without its host, nor a host without all its parts."""
+    hosts = {s[0] for m in found if m.name in used and (s := _seated(m))}
+    hosts |= {m.name for m in found if m.name in used and m.kind in HOST_KINDS}
+    return used | hosts | {m.name for m in found if (s := _seated(m)) and s[0] in hosts}
+
+
+def judge_part_word(words: Sequence[str], k: int, graph: TaskGraph
+                    ) -> tuple[str, bool, str] | None:
+    """(category, read, why) of a word that qualifies a part ("top", "second", "half",
+    "left" before "drawer"; "push" of "push the drawer in"), or None: not such a word.
+
+    A level word is read when the graph has a part at that level; a start word when a
+    part starts so; a verb when the graph has its relation; a side word never (parts
+    are stacked)."""
+    w = words[k]
+    target = next((j for j in range(k + 1, min(k + 8, len(words)))
+                   if _is_part(words[j]) or (words[j] in ("it", "them")
+                                             and acts_on_pronoun(words, j))), None)
+    p = None
+    if target is not None:
+        p = phrase_at(words, target) if _is_part(words[target]) else Phrase(target, target)
+    relations = {f.goal.type for f in graph.factors}
+    if p is not None and (k < p.first or k > p.last) and (
+            w in _ALL_VERBS | _NEUTRAL | _PARTICLES):
+        relation = actuation(words, p.first, p.last)
+        if relation is None:
+            return None
+        ok = relation in relations
+        return "relation", ok, f"a {relation} goal" if ok else f"no {relation} goal"
+    if p is None or not p.first <= k < target:
+        return None
+    seats = _graph_seats(graph)
+    if w in SIDE_WORDS:
+        return "side", False, "stacked parts are named by level (top, middle, bottom), not side"
+    if w in LEVEL_WORDS or w in ORDINALS:
+        ok = any(resolve(p, n) == level for level, n, _ in seats)
+        return "side", ok, (f"a part at the {w} level" if ok else f"no part is the {w} one")
+    spec = _is_part(words[target])
+    if spec is not None and w in spec.states and spec.states[w] not in (0.0, 1.0):
+        ok = any(0.0 < opening < 1.0 for _, _, opening in seats)
+        return "start", ok, "a part starts partly open" if ok else "no part starts partly open"
+    if w in ("both", "all", "each", "every"):
+        ok = len(seats) >= 2
+        return "quantifier", ok, "several parts" if ok else "one part"
+    return None
+
+
+def _graph_seats(graph: TaskGraph) -> list[tuple[int, int, float]]:
+    """(level, parts of its host, opening) of every seated part of ``graph``."""
+    out = []
+    for v in graph.variables:
+        spec = PART_KINDS.get(v.kind)
+        start = v.initial.model_dump() if v.initial is not None else {}
+        if spec is None or start.get("type") != spec.start:
+            continue
+        host = start[spec.host_field]
+        n = sum(1 for u in graph.variables if u.initial is not None
+                and u.initial.model_dump().get(spec.host_field) == host)
+        out.append((int(start["level"]), n, float(start.get("opening", 0.0))))
+    return out
+
+
+__all__ = ["DRAWERS", "HOST_KINDS", "LEVEL_WORDS", "PART_KINDS", "PHRASE_WORDS", "PartKind",
+           "Phrase", "actuation", "acts_on_pronoun", "bare_inside", "judge_part_word",
+           "part_name", "part_referents", "phrase_at", "resolve", "seat_parts",
+           "sequence_parts", "still_parts", "with_hosts"]
