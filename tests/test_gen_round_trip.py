@@ -62,13 +62,6 @@ MISREAD: dict[str, tuple[str, ...]] = {
         "cylinder-alignment",),
     "a start the words do not say (the blue cylinder starts on the green stand)": (
         "move-kit-from-zone-to-cylinder",),
-    "the reading does not know cabinets, drawers, open and closed yet (issue 38, "
-    "generation)": ("open-drawer", "close-drawer", "open-drawer-and-put-block-inside",
-                    "put-block-in-drawer-and-close-it", "open-top-drawer",
-                    "open-bottom-drawer", "close-top-drawer", "open-two-drawers",
-                    "put-two-blocks-in-open-drawer", "open-drawer-and-take-block-out",
-                    "take-block-out-of-drawer-to-zone",
-                    "put-bowl-on-cabinet-and-close-drawer"),
 }
 _WHY = {task: why for why, tasks in MISREAD.items() for task in tasks}
 

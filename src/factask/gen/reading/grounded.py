@@ -53,6 +53,7 @@ from factask.gen.reading.mentions import Mention, colour_matched, mentions, unna
 from factask.gen.reading.relation_schemas import (
     COORDINATE_RELATIONS,
     OBJECT_KINDS,
+    SPECIAL_KINDS,
     narrow_all_modes,
     relation_over,
 )
@@ -150,7 +151,8 @@ def applies(found: Sequence[Mention]) -> bool:
     and some goal relation can be written over the named objects alone ("put the
     block in the hole" names one block and nothing a relation can anchor on)."""
     kinds = {m.name: m.kind for m in found}
-    return bool(movable(found)) and _goal(kinds, None, {m.name: m.count for m in found},
+    acted = any(m.kind in SPECIAL_KINDS for m in found)  # a drawer to open or close
+    return bool(movable(found) or acted) and _goal(kinds, None, {m.name: m.count for m in found},
                                           _moved(found)) is not None
 
 

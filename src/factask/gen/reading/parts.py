@@ -180,10 +180,7 @@ def phrase_at(words: Sequence[str], i: int) -> Phrase:
         if w in DETERMINERS and j and words[j - 1] not in DETERMINERS:
             break  # "open the drawer": the verb before the article is no start word
         j -= 1
-    if j >= 0 and words[j] in DETERMINERS:
-        first = j
-    else:
-        first = j + 1
+    first = j if j >= 0 and words[j] in DETERMINERS else j + 1
     if half:
         state = 0.5
     if level and fewest > spec.most:
@@ -543,7 +540,24 @@ def _graph_seats(graph: TaskGraph) -> list[tuple[int, int, float]]:
     return out
 
 
-__all__ = ["DRAWERS", "HOST_KINDS", "LEVEL_WORDS", "PART_KINDS", "PHRASE_WORDS", "PartKind",
-           "Phrase", "actuation", "acts_on_pronoun", "bare_inside", "judge_part_word",
-           "part_name", "part_referents", "phrase_at", "resolve", "seat_parts",
-           "sequence_parts", "still_parts", "with_hosts"]
+__all__ = [
+    "DRAWERS",
+    "HOST_KINDS",
+    "LEVEL_WORDS",
+    "PART_KINDS",
+    "PHRASE_WORDS",
+    "PartKind",
+    "Phrase",
+    "acts_on_pronoun",
+    "actuation",
+    "bare_inside",
+    "judge_part_word",
+    "part_name",
+    "part_referents",
+    "phrase_at",
+    "resolve",
+    "seat_parts",
+    "sequence_parts",
+    "still_parts",
+    "with_hosts",
+]
