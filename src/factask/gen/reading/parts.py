@@ -454,6 +454,7 @@ def sequence_parts(goals: list[ReadGoal], found: Sequence[Mention]) -> list[Read
     or put something in it) follow the words' order: "put the block in the drawer and
     close it" puts first, then closes."""
     kinds = {m.name: m.kind for m in found}
+    goals = _opened_first(goals, found)
 
     def touched(g: ReadGoal) -> set[str]:
         names = {*g.objects, *([g.anchor] if g.anchor else [])}
@@ -468,6 +469,23 @@ def sequence_parts(goals: list[ReadGoal], found: Sequence[Mention]) -> list[Read
         old = g.step
         group |= parts
         out.append(replace(g, step=step))
+    return out
+
+
+def _opened_first(goals: list[ReadGoal], found: Sequence[Mention]) -> list[ReadGoal]:
+    """``goals`` with an ``open`` goal before each goal that puts something into a part
+    that starts shut and that no goal before opens: nothing goes into a shut drawer
+    ("put the block in the drawer and close it": open it, put, close)."""
+    shut = {m.name for m in found if m.kind in PART_KINDS and dict(m.start).get("opening") == 0}
+    out: list[ReadGoal] = []
+    for g in goals:
+        if g.relation == "inside" and g.anchor in shut:
+            out.append(ReadGoal("open", (g.anchor,), None, False, g.step))
+        out.append(g)
+        if g.relation in ("inside", "open"):
+            shut -= {g.anchor, *g.objects}
+        elif g.relation == "closed":
+            shut |= set(g.objects)
     return out
 
 
@@ -493,6 +511,11 @@ def judge_part_word(words: Sequence[str], k: int, graph: TaskGraph
     part starts so; a verb when the graph has its relation; a side word never (parts
     are stacked)."""
     w = words[k]
+    if k >= 3 and words[k - 2:k] == ["from", "the"] and _is_part(words[k - 3]) \
+            and w in ("top", "bottom"):  # "the second drawer from the top"
+        p = phrase_at(words, k - 3)
+        ok = any(resolve(p, n) == level for level, n, _ in _graph_seats(graph))
+        return "side", ok, "a part at that level" if ok else "no part at that level"
     target = next((j for j in range(k + 1, min(k + 8, len(words)))
                    if _is_part(words[j]) or (words[j] in ("it", "them")
                                              and acts_on_pronoun(words, j))), None)
@@ -506,7 +529,8 @@ def judge_part_word(words: Sequence[str], k: int, graph: TaskGraph
         if relation is None:
             return None
         ok = relation in relations
-        return "relation", ok, f"a {relation} goal" if ok else f"no {relation} goal"
+        article = "an" if relation[0] in "aeiou" else "a"
+        return "relation", ok, f"{article} {relation} goal" if ok else f"no {relation} goal"
     if p is None or not p.first <= k < target:
         return None
     seats = _graph_seats(graph)
