@@ -516,6 +516,17 @@ def judge_part_word(words: Sequence[str], k: int, graph: TaskGraph
         p = phrase_at(words, k - 3)
         ok = any(resolve(p, n) == level for level, n, _ in _graph_seats(graph))
         return "side", ok, "a part at that level" if ok else "no part at that level"
+    t = k - 1
+    while t >= 0 and (words[t] in _WAY or words[t] in _PARTICLES) and k - t < 6:
+        t -= 1
+    if t >= 0 and (w in _WAY or w in _PARTICLES) and (
+            _is_part(words[t]) or (words[t] in ("it", "them") and acts_on_pronoun(words, t))):
+        # "push the drawer back in", "pull it all the way out": the verb's particle
+        p = phrase_at(words, t) if _is_part(words[t]) else Phrase(t, t)
+        relation = actuation(words, p.first, p.last) if p.last == t else None
+        if relation is not None:
+            ok = relation in {f.goal.type for f in graph.factors}
+            return "relation", ok, f"how the part slides ({relation})"
     target = next((j for j in range(k + 1, min(k + 8, len(words)))
                    if _is_part(words[j]) or (words[j] in ("it", "them")
                                              and acts_on_pronoun(words, j))), None)
