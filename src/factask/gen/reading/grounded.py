@@ -50,6 +50,7 @@ from factask.gen.reading.cover import (
     paired_in_order,
 )
 from factask.gen.reading.mentions import Mention, colour_matched, mentions, unnamed_colour
+from factask.gen.reading.parts import still_parts
 from factask.gen.reading.relation_schemas import (
     COORDINATE_RELATIONS,
     OBJECT_KINDS,
@@ -141,6 +142,13 @@ def movable(found: Sequence[Mention]) -> list[Mention]:
     return [m for m in found if m.movable]
 
 
+def _goal_room(found: Sequence[Mention]) -> int:
+    """Most goals over the named objects: one per movable object and per drawer (a
+    drawer may be opened, then shut)."""
+    return len(movable(found)) + 2 * sum(1 for m in found if m.kind in SPECIAL_KINDS
+                                         and not m.movable)
+
+
 def _moved(found: Sequence[Mention]) -> frozenset[str]:
     """The named objects of a kind fixed by default that the words move."""
     return frozenset(m.name for m in found if m.moved)
@@ -193,7 +201,7 @@ def graph_schema(task_name: str, found: Sequence[Mention]) -> Schema:
         The graph's schema: at most one factor per movable named object.
     """
     kinds = {m.name: m.kind for m in found}
-    most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
+    most = max(1, min(_goal_room(found), ss.STEP_MAX_FACTORS))
     factor = ss.factor_schema(None, kinds)
     factor["properties"]["description"] = ss.text(GROUNDED_TEXT)
     factor["properties"]["initial_setup"] = ss.text(GROUNDED_TEXT)
@@ -322,6 +330,7 @@ def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention],
         One line per problem (empty: none).
     """
     counts = {m.name: m.count for m in found}
+    still = {*still, *still_parts(found)}  # a cabinet and drawers no goal names: furniture
     used: set[str] = set()
     out: list[str] = []
     for i, goal in enumerate(goals):
@@ -445,7 +454,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
                 break
     starts = kinds
     if factors is None:
-        most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
+        most = max(1, min(_goal_room(found), ss.STEP_MAX_FACTORS))
         plain = ss.array(ss.obj({"goal": goal}), 1, most)
         factors = prune(plain, found, order) or plain  # goals whose layout fits only
     else:
@@ -558,7 +567,7 @@ def compact_examples(query: str, k: int, exclude: str | None = None) -> str:
 
 def plan_bound(variables: Sequence[StateVariable]) -> int:
     """Most subtasks of a plan over ``variables``: one per movable variable (1..8)."""
-    n = sum(1 for v in variables if not v.is_fixed)
+    n = sum(1 for v in variables if not v.is_fixed or v.kind in SPECIAL_KINDS)
     return max(1, min(n, ss.STEP_MAX_SUBTASKS))
 
 
