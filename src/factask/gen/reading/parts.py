@@ -9,13 +9,14 @@ drawer" -- say how it starts ("the half-open top drawer", "the drawer that is op
 and what to do with it ("open", "pull out", "close", "shut", "push in", "push ...
 closed"; "put the block in the drawer" is ``inside`` it).
 
-Everything here reads one table, :data:`PART_KINDS` (a part kind -> its
-:class:`PartKind`: its host, the start its variables take, its names by level,
-its sizes, the verbs and particles of each relation, its start words). A second
-articulated kind (a microwave's door, a stove's switch) is one more entry: the
-mentions (:func:`seat_parts`), the clause reading (:func:`part_referents`,
-:func:`actuation`), the accounting (:func:`judge_part_word`) and the description
-(:mod:`factask.gen.reading.describe`) read the table, not the kind.
+Everything here reads one table, :data:`~factask.gen.reading.articulated.PART_KINDS`
+(a part kind -> its :class:`~factask.gen.reading.articulated.PartKind`: its host, the
+start its variables take, its names by level, its sizes, the verbs and particles of
+each relation, its start words). A second articulated kind (a microwave's door, a
+stove's switch) is one more entry there: the mentions (:func:`seat_parts`), the
+clause reading (:func:`part_referents`, :func:`actuation`), the accounting
+(:func:`judge_part_word`) and the description (:mod:`factask.gen.reading.describe`)
+read the table, not the kind.
 
 How many parts a host has is read from the words: "a cabinet with three drawers",
 else the most any level word asks ("top" or "bottom": two; "middle": three), else
@@ -28,96 +29,44 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from typing import Any, Protocol
 
-from factask.gen.reading.mentions import Mention
+from factask.gen.reading.articulated import (
+    DETERMINERS,
+    DRAWERS,
+    HOST_KINDS,
+    LEVEL_WORDS,
+    ORDINALS,
+    PART_KINDS,
+    PHRASE_WORDS,
+    SIDE_WORDS,
+    PartKind,
+    Size,
+)
 from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.words import count_of, kind_of
 from factask.graph.taskgraph import TaskGraph
-from factask.library.catalog_articulated import THREE_DRAWERS, TWO_DRAWERS
-from factask.vocabulary.kinds import MAX_DRAWERS, drawer_size, kind_spec
+from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
 
-Size = tuple[float, float, float]
+
+class Mention(Protocol):
+    """What this module reads of a :class:`factask.gen.reading.mentions.Mention` (the
+    mentions module calls :func:`seat_parts`, so it is not imported here; new mentions
+    are made with the class of those given)."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def color(self) -> str | None: ...
+    @property
+    def size(self) -> Size | None: ...
+    @property
+    def start(self) -> tuple[tuple[str, Any], ...]: ...
 
 
-@dataclass(frozen=True)
-class PartKind:
-    """An articulated kind: parts seated in a host, each at a level.
-
-    Attributes:
-        part: The parts' kind (``drawer``).
-        host: The host's kind (``cabinet``).
-        start: The start type of a part (``in_cabinet``).
-        host_field: The start's field naming the host (``cabinet``).
-        most: The most parts a host holds.
-        names: Number of parts -> their level names, the bottom one first ("" for
-            a lone part: "the drawer").
-        host_sizes: Number of parts -> the host's size (None: its kind's default).
-        part_size: The size of a part, from its host's size and number of parts.
-        verbs: Relation -> the verbs that say it ("open", "pull" / "close", "shut",
-            "push").
-        particles: Relation -> the words after a verb or the part that say it
-            ("pull ... out", "push ... in", "slide ... shut").
-        neutral: Verbs that say the relation only with a particle ("slide", "move").
-        states: Start word -> how far the part starts open (a fraction).
-    """
-
-    part: str
-    host: str
-    start: str
-    host_field: str
-    most: int
-    names: dict[int, tuple[str, ...]]
-    host_sizes: dict[int, Size | None]
-    part_size: Callable[[Size, int], Size]
-    verbs: dict[str, frozenset[str]]
-    particles: dict[str, frozenset[str]]
-    neutral: frozenset[str]
-    states: dict[str, float]
-
-    def level_name(self, level: int, count: int) -> str:
-        """``top``, ``middle``, ``bottom`` ("" for a lone part)."""
-        return self.names[count][level]
-
-
-DRAWERS = PartKind(
-    part="drawer", host="cabinet", start="in_cabinet", host_field="cabinet",
-    most=MAX_DRAWERS,
-    names={1: ("",), 2: ("bottom", "top"), 3: ("bottom", "middle", "top")},
-    host_sizes={1: None, 2: TWO_DRAWERS, 3: THREE_DRAWERS},
-    part_size=drawer_size,
-    verbs={"open": frozenset({"open", "opens", "pull", "pulls", "unshut"}),
-           "closed": frozenset({"close", "closes", "shut", "shuts", "push", "pushes"})},
-    particles={"open": frozenset({"out", "open", "up"}),
-               "closed": frozenset({"in", "shut", "closed", "back"})},
-    neutral=frozenset({"slide", "slides", "move", "draw", "get", "leave"}),
-    states={"open": 1.0, "opened": 1.0, "ajar": 0.5, "half": 0.5, "partly": 0.5,
-            "partially": 0.5, "slightly": 0.5, "closed": 0.0, "shut": 0.0},
-)
-#: Part kind -> its table entry: the one place an articulated kind is described.
-PART_KINDS: dict[str, PartKind] = {DRAWERS.part: DRAWERS}
-#: Host kind -> the entry of its parts.
-HOST_KINDS: dict[str, PartKind] = {p.host: p for p in PART_KINDS.values()}
-
-#: Level words -> (counted from: "bottom" / "top", rank, fewest parts it asks).
-LEVEL_WORDS: dict[str, tuple[str, int, int]] = {
-    "top": ("top", 0, 2), "upper": ("top", 0, 2), "uppermost": ("top", 0, 2),
-    "highest": ("top", 0, 2), "topmost": ("top", 0, 2),
-    "bottom": ("bottom", 0, 2), "lower": ("bottom", 0, 2), "lowest": ("bottom", 0, 2),
-    "bottommost": ("bottom", 0, 2), "middle": ("bottom", 1, 3), "center": ("bottom", 1, 3),
-    "centre": ("bottom", 1, 3), "central": ("bottom", 1, 3)}
-#: Ordinal words -> rank (counted from the bottom unless "from the top" follows).
-ORDINALS: dict[str, int] = {"first": 0, "second": 1, "third": 2, "fourth": 3, "fifth": 4,
-                            "sixth": 5}
-#: Words that say a part stands beside another, which stacked parts never do.
-SIDE_WORDS = frozenset({"left", "right", "leftmost", "rightmost", "front", "back", "far",
-                        "near"})
-#: Words that start a phrase naming a part, or qualify it.
-DETERMINERS = frozenset({"the", "a", "an", "its", "their", "this", "that", "each", "every",
-                         "both", "all", "one", "these", "those", "his", "her"})
-#: Every word that may stand inside a part's phrase, before its kind word.
-PHRASE_WORDS = (DETERMINERS | LEVEL_WORDS.keys() | ORDINALS.keys() | SIDE_WORDS
-                | {w for p in PART_KINDS.values() for w in p.states})
 #: Words between a verb and its particle's end: "pull it all the way out".
 _WAY = frozenset({"all", "the", "way", "fully", "completely", "wide", "again", "it", "them"})
 
@@ -275,8 +224,9 @@ def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Me
     phrases = [(i, phrase_at(words, i)) for i, w in enumerate(words) if _is_part(w) is spec]
     if not hosts and not phrases:
         return found
+    make = type(found[0])  # the mentions' own class
     if not hosts:
-        hosts = [Mention(spec.host, spec.host, None, 1)]
+        hosts = [make(spec.host, spec.host, None, 1)]
     positions = _positions(words, hosts)
     counts = {m.name: max([_host_count(words, k, spec) for k in range(len(words))
                            if kind_of(words[k])[0] == spec.host and _host_of(
@@ -307,13 +257,14 @@ def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Me
             for host in hosts:
                 if host.name not in done:
                     out.extend(_host_and_parts(host, total[host.name], spec, starts,
-                                               len(hosts) > 1))
+                                               len(hosts) > 1, make))
                     done.add(host.name)
         if m is None or m.kind == spec.part:
             continue
         if m.kind == spec.host:
             if m.name not in done:
-                out.extend(_host_and_parts(m, total[m.name], spec, starts, len(hosts) > 1))
+                out.extend(_host_and_parts(m, total[m.name], spec, starts, len(hosts) > 1,
+                                           make))
                 done.add(m.name)
             continue
         out.append(m)
@@ -337,14 +288,15 @@ def part_name(host: Mention, level: int, count: int, spec: PartKind, prefixed: b
 
 
 def _host_and_parts(host: Mention, count: int, spec: PartKind,
-                    starts: dict[tuple[str, str, int], float], prefixed: bool) -> list[Mention]:
+                    starts: dict[tuple[str, str, int], float], prefixed: bool,
+                    make: Callable[..., Mention]) -> list[Mention]:
     size = spec.host_sizes.get(count) or host.size or kind_spec(spec.host).default_size
-    out = [replace(host, size=spec.host_sizes.get(count) or host.size)]
+    out = [replace(host, size=spec.host_sizes.get(count) or host.size)]  # type: ignore[type-var]
     for level in range(count):
         start = (("type", spec.start), (spec.host_field, host.name), ("level", level),
                  ("opening", starts.get((host.name, spec.part, level), 0.0)))
-        out.append(Mention(part_name(host, level, count, spec, prefixed), spec.part,
-                           host.color, 1, size=spec.part_size(size, count), start=start))
+        out.append(make(part_name(host, level, count, spec, prefixed), spec.part,
+                        host.color, 1, size=spec.part_size(size, count), start=start))
     return out
 
 
