@@ -44,6 +44,10 @@ class PartKind:
             ("pull ... out", "push ... in", "slide ... shut").
         neutral: Verbs that say the relation only with a particle ("slide", "move").
         states: Start word -> how far the part starts open (a fraction).
+        said: Relation -> the verb a description says it with ("open", "close").
+        assumed: Relation -> how far a part the words act on so starts where they say
+            nothing of its start ("close the drawer": it is open; shut, the goal would
+            hold at the start).
     """
 
     part: str
@@ -58,6 +62,8 @@ class PartKind:
     particles: dict[str, frozenset[str]]
     neutral: frozenset[str]
     states: dict[str, float]
+    said: dict[str, str]
+    assumed: dict[str, float]
 
     def level_name(self, level: int, count: int) -> str:
         """``top``, ``middle``, ``bottom`` ("" for a lone part)."""
@@ -77,6 +83,8 @@ DRAWERS = PartKind(
     neutral=frozenset({"slide", "slides", "move", "draw", "get", "leave"}),
     states={"open": 1.0, "opened": 1.0, "ajar": 0.5, "half": 0.5, "partly": 0.5,
             "partially": 0.5, "slightly": 0.5, "closed": 0.0, "shut": 0.0},
+    said={"open": "open", "closed": "close"},
+    assumed={"closed": 1.0},
 )
 #: Part kind -> its table entry: the one place an articulated kind is described.
 PART_KINDS: dict[str, PartKind] = {DRAWERS.part: DRAWERS}

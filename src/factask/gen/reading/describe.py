@@ -126,8 +126,9 @@ def _goal_words(graph: TaskGraph, name: str, told: _Furniture | None = None) -> 
         return f"{taken}put {movers} into {anchor('zone' if t == 'in_zone' else 'container')}"
     if t == "on":
         return f"{taken}put {movers} onto {anchor('support')}"
-    if t in ("open", "closed"):
-        return f"{'open' if t == 'open' else 'close'} {movers}"
+    verb = next((p.said[t] for p in PART_KINDS.values() if t in p.said), None)
+    if verb is not None:  # "open the top drawer", "close the open middle drawer"
+        return f"{verb} {movers}"
     if t == "stack":
         base = f" onto {anchor('base')}" if anchors.get("base") else ""
         bottom = ", from the bottom up" if in_order else ""

@@ -249,6 +249,16 @@ def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Me
         for level in levels:
             if level is not None:
                 starts.setdefault((host.name, spec.part, level), p.state)
+    acted_on: set[tuple[str, str, int]] = set()
+    for p, host in seated:  # "close the top drawer" (its first action): it starts open
+        relation = None if p.stated or p.unplaced else actuation(words, p.first, p.last)
+        if relation is None:
+            continue
+        levels = [resolve(p, total[host.name])] if p.level else list(range(total[host.name]))
+        for key in ((host.name, spec.part, lv) for lv in levels if lv is not None):
+            if key not in acted_on and relation in spec.assumed:
+                starts.setdefault(key, spec.assumed[relation])
+            acted_on.add(key)
     out: list[Mention] = []
     done: set[str] = set()
     first_part = next((k for k, m in enumerate(found) if m.kind == spec.part), len(found))
@@ -471,11 +481,14 @@ def judge_part_word(words: Sequence[str], k: int, graph: TaskGraph
     t = k - 1
     while t >= 0 and (words[t] in _WAY or words[t] in _PARTICLES) and k - t < 6:
         t -= 1
+    end = t  # "pull the drawer of the cabinet all the way open": the phrase ends at its host
+    t = next((j for j in range(t, max(t - 8, -1), -1) if _is_part(words[j])
+              and phrase_at(words, j).last == end), t)
     if t >= 0 and (w in _WAY or w in _PARTICLES) and (
             _is_part(words[t]) or (words[t] in ("it", "them") and acts_on_pronoun(words, t))):
         # "push the drawer back in", "pull it all the way out": the verb's particle
         p = phrase_at(words, t) if _is_part(words[t]) else Phrase(t, t)
-        relation = actuation(words, p.first, p.last) if p.last == t else None
+        relation = actuation(words, p.first, p.last) if p.last == end else None
         if relation is not None:
             ok = relation in {f.goal.type for f in graph.factors}
             return "relation", ok, f"how the part slides ({relation})"
