@@ -8,17 +8,22 @@ cannot place is reported unread, not guessed.
 
 from __future__ import annotations
 
+import networkx as nx
+import numpy as np
 import pytest
 
 from factask.gen.first_choice import first_choice
 from factask.gen.reading import grounded
 from factask.gen.reading.accounting import account
+from factask.gen.reading.clauses import read_goals
 from factask.gen.reading.describe import describe
 from factask.gen.reading.mentions import mentions
 from factask.gen.reading.parts import PART_KINDS, actuation, phrase_at, resolve
 from factask.gen.reading.words import words_of
 from factask.graph import InCabinet, TaskGraph, parse_graph
 from factask.library.tasks import get_task
+from factask.sim.layout.sampling import sample_layout
+from factask.sim.layout.solving import solve_targets
 
 
 def read(words: str) -> TaskGraph:
@@ -43,7 +48,6 @@ def goals(graph: TaskGraph) -> list[tuple[str, tuple[str, ...], tuple[str, ...]]
 
 def before(graph: TaskGraph, a: str, b: str) -> bool:
     """Whether the goal of type ``a`` comes before the goal of type ``b``."""
-    import networkx as nx
     names = {graph.factor(n).goal.type: n for n in graph.factor_order()}
     return nx.has_path(graph.dependency_graph(), names[a], names[b])
 
@@ -131,7 +135,6 @@ def test_close_then_put_on_the_cabinet() -> None:
 ])
 def test_a_level_the_reading_cannot_place_is_reported_unread(words: str, unread: str) -> None:
     # No stated goal names a drawer the words cannot place...
-    from factask.gen.reading.clauses import read_goals
     assert read_goals(words, mentions(words)) in (None, [])
     # ...and whatever graph is made of them, the word is not accounted for.
     result = account(words, read(words))
@@ -162,3 +165,28 @@ def test_articulated_kinds_are_one_table() -> None:
     spec = PART_KINDS["drawer"]
     assert spec.host == "cabinet" and spec.start == "in_cabinet"
     assert {"open", "closed"} == set(spec.verbs) == set(spec.particles)
+
+
+def test_an_object_taken_out_of_an_open_drawer_starts_in_it() -> None:
+    g = read(describe(get_task("take-block-out-of-drawer-to-zone")))
+    assert g.variable("red_block").initial.model_dump(exclude_none=True)["container"] == \
+        "top_drawer"
+    g = read("take the yellow ball out of the open bottom drawer and put it into the blue bowl")
+    assert g.variable("yellow_ball").initial.container == "bottom_drawer"
+    assert drawers(g)["bottom_drawer"][2] == 1.0
+    # Nothing starts inside a shut drawer: the words then leave the start to the answer.
+    g = read("open the top drawer, then move the red block from the top drawer into the "
+             "green zone")
+    assert g.variable("red_block").initial.type == "table"
+    assert before(g, "open", "in_zone")
+
+
+@pytest.mark.parametrize("words", [
+    "open the top drawer and put the bowl inside",
+    "put the green block into the middle drawer of the cabinet and close it",
+    "take the yellow ball out of the open bottom drawer and put it into the blue bowl",
+])
+def test_a_read_graph_lays_out_at_reset(words: str) -> None:
+    g = read(words)
+    rng = np.random.default_rng(0)
+    solve_targets(g, sample_layout(g, rng), rng)

@@ -466,9 +466,9 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     items, before = [], {m.name: m.kind for m in found if not m.movable and m.name in starts}
     for m in found:
         if m.movable:
-            items.append(ss.obj({"name": {"const": m.name},
-                                 "initial": _placement(m.name, {**before, m.name: m.kind},
-                                                       moved)}))
+            start = ss.obj({k: {"const": v} for k, v in m.start}) if m.start else \
+                _placement(m.name, {**before, m.name: m.kind}, moved)  # "out of the drawer"
+            items.append(ss.obj({"name": {"const": m.name}, "initial": start}))
             before[m.name] = m.kind
     narrow_all_modes(factors, kinds)
     return ss.obj({

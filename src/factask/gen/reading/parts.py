@@ -259,6 +259,9 @@ def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Me
             if key not in acted_on and relation in spec.assumed:
                 starts.setdefault(key, spec.assumed[relation])
             acted_on.add(key)
+    taken = _taken_out(words, found, seated, total, spec, len(hosts) > 1, starts)
+    found = [replace(m, start=taken[m.name]) if m.name in taken else m  # type: ignore[type-var]
+             for m in found]
     out: list[Mention] = []
     done: set[str] = set()
     first_part = next((k for k, m in enumerate(found) if m.kind == spec.part), len(found))
@@ -278,6 +281,36 @@ def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Me
                 done.add(m.name)
             continue
         out.append(m)
+    return out
+
+
+def _taken_out(words: Sequence[str], found: Sequence[Mention],
+               seated: Sequence[tuple[Phrase, Mention]], total: dict[str, int],
+               spec: PartKind, prefixed: bool, starts: dict[tuple[str, str, int], float]
+               ) -> dict[str, tuple[tuple[str, Any], ...]]:
+    """Object -> its start inside the part the words take it out of ("take the red
+    block out of the open top drawer", "the ball from the half-open bottom drawer"):
+    the object named last before "out of" / "from", where the part starts open (the
+    reset puts nothing inside a shut drawer; the words then leave the start open)."""
+    out: dict[str, tuple[tuple[str, Any], ...]] = {}
+    for p, host in seated:
+        f = p.first
+        if not (f >= 1 and words[f - 1] == "from") and words[max(f - 2, 0):f] != ["out", "of"]:
+            continue
+        count = total[host.name]
+        level = resolve(p, count) if p.level else (0 if count == 1 else None)
+        if level is None or not starts.get((host.name, spec.part, level), 0.0):
+            continue
+        for q in range(f - 2, max(f - 10, -1), -1):
+            kind = kind_of(words[q])[0]
+            if kind is None or kind in PART_KINDS or kind in HOST_KINDS:
+                continue
+            colour = words[q - 1] if q and words[q - 1] in COLOR_NAMES else None
+            objects = [m for m in found if m.kind == kind and colour in (None, m.color)]
+            if len(objects) == 1 and not objects[0].start:
+                part = part_name(host, level, count, spec, prefixed)
+                out[objects[0].name] = (("type", "inside"), ("container", part))
+            break
     return out
 
 
@@ -418,8 +451,11 @@ def sequence_parts(goals: list[ReadGoal], found: Sequence[Mention]) -> list[Read
     kinds = {m.name: m.kind for m in found}
     goals = _opened_first(goals, found)
 
+    held = {m.name: v for m in found for k, v in m.start if k == "container"}
+
     def touched(g: ReadGoal) -> set[str]:
         names = {*g.objects, *([g.anchor] if g.anchor else [])}
+        names |= {held[n] for n in g.objects if n in held}  # taken out of a drawer
         return {n for n in names if kinds.get(n) in PART_KINDS}
 
     out: list[ReadGoal] = []
@@ -459,6 +495,8 @@ def still_parts(found: Sequence[Mention]) -> set[str]:
 def with_hosts(used: set[str], found: Sequence[Mention]) -> set[str]:
     """``used`` with the hosts of its parts and all their parts: a part is no variable
     without its host, nor a host without all its parts."""
+    names = {m.name for m in found}
+    used = used | {v for m in found if m.name in used for _, v in m.start if v in names}
     hosts = {s[0] for m in found if m.name in used and (s := _seated(m))}
     hosts |= {m.name for m in found if m.name in used and m.kind in HOST_KINDS}
     return used | hosts | {m.name for m in found if (s := _seated(m)) and s[0] in hosts}
