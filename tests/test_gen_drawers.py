@@ -190,3 +190,23 @@ def test_a_read_graph_lays_out_at_reset(words: str) -> None:
     g = read(words)
     rng = np.random.default_rng(0)
     solve_targets(g, sample_layout(g, rng), rng)
+
+
+@pytest.mark.parametrize(("words", "wanted"), [
+    ("open the cabinet's top drawer", [("open", ("top_drawer",), ())]),
+    ("open the top and bottom drawers", [("open", ("top_drawer",), ()),
+                                         ("open", ("bottom_drawer",), ())]),
+    ("close the top and the middle drawer", [("closed", ("top_drawer",), ()),
+                                             ("closed", ("middle_drawer",), ())]),
+])
+def test_possessives_and_levels_listed_together(words: str, wanted: list) -> None:
+    g = read(words)
+    assert sorted(goals(g)) == sorted(wanted)
+    assert account(words, g).complete
+
+
+def test_a_level_word_is_read_only_where_the_graph_uses_that_drawer() -> None:
+    # A graph that opens the bottom drawer does not read "the top drawer".
+    graph = read("open the bottom drawer")
+    assert "top" in account("open the top drawer", graph).unread_words()
+    assert account("open the bottom drawer", graph).complete

@@ -150,7 +150,11 @@ def phrase_at(words: Sequence[str], i: int) -> Phrase:
         if h < len(words) and kind_of(words[h])[0] == spec.host:
             host, k = h, h + 1
     if first >= 2 and words[first - 1] == "s" and kind_of(words[first - 2])[0] == spec.host:
-        host = first - 2  # "the cabinet's top drawer"
+        host = first - 2  # "the cabinet's top drawer": the phrase starts at "the"
+        while first - 3 >= 0 and (words[first - 3] in DETERMINERS
+                                  or words[first - 3] in COLOR_NAMES):
+            first -= 1
+        first -= 2
     if words[k:k + 2] in (["that", "is"], ["which", "is"], ["that", "are"]):
         r = k + 2
         half = False
@@ -564,8 +568,11 @@ def judge_part_word(words: Sequence[str], k: int, graph: TaskGraph
 
 
 def _graph_seats(graph: TaskGraph) -> list[tuple[int, int, float]]:
-    """(level, parts of its host, opening) of every seated part of ``graph``."""
+    """(level, parts of its host, opening) of every seated part of ``graph`` that the
+    words are about: a goal names it, something starts in it, or it starts open."""
     out = []
+    named = {n for f in graph.factors for n in f.goal.variable_names()}
+    named |= {getattr(v.initial, "container", None) for v in graph.variables}
     for v in graph.variables:
         spec = PART_KINDS.get(v.kind)
         start = v.initial.model_dump() if v.initial is not None else {}
@@ -574,7 +581,8 @@ def _graph_seats(graph: TaskGraph) -> list[tuple[int, int, float]]:
         host = start[spec.host_field]
         n = sum(1 for u in graph.variables if u.initial is not None
                 and u.initial.model_dump().get(spec.host_field) == host)
-        out.append((int(start["level"]), n, float(start.get("opening", 0.0))))
+        if v.name in named or start.get("opening"):
+            out.append((int(start["level"]), n, float(start.get("opening", 0.0))))
     return out
 
 
