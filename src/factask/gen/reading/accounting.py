@@ -23,7 +23,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from factask.gen.reading.mentions import ALSO_KINDS
-from factask.gen.reading.parts import judge_part_word
+from factask.gen.reading.part_accounting import judge_part_word
 from factask.gen.reading.selectors import ORDINAL_RANKS
 from factask.gen.reading.words import count_of, kind_of, words_of
 from factask.graph.taskgraph import TaskGraph

@@ -15,7 +15,7 @@ start its variables take, its names by level, its sizes, the verbs and particles
 each relation, its start words). A second articulated kind (a microwave's door, a
 stove's switch) is one more entry there: the mentions (:func:`seat_parts`), the
 clause reading (:func:`part_referents`, :func:`actuation`), the accounting
-(:func:`judge_part_word`) and the description (:mod:`factask.gen.reading.describe`)
+(:mod:`factask.gen.reading.part_accounting`) and the description (:mod:`factask.gen.reading.describe`)
 read the table, not the kind.
 
 How many parts a host has is read from the words: "a cabinet with three drawers",
@@ -45,7 +45,6 @@ from factask.gen.reading.articulated import (
 )
 from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.words import count_of, kind_of
-from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
 
@@ -68,7 +67,7 @@ class Mention(Protocol):
 
 
 #: Words between a verb and its particle's end: "pull it all the way out".
-_WAY = frozenset({"all", "the", "way", "fully", "completely", "wide", "again", "it", "them"})
+WAY_WORDS = frozenset({"all", "the", "way", "fully", "completely", "wide", "again", "it", "them"})
 
 
 @dataclass(frozen=True)
@@ -100,14 +99,14 @@ class Phrase:
     stated: bool = False
 
 
-def _is_part(word: str) -> PartKind | None:
+def is_part(word: str) -> PartKind | None:
     kind = kind_of(word)[0]
     return PART_KINDS.get(kind) if kind else None
 
 
 def phrase_at(words: Sequence[str], i: int) -> Phrase:
     """The phrase whose part word is ``words[i]`` (see :class:`Phrase`)."""
-    spec = _is_part(words[i])
+    spec = is_part(words[i])
     assert spec is not None
     plural = kind_of(words[i])[1]
     j, level, fewest, state, count, unplaced, half = i - 1, None, 1, None, 0, False, False
@@ -171,7 +170,7 @@ def _host_count(words: Sequence[str], h: int, spec: PartKind) -> int:
     """The parts a host's own words give it: "the cabinet with three drawers" (0: none)."""
     rest = words[h + 1:h + 4]
     if len(rest) == 3 and rest[0] in ("with", "has", "having", "of") and count_of(rest[1]) \
-            and _is_part(rest[2]) is spec:
+            and is_part(rest[2]) is spec:
         return count_of(rest[1])
     return 0
 
@@ -225,7 +224,7 @@ def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
 
 def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Mention]:
     hosts = [m for m in found if m.kind == spec.host]
-    phrases = [(i, phrase_at(words, i)) for i, w in enumerate(words) if _is_part(w) is spec]
+    phrases = [(i, phrase_at(words, i)) for i, w in enumerate(words) if is_part(w) is spec]
     if not hosts and not phrases:
         return found
     make = type(found[0])  # the mentions' own class
@@ -365,7 +364,7 @@ def part_referents(words: Sequence[str], i: int, found: Sequence[Mention]) -> li
         i: The index of its part word.
         found: The mentions (:func:`seat_parts`).
     """
-    spec = _is_part(words[i])
+    spec = is_part(words[i])
     p = phrase_at(words, i)
     if spec is None or p.stated or p.unplaced:
         return []
@@ -385,16 +384,16 @@ def actuation(words: Sequence[str], first: int, last: int) -> str | None:
     the drawer", "pull out the drawer", "push the drawer in", "slide it shut", "open the
     bottom drawer and the top drawer"; None: no verb acts on it."""
     j, particle = first - 1, None
-    if j >= 1 and words[j] in _PARTICLES and words[j - 1] in _ALL_VERBS | _NEUTRAL:
+    if j >= 1 and words[j] in PARTICLES and words[j - 1] in ALL_VERBS | NEUTRAL_VERBS:
         particle, j = words[j], j - 1  # "pull out the drawer", "open up the drawer"
-    if j >= 1 and words[j] in ("and", "or") and _is_part(words[j - 1]):
+    if j >= 1 and words[j] in ("and", "or") and is_part(words[j - 1]):
         p = phrase_at(words, j - 1)  # "open the bottom drawer and the top drawer"
         return actuation(words, p.first, p.last)
     verb = words[j] if j >= 0 else None
-    if verb not in _ALL_VERBS and verb not in _NEUTRAL:
+    if verb not in ALL_VERBS and verb not in NEUTRAL_VERBS:
         return None
     k = last + 1
-    while k < len(words) and words[k] in _WAY:
+    while k < len(words) and words[k] in WAY_WORDS:
         k += 1
     for said in (particle, words[k] if k < len(words) else None):
         for relation, ps in _PARTICLE_OF.items():
@@ -414,16 +413,16 @@ def _merged(field: str) -> dict[str, frozenset[str]]:
 #: Relation -> its verbs / particles, over every part kind.
 _VERBS_OF = _merged("verbs")
 _PARTICLE_OF = _merged("particles")
-_ALL_VERBS = frozenset().union(*_VERBS_OF.values())
-_PARTICLES = frozenset().union(*_PARTICLE_OF.values())
-_NEUTRAL = frozenset().union(*(p.neutral for p in PART_KINDS.values()))
+ALL_VERBS = frozenset().union(*_VERBS_OF.values())
+PARTICLES = frozenset().union(*_PARTICLE_OF.values())
+NEUTRAL_VERBS = frozenset().union(*(p.neutral for p in PART_KINDS.values()))
 
 
 def acted(words: Sequence[str], found: Sequence[Mention] | None = None) -> bool:
     """Whether a verb in ``words`` acts on a part ("open the drawer", "close it": a
     pronoun only where ``found``, if given, has a part)."""
     for i, w in enumerate(words):
-        if _is_part(w):
+        if is_part(w):
             p = phrase_at(words, i)
             if not p.stated and actuation(words, p.first, p.last) is not None:
                 return True
@@ -506,98 +505,22 @@ def with_hosts(used: set[str], found: Sequence[Mention]) -> set[str]:
     return used | hosts | {m.name for m in found if (s := _seated(m)) and s[0] in hosts}
 
 
-def judge_part_word(words: Sequence[str], k: int, graph: TaskGraph
-                    ) -> tuple[str, bool, str] | None:
-    """(category, read, why) of a word that qualifies a part ("top", "second", "half",
-    "left" before "drawer"; "push" of "push the drawer in"), or None: not such a word.
-
-    A level word is read when the graph has a part at that level; a start word when a
-    part starts so; a verb when the graph has its relation; a side word never (parts
-    are stacked)."""
-    w = words[k]
-    if k >= 3 and words[k - 2:k] == ["from", "the"] and _is_part(words[k - 3]) \
-            and w in ("top", "bottom"):  # "the second drawer from the top"
-        p = phrase_at(words, k - 3)
-        ok = any(resolve(p, n) == level for level, n, _ in _graph_seats(graph))
-        return "side", ok, "a part at that level" if ok else "no part at that level"
-    t = k - 1
-    while t >= 0 and (words[t] in _WAY or words[t] in _PARTICLES) and k - t < 6:
-        t -= 1
-    end = t  # "pull the drawer of the cabinet all the way open": the phrase ends at its host
-    t = next((j for j in range(t, max(t - 8, -1), -1) if _is_part(words[j])
-              and phrase_at(words, j).last == end), t)
-    if t >= 0 and (w in _WAY or w in _PARTICLES) and (
-            _is_part(words[t]) or (words[t] in ("it", "them") and acts_on_pronoun(words, t))):
-        # "push the drawer back in", "pull it all the way out": the verb's particle
-        p = phrase_at(words, t) if _is_part(words[t]) else Phrase(t, t)
-        relation = actuation(words, p.first, p.last) if p.last == end else None
-        if relation is not None:
-            ok = relation in {f.goal.type for f in graph.factors}
-            return "relation", ok, f"how the part slides ({relation})"
-    target = next((j for j in range(k + 1, min(k + 8, len(words)))
-                   if _is_part(words[j]) or (words[j] in ("it", "them")
-                                             and acts_on_pronoun(words, j))), None)
-    p = None
-    if target is not None:
-        p = phrase_at(words, target) if _is_part(words[target]) else Phrase(target, target)
-    relations = {f.goal.type for f in graph.factors}
-    if p is not None and (k < p.first or k > p.last) and (
-            w in _ALL_VERBS | _NEUTRAL | _PARTICLES):
-        relation = actuation(words, p.first, p.last)
-        if relation is None:
-            return None
-        ok = relation in relations
-        article = "an" if relation[0] in "aeiou" else "a"
-        return "relation", ok, f"{article} {relation} goal" if ok else f"no {relation} goal"
-    if p is None or not p.first <= k < target:
-        return None
-    seats = _graph_seats(graph)
-    if w in SIDE_WORDS:
-        return "side", False, "stacked parts are named by level (top, middle, bottom), not side"
-    if w in LEVEL_WORDS or w in ORDINALS:
-        ok = any(resolve(p, n) == level for level, n, _ in seats)
-        return "side", ok, (f"a part at the {w} level" if ok else f"no part is the {w} one")
-    spec = _is_part(words[target])
-    if spec is not None and w in spec.states and spec.states[w] not in (0.0, 1.0):
-        ok = any(0.0 < opening < 1.0 for _, _, opening in seats)
-        return "start", ok, "a part starts partly open" if ok else "no part starts partly open"
-    if w in ("both", "all", "each", "every"):
-        ok = len(seats) >= 2
-        return "quantifier", ok, "several parts" if ok else "one part"
-    return None
-
-
-def _graph_seats(graph: TaskGraph) -> list[tuple[int, int, float]]:
-    """(level, parts of its host, opening) of every seated part of ``graph`` that the
-    words are about: a goal names it, something starts in it, or it starts open."""
-    out = []
-    named = {n for f in graph.factors for n in f.goal.variable_names()}
-    named |= {getattr(v.initial, "container", None) for v in graph.variables}
-    for v in graph.variables:
-        spec = PART_KINDS.get(v.kind)
-        start = v.initial.model_dump() if v.initial is not None else {}
-        if spec is None or start.get("type") != spec.start:
-            continue
-        host = start[spec.host_field]
-        n = sum(1 for u in graph.variables if u.initial is not None
-                and u.initial.model_dump().get(spec.host_field) == host)
-        if v.name in named or start.get("opening"):
-            out.append((int(start["level"]), n, float(start.get("opening", 0.0))))
-    return out
-
-
 __all__ = [
+    "ALL_VERBS",
     "DRAWERS",
     "HOST_KINDS",
     "LEVEL_WORDS",
+    "NEUTRAL_VERBS",
+    "PARTICLES",
     "PART_KINDS",
     "PHRASE_WORDS",
+    "WAY_WORDS",
     "PartKind",
     "Phrase",
     "acts_on_pronoun",
     "actuation",
     "bare_inside",
-    "judge_part_word",
+    "is_part",
     "part_name",
     "part_referents",
     "phrase_at",
