@@ -210,3 +210,14 @@ def test_a_level_word_is_read_only_where_the_graph_uses_that_drawer() -> None:
     graph = read("open the bottom drawer")
     assert "top" in account("open the top drawer", graph).unread_words()
     assert account("open the bottom drawer", graph).complete
+
+
+def test_the_variables_step_pins_a_drawer_its_cabinet_start_and_size() -> None:
+    # The variables-first step (a model writes the variables): a drawer's start and
+    # size are constants, so any answer is a valid cabinet of drawers.
+    from factask.vocabulary.variables import StateVariable, cabinet_problems
+    found = mentions("put the green block into the middle drawer of the cabinet and close it")
+    answer = first_choice(grounded.variables_answer(found))
+    variables = [StateVariable.model_validate(v) for v in answer["variables"]]
+    assert not cabinet_problems(variables)
+    assert {v.name: v.initial.type for v in variables}["middle_drawer"] == "in_cabinet"

@@ -40,6 +40,7 @@ from pydantic import ValidationError
 
 from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.examples import library_task_examples, render_examples
+from factask.gen.reading.articulated import HOST_KINDS
 from factask.gen.reading.bases import base_order
 from factask.gen.reading.capacity import prune
 from factask.gen.reading.clauses import read_goals
@@ -112,14 +113,18 @@ def mention_variable(mention: Mention, kinds: dict[str, str]) -> Schema:
     """
     color: Schema = {"const": mention.color} if mention.color else \
         {"type": "string", "enum": list(COLOR_NAMES)}
+    # A drawer's start and size, and its cabinet's size, follow from the words
+    # (factask.gen.reading.parts): constants.
+    seated = bool(mention.start) or mention.kind in HOST_KINDS
     return ss.obj({
         "name": {"const": mention.name},
         "description": ss.text(GROUNDED_TEXT),
         "kind": {"const": mention.kind},
-        "size": {"type": "null"},
+        "size": {"const": list(mention.size)} if seated and mention.size else {"type": "null"},
         "color": color,
         "count": {"const": mention.count},
-        "initial": _placement(mention.name, kinds, _moved([mention])),
+        "initial": ss.obj({k: {"const": v} for k, v in mention.start}) if mention.start
+        else _placement(mention.name, kinds, _moved([mention])),
         **({"fixed": {"const": False}} if mention.moved else {}),
     })
 

@@ -15,8 +15,8 @@ start its variables take, its names by level, its sizes, the verbs and particles
 each relation, its start words). A second articulated kind (a microwave's door, a
 stove's switch) is one more entry there: the mentions (:func:`seat_parts`), the
 clause reading (:func:`part_referents`, :func:`actuation`), the accounting
-(:mod:`factask.gen.reading.part_accounting`) and the description (:mod:`factask.gen.reading.describe`)
-read the table, not the kind.
+(:mod:`factask.gen.reading.part_accounting`) and the description
+(:mod:`factask.gen.reading.describe`) read the table, not the kind.
 
 How many parts a host has is read from the words: "a cabinet with three drawers",
 else the most any level word asks ("top" or "bottom": two; "middle": three), else
