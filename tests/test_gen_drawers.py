@@ -118,7 +118,16 @@ def test_both_drawers_and_a_named_colour() -> None:
     assert set(drawers(g)) == {"bottom_drawer", "top_drawer"}
     assert g.variable("red_cabinet").color == "red"
     assert all(v.color == "red" for v in g.variables if v.kind == "drawer")
-    assert goals(g) == [("open", ("bottom_drawer", "top_drawer"), ())]
+    # One goal per drawer, the bottom one first (a drawer pulled out above a shut one
+    # covers its handle: the table's order).
+    assert goals(g) == [("open", ("bottom_drawer",), ()), ("open", ("top_drawer",), ())]
+    assert nx.has_path(g.dependency_graph(), *[f.name for f in g.factors])
+
+
+def test_several_drawers_close_from_the_top_down() -> None:
+    g = read("close the bottom and the top drawer")
+    assert [o for _, (o,), _ in goals(g)] == ["top_drawer", "bottom_drawer"]
+    assert drawers(g)["bottom_drawer"][2] == drawers(g)["top_drawer"][2] == 1.0
 
 
 def test_close_then_put_on_the_cabinet() -> None:

@@ -44,6 +44,9 @@ class PartKind:
             ("pull ... out", "push ... in", "slide ... shut").
         neutral: Verbs that say the relation only with a particle ("slide", "move").
         states: Start word -> how far the part starts open (a fraction).
+        order: Relation -> the order in which it is done to several parts of one host:
+            "up" (the bottom one first) or "down" (a drawer pulled out above a shut one
+            covers its handle: open from the bottom up, close from the top down).
         said: Relation -> the verb a description says it with ("open", "close").
         assumed: Relation -> how far a part the words act on so starts where they say
             nothing of its start ("close the drawer": it is open; shut, the goal would
@@ -62,6 +65,7 @@ class PartKind:
     particles: dict[str, frozenset[str]]
     neutral: frozenset[str]
     states: dict[str, float]
+    order: dict[str, str]
     said: dict[str, str]
     assumed: dict[str, float]
 
@@ -83,6 +87,7 @@ DRAWERS = PartKind(
     neutral=frozenset({"slide", "slides", "move", "draw", "get", "leave"}),
     states={"open": 1.0, "opened": 1.0, "ajar": 0.5, "half": 0.5, "partly": 0.5,
             "partially": 0.5, "slightly": 0.5, "closed": 0.0, "shut": 0.0},
+    order={"open": "up", "closed": "down"},
     said={"open": "open", "closed": "close"},
     assumed={"closed": 1.0},
 )

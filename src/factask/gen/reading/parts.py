@@ -452,7 +452,8 @@ def sequence_parts(goals: list[ReadGoal], found: Sequence[Mention]) -> list[Read
     or put something in it) follow the words' order: "put the block in the drawer and
     close it" puts first, then closes."""
     kinds = {m.name: m.kind for m in found}
-    goals = _opened_first(goals, found)
+    goals = _in_reach_order(_opened_first(goals, found), found)
+    ordered = _ordered_actions(found)
 
     held = {m.name: v for m in found for k, v in m.start if k == "container"}
 
@@ -462,14 +463,57 @@ def sequence_parts(goals: list[ReadGoal], found: Sequence[Mention]) -> list[Read
         return {n for n in names if kinds.get(n) in PART_KINDS}
 
     out: list[ReadGoal] = []
-    step, old, group = -1, None, set()
+    step, old, group, done = -1, None, set(), set()
     for g in goals:
         parts = touched(g)
-        if g.step != old or parts & group:
-            step, group = step + 1, set()
+        # "open both drawers": one after the other, as the table orders them
+        acts = {(ordered[n], g.relation) for n in g.objects if n in ordered}
+        if g.step != old or parts & group or acts & done:
+            step, group, done = step + 1, set(), set()
         old = g.step
         group |= parts
+        done |= acts
         out.append(replace(g, step=step))
+    return out
+
+
+def _ordered_actions(found: Sequence[Mention]) -> dict[str, str]:
+    """Part -> its host, for the parts of a kind whose relations the table orders."""
+    return {m.name: seat[0] for m in found if (seat := _seated(m))
+            and PART_KINDS[m.kind].order}
+
+
+def _in_reach_order(goals: list[ReadGoal], found: Sequence[Mention]) -> list[ReadGoal]:
+    """``goals`` with each goal that acts on several parts split into one per part, and
+    the goals of one step that do an ordered relation to parts of one host put in the
+    table's order (:attr:`~factask.gen.reading.articulated.PartKind.order`): "open the
+    top and bottom drawers" opens the bottom one first."""
+    by_name = {m.name: m for m in found}
+    seats = {n: s for n, m in by_name.items() if (s := _seated(m))}
+
+    def order_of(g: ReadGoal) -> str | None:
+        kinds = {by_name[n].kind for n in g.objects if n in seats}
+        if len(kinds) != 1 or len(kinds | {by_name[n].kind for n in g.objects}) != 1:
+            return None
+        return PART_KINDS[kinds.pop()].order.get(g.relation)
+
+    split: list[ReadGoal] = []
+    for g in goals:
+        if order_of(g) and len(g.objects) > 1:
+            split.extend(replace(g, objects=(n,)) for n in g.objects)
+        else:
+            split.append(g)
+    out = list(split)
+    runs: dict[tuple[int, str, str], list[int]] = {}
+    for k, g in enumerate(split):
+        if order_of(g) is not None:
+            runs.setdefault((g.step, g.relation, seats[g.objects[0]][0]), []).append(k)
+    for places in runs.values():
+        members = [split[k] for k in places]
+        up = order_of(members[0]) == "up"
+        members.sort(key=lambda g: seats[g.objects[0]][1], reverse=not up)
+        for k, g in zip(places, members, strict=True):
+            out[k] = g
     return out
 
 
