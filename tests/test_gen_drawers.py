@@ -12,6 +12,7 @@ import networkx as nx
 import numpy as np
 import pytest
 
+from factask.gen.compare import compare
 from factask.gen.first_choice import first_choice
 from factask.gen.reading import grounded
 from factask.gen.reading.accounting import account
@@ -24,6 +25,7 @@ from factask.graph import InCabinet, TaskGraph, parse_graph
 from factask.library.tasks import get_task
 from factask.sim.layout.sampling import sample_layout
 from factask.sim.layout.solving import solve_targets
+from factask.vocabulary.variables import StateVariable, cabinet_problems
 
 
 def read(words: str) -> TaskGraph:
@@ -224,9 +226,25 @@ def test_a_level_word_is_read_only_where_the_graph_uses_that_drawer() -> None:
 def test_the_variables_step_pins_a_drawer_its_cabinet_start_and_size() -> None:
     # The variables-first step (a model writes the variables): a drawer's start and
     # size are constants, so any answer is a valid cabinet of drawers.
-    from factask.vocabulary.variables import StateVariable, cabinet_problems
     found = mentions("put the green block into the middle drawer of the cabinet and close it")
     answer = first_choice(grounded.variables_answer(found))
     variables = [StateVariable.model_validate(v) for v in answer["variables"]]
     assert not cabinet_problems(variables)
     assert {v.name: v.initial.type for v in variables}["middle_drawer"] == "in_cabinet"
+
+
+#: Library drawer tasks whose own description does not say the task in full.
+_THREE = "'the top drawer of the cabinet': the cabinet has three, the words imply two"
+OWN_WORDS_SHORT = {"open-top-drawer": _THREE, "close-top-drawer": _THREE}
+
+
+@pytest.mark.parametrize("name", [
+    "open-drawer", "close-drawer", "open-drawer-and-put-block-inside",
+    "put-block-in-drawer-and-close-it", "open-top-drawer", "open-bottom-drawer",
+    "close-top-drawer", "open-two-drawers", "put-two-blocks-in-open-drawer",
+    "open-drawer-and-take-block-out", "take-block-out-of-drawer-to-zone",
+    "put-bowl-on-cabinet-and-close-drawer"])
+def test_a_drawer_task_read_from_its_own_library_description(name: str) -> None:
+    graph = get_task(name)
+    result = compare(read(graph.description), graph, graph.description)
+    assert result.equivalent == (name not in OWN_WORDS_SHORT), result.differences[:3]

@@ -292,11 +292,18 @@ def _taken_out(words: Sequence[str], found: Sequence[Mention],
                spec: PartKind, prefixed: bool, starts: dict[tuple[str, str, int], float]
                ) -> dict[str, tuple[tuple[str, Any], ...]]:
     """Object -> its start inside the part the words take it out of ("take the red
-    block out of the open top drawer", "the ball from the half-open bottom drawer"):
+    block out of the open top drawer", "the ball from the half-open bottom drawer",
+    "out of it" after a drawer):
     the object named last before "out of" / "from", where the part starts open (the
     reset puts nothing inside a shut drawer; the words then leave the start open)."""
     out: dict[str, tuple[tuple[str, Any], ...]] = {}
-    for p, host in seated:
+    sources = list(seated)
+    for i, w in enumerate(words):  # "pull the drawer open, take the block out of it"
+        before = [(p, h) for p, h in seated if p.last < i]
+        if w in ("it", "them") and before and (words[i - 1] == "from"
+                                               or words[max(i - 2, 0):i] == ["out", "of"]):
+            sources.append((replace(before[-1][0], first=i, last=i), before[-1][1]))
+    for p, host in sources:
         f = p.first
         if not (f >= 1 and words[f - 1] == "from") and words[max(f - 2, 0):f] != ["out", "of"]:
             continue
