@@ -32,9 +32,11 @@ from factask.vocabulary.limits import MAX_FACTORS, MAX_OBJECTS, MAX_VARIABLES, T
 from factask.vocabulary.names import TaskName
 from factask.vocabulary.variables import (
     InCabinet,
+    MountedOn,
     StartInside,
     StateVariable,
     cabinet_problems,
+    switch_problems,
 )
 
 #: Weights must sum to 1 within this absolute tolerance.
@@ -272,7 +274,7 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             elif ref not in variables:
                 out.append(Problem(v.name, "initial", f"starts on/inside unknown variable "
                                    f"{ref!r}", f"use one of {name_list(var_names)}"))
-            elif not isinstance(v.initial, InCabinet):  # a drawer: cabinet_problems
+            elif not isinstance(v.initial, InCabinet | MountedOn):  # cabinet/switch_problems
                 need = "receptacle" if isinstance(v.initial, StartInside) else "support"
                 host = variables[ref]
                 if not getattr(kind_spec(host.kind), need):
@@ -280,6 +282,7 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
                                        f"a {host.kind}, which is not a {need}",
                                        "start it on the table or on/inside another variable"))
     out.extend(cabinet_problems(graph.variables))
+    out.extend(switch_problems(graph.variables))
     starts = nx.DiGraph()
     for v in graph.variables:
         for ref in v.references():
@@ -321,8 +324,9 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             out.append(Problem(f.name, "goal.objects", f"{name!r} listed twice", "list it once"))
         for name in f.goal.objects:
             v = variables.get(name)
-            # A drawer is fixed (never picked) but slides in its cabinet: 'open' moves it.
-            if v is not None and v.is_fixed and v.kind != "drawer":
+            # A drawer (a switch) is fixed (never picked) but slides in its cabinet (its
+            # host): 'open' ('switched_on') moves it.
+            if v is not None and v.is_fixed and v.kind not in ("drawer", "switch"):
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))
         out.extend(f.goal.problems(f.name, variables))

@@ -33,7 +33,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from factask.geometry import Pose, rotation_matrix
-from factask.vocabulary.kinds import HANDLE_DEPTH, WALL_THICKNESS, KindSpec, kind_spec
+from factask.vocabulary.kinds import (
+    HANDLE_DEPTH,
+    SWITCH_HOSTS,
+    WALL_THICKNESS,
+    KindSpec,
+    kind_spec,
+)
 from factask.vocabulary.variables import VariableSet
 from factask.vocabulary.world import TABLE_Z
 
@@ -358,6 +364,11 @@ def placement_area(obj: SceneObject, pose: Pose) -> Area:
     A receptacle: its inner area (a disk for round kinds). Anything else: its
     footprint (the top face of a support, the marked area of a zone).
     """
+    if obj.kind in SWITCH_HOSTS:  # its top behind the control strip its switch stands on
+        strip = SWITCH_HOSTS[obj.kind].strip + SWITCH_HOSTS[obj.kind].clear
+        half = np.maximum(obj.half_xy - np.array([strip / 2, 0.0]), 0.0)
+        centre = pose.pos[:2] + yaw_rotation_2d(pose.yaw) @ np.array([strip / 2, 0.0])
+        return Area(centre, pose.yaw, half)
     if obj.kind == "drawer":  # inside its walls, behind its handle (at its -x end)
         half = np.maximum(obj.half_xy - WALL_THICKNESS - np.array([HANDLE_DEPTH / 2, 0.0]), 0.0)
         centre = pose.pos[:2] + yaw_rotation_2d(pose.yaw) @ np.array([HANDLE_DEPTH / 2, 0.0])

@@ -44,6 +44,7 @@ from factask.sim.robots.health import physics_problem
 from factask.sim.robots.low_carry import low_pick_and_place
 from factask.sim.robots.slide_pull import slide_pull
 from factask.sim.robots.spatula import push
+from factask.sim.robots.switch_press import press_switch
 from factask.vocabulary.errors import FactaskError, InvalidValueError
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
@@ -126,6 +127,9 @@ class FactaskEnv(gym.Env):
     segment, Ravens' ``PickPlace(height=0.02)``). An action with ``grasp`` and
     ``slide_to`` (x, y, z, yaw) holds a drawer's handle at ``grasp`` and slides it
     level until the tip is over ``slide_to``'s x, y (:mod:`factask.sim.robots.slide_pull`).
+    An action with ``press`` and ``press_to`` (x, y, z, yaw) presses a switch's button
+    whose top is at ``press`` down until its top is at ``press_to``'s z, or (above)
+    holds it and pulls it up there (:mod:`factask.sim.robots.switch_press`).
 
     Raises:
         GraphValidationError, CompileError: the graph cannot be compiled.
@@ -264,7 +268,8 @@ class FactaskEnv(gym.Env):
                    "targets": {o: p.to_list() for o, p in targets[name].items()}}
             for name, s in solved.items()}
         mujoco.mj_resetData(self.model, self.data)
-        # A drawer's pose is set along its slide once its cabinet's is.
+        # A drawer's (a switch's) pose is set along its slide once its cabinet's (its
+        # host's) is.
         for name, handle in sorted(self.scene.objects.items(),
                                    key=lambda item: item[1].slide is not None):
             set_object_pose(self.model, self.data, handle, layout[name])
@@ -311,13 +316,14 @@ class FactaskEnv(gym.Env):
             raise ResetNeededError("call reset() before step()")
         pushing = isinstance(action, dict) and {"start", "end"} <= set(action)
         sliding = isinstance(action, dict) and {"grasp", "slide_to"} <= set(action)
-        if not (pushing or sliding) and (not isinstance(action, dict)
-                                         or not {"pick", "place"} <= set(action)):
+        pressing = isinstance(action, dict) and {"press", "press_to"} <= set(action)
+        if not (pushing or sliding or pressing) and (not isinstance(action, dict)
+                                                     or not {"pick", "place"} <= set(action)):
             raise ActionError(f"action must be a dict with 'pick' and 'place' (or 'start' and "
-                              f"'end' of a push, or 'grasp' and 'slide_to' of a drawer's "
-                              f"slide), got {action!r}")
+                              f"'end' of a push, 'grasp' and 'slide_to' of a drawer's "
+                              f"slide, or 'press' and 'press_to' of a switch), got {action!r}")
         first, second = (("start", "end") if pushing else ("grasp", "slide_to") if sliding
-                         else ("pick", "place"))
+                         else ("press", "press_to") if pressing else ("pick", "place"))
         pick = _pose4(action[first], first)
         place = _pose4(action[second], second)
         if self.failure is not None:
@@ -332,6 +338,9 @@ class FactaskEnv(gym.Env):
         elif sliding:  # a drawer held by its handle (factask.sim.robots.slide_pull)
             result = slide_pull(self.robot, pick, place, on_step=self.frame_callback,
                                 max_steps=max_steps)
+        elif pressing:  # a switch's button (factask.sim.robots.switch_press)
+            result = press_switch(self.robot, pick, place, on_step=self.frame_callback,
+                                  max_steps=max_steps)
         elif "lift" in action:  # a low carry (a rope's segment: factask.sim.robots.low_carry)
             lift = float(np.asarray(action["lift"], dtype=float).reshape(-1)[0])
             if not np.isfinite(lift) or not 0.0 < lift <= WORKSPACE_Z[1]:

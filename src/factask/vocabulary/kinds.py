@@ -43,6 +43,9 @@ AssetKind = Literal[
     "rope",
     "cabinet",
     "drawer",
+    "stove",
+    "lamp",
+    "switch",
 ]
 
 KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
@@ -128,6 +131,17 @@ _SPECS = [
              "'in_cabinet'; its size follows from the cabinet's); its handle sticks out "
              "of its -x face inside its size", (0.20, 0.26, 0.08), movable=False,
              asymmetric=True, receptacle=True),
+    KindSpec("stove", "low cooktop fixed to the table; things can stand on its top behind "
+             "its control strip (the -x strip of its top, where its switch stands); size = "
+             "outer extents", (0.22, 0.24, 0.04), movable=False, asymmetric=True,
+             support=True),
+    KindSpec("lamp", "lamp base fixed to the table with a switch on the -x strip of its "
+             "top; size = outer extents", (0.12, 0.14, 0.05), movable=False,
+             asymmetric=True),
+    KindSpec("switch", "push button of a switchable fixture (stove, lamp), standing on the "
+             "-x strip of its top (starts 'mounted_on' it; its size follows from the "
+             "host's): pressed down it is on, pulled back up it is off",
+             (0.03, 0.03, 0.02), movable=False),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.
@@ -154,6 +168,60 @@ DRAWER_GAP = 0.004
 DRAWER_TRAVEL_FRACTION = 0.8
 #: Drawers one cabinet holds at most.
 MAX_DRAWERS = 3
+
+
+@dataclass(frozen=True)
+class SwitchMount:
+    """Where a switchable kind carries its switch: a push button standing in the
+    middle of the -x strip of its top (the strip is kept clear of what is put on the
+    host, so the button stays reachable from above).
+
+    Attributes:
+        strip: Depth (x, m) of the control strip along the host's -x side.
+        clear: Depth (x, m) of the host's top kept free behind the strip, so that
+            what stands on the host leaves room round the button for the cup.
+        button: Full extents (x, y, z) of the button, metres.
+    """
+
+    strip: float = 0.05
+    clear: float = 0.02
+    button: tuple[float, float, float] = (0.03, 0.03, 0.02)
+
+
+#: Switchable kind -> its switch mount. A new switchable fixture is one entry here
+#: (and its :class:`KindSpec`): validation, building, the relations and the oracle
+#: read this table.
+SWITCH_HOSTS: dict[str, SwitchMount] = {
+    "stove": SwitchMount(),
+    "lamp": SwitchMount(strip=0.045),
+}
+#: How far a switch's button stands above its host's top when off (m); pressed all
+#: the way down (on) it stands :data:`SWITCH_RISE_OFF` - travel above it.
+SWITCH_RISE_OFF = 0.016
+#: Fraction of :data:`SWITCH_RISE_OFF` a button travels down: its joint's range (a
+#: pressed button still sticks out, so the cup can take it to pull it back up).
+SWITCH_TRAVEL_FRACTION = 0.75
+
+
+def switch_size(host_kind: str) -> tuple[float, float, float]:
+    """The size a switch of a host of kind ``host_kind`` has (its mount's button)."""
+    return SWITCH_HOSTS[host_kind].button
+
+
+def switch_travel() -> float:
+    """How far (m) a switch's button moves down from off to on: its joint's range."""
+    return SWITCH_TRAVEL_FRACTION * SWITCH_RISE_OFF
+
+
+def switch_off_offset(host_kind: str,
+                      host_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """Centre of the switch of a host of ``host_kind`` and ``host_size``, off, in the
+    host's frame: in the middle of the -x strip, its top :data:`SWITCH_RISE_OFF`
+    above the host's top (its lower part sunk in the host, which it never touches:
+    MuJoCo leaves out contacts between a body and its parent)."""
+    mount = SWITCH_HOSTS[host_kind]
+    return (-host_size[0] / 2 + mount.strip / 2, 0.0,
+            host_size[2] / 2 + SWITCH_RISE_OFF - mount.button[2] / 2)
 
 
 def side_hole(size: tuple[float, float, float]) -> tuple[float, float]:
@@ -293,6 +361,15 @@ def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str
                                  and y > 2 * WALL_THICKNESS and z > 2 * WALL_THICKNESS):
         return (f"a drawer of size {tuple(size)} has no room inside its walls and handle",
                 f"make size x larger than {HANDLE_DEPTH + 4 * WALL_THICKNESS:.3f}")
+    if kind in SWITCH_HOSTS:
+        mount = SWITCH_HOSTS[kind]
+        if not (x > mount.strip + mount.clear + 0.04 and y > mount.button[1] + 0.01
+                and z > mount.button[2] - SWITCH_RISE_OFF + switch_travel() + 0.005):
+            return (f"a {kind} of size {tuple(size)} has no room for its switch (a "
+                    f"{mount.strip} m control strip and a button of {mount.button})",
+                    f"make size x larger than {mount.strip + mount.clear + 0.04:.3f}, "
+                    f"y larger than {mount.button[1] + 0.01:.3f} and z larger than "
+                    f"{mount.button[2] - SWITCH_RISE_OFF + switch_travel() + 0.005:.3f}")
     if kind == "holed_box":
         side, _ = side_hole(size)
         if side > min(y, z) - 2 * WALL_THICKNESS:

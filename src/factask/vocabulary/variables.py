@@ -10,10 +10,12 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from factask.vocabulary.errors import InvalidValueError, Problem
 from factask.vocabulary.kinds import (
     MAX_DRAWERS,
+    SWITCH_HOSTS,
     AssetKind,
     default_mass,
     drawer_size,
     kind_spec,
+    switch_size,
     yaw_symmetry_deg,
 )
 from factask.vocabulary.limits import MAX_COUNT, MAX_HORIZONTAL, MIN_LENGTH, Text
@@ -94,6 +96,17 @@ class InCabinet(BaseModel):
     opening: Annotated[float, Field(ge=0, le=1, allow_inf_nan=False)] = 0.0
 
 
+class MountedOn(BaseModel):
+    """Start as the switch of the switchable fixture variable ``host`` (a stove, a
+    lamp: :data:`~factask.vocabulary.kinds.SWITCH_HOSTS`), on (pressed down) or off
+    (up). Only a switch starts so; a host has one switch."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["mounted_on"] = "mounted_on"
+    host: Name
+    on: bool = False
+
+
 class AtFixedPose(BaseModel):
     """Start at a given x, y (metres) and yaw (degrees), resting on the table."""
 
@@ -105,7 +118,7 @@ class AtFixedPose(BaseModel):
 
 
 Placement = Annotated[
-    OnTable | InRegion | StartOn | StartInside | AtFixedPose | InCabinet,
+    OnTable | InRegion | StartOn | StartInside | AtFixedPose | InCabinet | MountedOn,
     Field(discriminator="type"),
 ]
 
@@ -205,6 +218,8 @@ class StateVariable(BaseModel):
             return [self.initial.container]
         if isinstance(self.initial, InCabinet):
             return [self.initial.cabinet]
+        if isinstance(self.initial, MountedOn):
+            return [self.initial.host]
         return []
 
 
@@ -288,4 +303,71 @@ def cabinet_problems(variables: Sequence[StateVariable]) -> list[Problem]:
                                    f"{len(drawers)} drawer(s)) has size "
                                    f"{tuple(round(w, 6) for w in want)}, got {d.extents}",
                                    f"give size {[round(w, 6) for w in want]}"))
+    return out
+
+
+def switches_of(variables: Sequence[StateVariable], host: str) -> list[StateVariable]:
+    """The switch variables mounted on ``host`` (:class:`MountedOn`).
+
+    Args:
+        variables: A graph's variables.
+        host: The switchable fixture variable's name.
+
+    Returns:
+        Those switches, in graph order (a valid graph has one).
+    """
+    return [v for v in variables if isinstance(v.initial, MountedOn) and v.initial.host == host]
+
+
+def switch_problems(variables: Sequence[StateVariable]) -> list[Problem]:
+    """What is wrong with the graph's switches and switchable fixtures: a switch
+    starts ``mounted_on`` a switchable fixture (and nothing else does), both stand for
+    one object, a host has exactly one switch, and a switch's size is the one its
+    host's mount gives it (:func:`~factask.vocabulary.kinds.switch_size`).
+
+    Args:
+        variables: A graph's variables.
+
+    Returns:
+        The problems, each naming the field and its fix.
+    """
+    out: list[Problem] = []
+    by_name = {v.name: v for v in variables}
+    hosts = " or ".join(SWITCH_HOSTS)
+    for v in variables:
+        mounted = isinstance(v.initial, MountedOn)
+        if v.kind == "switch" and not mounted:
+            out.append(Problem(v.name, "initial", "a switch is mounted on a switchable fixture",
+                               'give initial {"type": "mounted_on", "host": <a ' + hosts
+                               + ' variable>}'))
+        if mounted and v.kind != "switch":
+            out.append(Problem(v.name, "initial", f"only a switch starts mounted_on, not a "
+                               f"{v.kind}", "start it on the table or on/inside another "
+                               "variable, or make it kind switch"))
+        if (v.kind == "switch" or v.kind in SWITCH_HOSTS) and v.count != 1:
+            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
+                               f"got count {v.count}", "give each its own variable"))
+        if v.kind == "switch" and not v.is_fixed:
+            out.append(Problem(v.name, "fixed", "a switch moves only along its button's "
+                               "slide; it cannot be free", "leave fixed out"))
+        if not (mounted and v.kind == "switch"):
+            continue
+        host = by_name.get(v.initial.host)  # type: ignore[union-attr]
+        if host is None:
+            continue  # an unknown variable: the graph's reference check says so
+        if host.kind not in SWITCH_HOSTS:
+            out.append(Problem(v.name, "initial.host", f"{host.name!r} is a {host.kind}, "
+                               "which has no switch", f"name a {hosts} variable"))
+            continue
+        want = switch_size(host.kind)
+        if any(abs(a - b) > 1e-6 for a, b in zip(v.extents, want, strict=True)):
+            out.append(Problem(v.name, "size", f"the switch of a {host.kind} has size "
+                               f"{want}, got {v.extents}",
+                               f"give size {list(want)}"))
+    for host in (v for v in variables if v.kind in SWITCH_HOSTS):
+        mine = switches_of(variables, host.name)
+        if len(mine) != 1:
+            out.append(Problem(host.name, "kind", f"a {host.kind} has one switch, got "
+                               f"{len(mine)}", 'give it one switch variable with initial '
+                               f'{{"type": "mounted_on", "host": "{host.name}"}}'))
     return out

@@ -37,14 +37,17 @@ SLIDE_ARMATURE = 0.05
 
 @dataclass(frozen=True)
 class SlideHandle:
-    """Where a drawer's state lives in a compiled model.
+    """Where the state of a body sliding in a fixed host lives in a compiled model: a
+    drawer in its cabinet, a switch's button in its stove (:mod:`factask.sim.build.switch`).
 
     Attributes:
-        qpos_adr: Address of its slide joint in ``qpos`` (metres pulled out).
+        qpos_adr: Address of its slide joint in ``qpos`` (metres along ``axis``).
         qvel_adr: Address of the joint in ``qvel``.
-        cabinet_mocap: Mocap id of its cabinet.
-        closed: Its centre, closed, in the cabinet's frame (3,).
+        cabinet_mocap: Mocap id of its host (a cabinet, a stove).
+        closed: Its centre at joint position 0, in the host's frame (3,).
         travel: The joint's range (m).
+        axis: The joint's direction in the host's frame (a drawer slides out along
+            -x, a button down along -z).
     """
 
     qpos_adr: int
@@ -52,19 +55,21 @@ class SlideHandle:
     cabinet_mocap: int
     closed: tuple[float, float, float]
     travel: float
+    axis: tuple[float, float, float] = (-1.0, 0.0, 0.0)
 
     def pose(self, data: mujoco.MjData) -> Pose:
-        """The drawer's world pose: its cabinet's, moved out by the joint."""
+        """The body's world pose: its host's, moved along the axis by the joint."""
         quat = data.mocap_quat[self.cabinet_mocap].copy()
-        local = np.array(self.closed) - np.array([float(data.qpos[self.qpos_adr]), 0.0, 0.0])
+        local = np.array(self.closed) + float(data.qpos[self.qpos_adr]) * np.array(self.axis)
         return Pose(data.mocap_pos[self.cabinet_mocap] + rotation_matrix(quat) @ local, quat)
 
     def set_pose(self, data: mujoco.MjData, pose: Pose) -> None:
-        """Slide the drawer to where ``pose`` is along its joint (its cabinet stays;
-        the rest of ``pose`` follows from the cabinet's), and stop it."""
+        """Slide the body to where ``pose`` is along its joint (its host stays; the
+        rest of ``pose`` follows from the host's), and stop it."""
         quat = data.mocap_quat[self.cabinet_mocap]
         local = rotation_matrix(quat).T @ (pose.pos - data.mocap_pos[self.cabinet_mocap])
-        data.qpos[self.qpos_adr] = float(np.clip(self.closed[0] - local[0], 0.0, self.travel))
+        along = float(np.dot(local - np.array(self.closed), self.axis))
+        data.qpos[self.qpos_adr] = float(np.clip(along, 0.0, self.travel))
         data.qvel[self.qvel_adr] = 0.0
 
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import mujoco
@@ -28,6 +28,7 @@ from factask.geometry import Pose, without_roll
 from factask.graph.taskgraph import TaskGraph
 from factask.scene.cabinet import drawer_seat
 from factask.scene.objects import SceneObject, objects_by_name, points_in_rect, scene_objects
+from factask.scene.switch import switch_host
 from factask.sim.build.cabinet import (
     FURNITURE_KINDS,
     SlideHandle,
@@ -46,6 +47,7 @@ from factask.sim.build.parts import (
 )
 from factask.sim.build.rope_links import add_rope_links, add_rope_links_mjcf
 from factask.sim.build.stage import TABLE_HEIGHT
+from factask.sim.build.switch import add_switch, switch_handle
 from factask.sim.robots.attach import attach_robot
 from factask.sim.robots.registry import ROBOT_NAMES
 from factask.sim.robots.spatula import add_spatula, needs_spatula
@@ -95,8 +97,8 @@ class ObjectHandle:
         qpos_adr: Address of its free joint in ``qpos`` (7 numbers), or None if fixed.
         qvel_adr: Address of its free joint in ``qvel`` (6 numbers), or None if fixed.
         mocap_id: Index into ``mocap_pos``/``mocap_quat`` if fixed, else None.
-        slide: A drawer's slide joint in its cabinet (its pose follows from it), else
-            None.
+        slide: A drawer's slide joint in its cabinet, a switch's in its host (its pose
+            follows from it), else None.
     """
 
     name: str
@@ -266,6 +268,11 @@ def drawer_cabinet(graph: TaskGraph, drawer: SceneObject) -> SceneObject:
     return objects_by_name(graph)[seat.cabinet]
 
 
+def switch_host_object(graph: TaskGraph, switch: SceneObject) -> SceneObject:
+    """The scene object of the fixture a switch is mounted on."""
+    return objects_by_name(graph)[switch_host(graph, switch.variable)]
+
+
 _NAME_IN_ERROR = re.compile(r"name '([^']+)'")
 
 
@@ -292,8 +299,12 @@ def _scene_plans(graph: TaskGraph) -> tuple[list[SceneObject], list[ObjectPlan],
     plans = []
     for obj, pos in zip(objects, positions, strict=True):
         try:
+            # A switch's button is fixed to its host but moves on a joint: it has a mass.
             plan = plan_object(obj.name, obj.kind, obj.size, obj.color, obj.mass,
-                               obj.fixed, hollow=hollows.get(obj.variable, "ell"), pos=pos)
+                               obj.fixed and obj.kind != "switch",
+                               hollow=hollows.get(obj.variable, "ell"), pos=pos)
+            if obj.kind == "switch":
+                plan = replace(plan, mocap=False)
         except AssetError as exc:
             raise CompileError(obj.variable, exc.message, exc.fix) from None
         plans.append(furniture_plan(plan, obj, graph) if obj.kind in FURNITURE_KINDS else plan)
@@ -385,12 +396,18 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating",
     spec = new_spec(graph.name, timestep, GRAVITY, IMPRATIO)
     add_table(spec)
     classes = default_classes(spec)
-    # A drawer's body goes inside its cabinet's, so cabinets come first.
+    # A drawer's (a switch's) body goes inside its cabinet's (its host's), so hosts
+    # come first.
     by_name: dict[str, BodyHandles] = {}
-    for obj, plan in sorted(zip(objects, plans, strict=True), key=lambda p: p[0].kind == "drawer"):
+    for obj, plan in sorted(zip(objects, plans, strict=True),
+                            key=lambda p: p[0].kind in ("drawer", "switch")):
         if obj.kind == "drawer":
             cab = drawer_cabinet(graph, obj)
             by_name[obj.name] = add_drawer(spec, plan, obj, graph, by_name[cab.name], cab,
+                                           classes[0])
+        elif obj.kind == "switch":
+            host = switch_host_object(graph, obj)
+            by_name[obj.name] = add_switch(spec, plan, obj, by_name[host.name], host,
                                            classes[0])
         else:
             by_name[obj.name] = add_object(spec, plan, classes)
@@ -450,6 +467,15 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
                 body_id=body_ids[index], geom_ids=geoms, qpos_adr=None, qvel_adr=None,
                 mocap_id=None, slide=slide_handle(model, obj, graph, bodies[index], cab,
                                                   bodies_of[cab.name]))
+            continue
+        if obj.kind == "switch":  # a button on a slide joint inside its host
+            geom_object[list(geoms)] = index
+            host = switch_host_object(graph, obj)
+            handles[obj.name] = ObjectHandle(
+                name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size,
+                body_id=body_ids[index], geom_ids=geoms, qpos_adr=None, qvel_adr=None,
+                mocap_id=None, slide=switch_handle(model, obj, graph, bodies[index], host,
+                                                   bodies_of[host.name]))
             continue
         geom_object[list(geoms)] = index
         mocap, qpos_adr, dof_adr = mocap_ids[index], qpos_adrs[index], dof_adrs[index]

@@ -45,6 +45,7 @@ from factask.scene.objects import (
     resting_pose,
     yaw_rotation_2d,
 )
+from factask.scene.switch import switch_host, switch_pose
 from factask.sim.layout.pile import is_pile, layout_area, place_pile
 from factask.sim.layout.rope import is_rope, place_rope
 from factask.vocabulary.kinds import drawer_size
@@ -52,6 +53,7 @@ from factask.vocabulary.variables import (
     AtFixedPose,
     InCabinet,
     InRegion,
+    MountedOn,
     StartInside,
     StartOn,
     drawers_of,
@@ -282,6 +284,12 @@ def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
         hosts = graph.variable(host_var).instances
         by_host: dict[str, list[tuple[str, bool]]] = {}
         for v in group:
+            if isinstance(v.initial, MountedOn):  # its place on its host is a fact
+                host = switch_host(graph, v.name)
+                pose = switch_pose(objs[host], poses[host], 1.0 if v.initial.on else 0.0)
+                poses[v.name] = pose
+                occ.put(v.name, objs[v.name], pose)
+                continue
             if isinstance(v.initial, InCabinet):  # its place in its cabinet is a fact
                 seat = drawer_seat(graph, v.name)
                 cabinet = objs[seat.cabinet]
