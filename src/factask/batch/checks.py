@@ -44,6 +44,7 @@ from factask.relations.pile_in_zone import PileInZone, block_side
 from factask.relations.region import RegionRelation
 from factask.relations.rope import RopeAlong, segment_scores
 from factask.relations.status import MAX_TILT_DEG
+from factask.relations.switch import SwitchRelation
 from factask.scene.objects import (
     GEOMETRY_EPS,
     SceneObject,
@@ -51,7 +52,12 @@ from factask.scene.objects import (
     inner_half_xy,
 )
 from factask.vocabulary.errors import InvalidValueError
-from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
+from factask.vocabulary.kinds import (
+    drawer_closed_offset,
+    drawer_travel,
+    switch_off_offset,
+    switch_travel,
+)
 from factask.vocabulary.world import TABLE_Z
 
 
@@ -348,6 +354,41 @@ def check_drawer_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
     return _from_placed(placed)
 
 
+# ----------------------------------------------------------------- switches
+def switch_presses(host: SceneObject, host_pos: np.ndarray, host_quat: np.ndarray,
+                   pos: np.ndarray) -> np.ndarray:
+    """How far a switch is pressed down in every world (W,), a fraction of its travel:
+    the batched twin of :func:`factask.scene.switch.switch_pressed` (its slide along
+    the host's -z axis, 0 off, not clipped).
+
+    Args:
+        host: The switchable fixture.
+        host_pos: Its position in every world (W, 3).
+        host_quat: Its orientation in every world (W, 4).
+        pos: The switch's position in every world (W, 3).
+    """
+    local_z = np.einsum("wi,wi->w", rotation_matrices(host_quat)[:, :, 2], pos - host_pos)
+    off_z = switch_off_offset(host.kind, host.size)[2]
+    return (off_z - local_z) / switch_travel()
+
+
+def check_switch_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
+                       ) -> BatchFactorStatus:
+    """``switched_on`` / ``switched_off``: each switch's press against the relation's
+    threshold (its own ``holds``, applied to the array); a held switch never counts."""
+    assert isinstance(goal, SwitchRelation)
+    cols = scene.columns(t.objects)
+    placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)
+    for i in range(len(t.objects)):
+        host = t.supports[i]
+        (c,) = scene.columns([host])
+        pressed = switch_presses(scene.objects[host], scene.pos[:, c], scene.quat[:, c],
+                                 scene.pos[:, cols[i]])
+        placed[:, i] = np.asarray(goal.holds(pressed), dtype=bool)
+    placed &= ~scene.held[:, cols]
+    return _from_placed(placed)
+
+
 #: Relation kind -> its batched check.
 BATCH_CHECKS: dict[str, BatchCheck] = {
     "at_pose": check_slots_batch,
@@ -362,6 +403,8 @@ BATCH_CHECKS: dict[str, BatchCheck] = {
     "rope_along": check_rope_batch,
     "open": check_drawer_batch,
     "closed": check_drawer_batch,
+    "switched_on": check_switch_batch,
+    "switched_off": check_switch_batch,
 }
 
 
@@ -405,9 +448,11 @@ __all__ = [
     "check_region_batch",
     "check_rope_batch",
     "check_slots_batch",
+    "check_switch_batch",
     "drawer_openings",
     "group_areas",
     "placement_areas",
     "rest_surfaces",
     "slot_fits",
+    "switch_presses",
 ]

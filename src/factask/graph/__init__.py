@@ -30,6 +30,8 @@ from factask.relations import (
     Relation,
     Row,
     Stack,
+    SwitchedOff,
+    SwitchedOn,
     TargetPose,
 )
 from factask.vocabulary.errors import (
@@ -101,6 +103,8 @@ __all__ = [
     "SubjectError",
     "SubtaskFactor",
     "SubtaskTemplate",
+    "SwitchedOff",
+    "SwitchedOn",
     "TargetPose",
     "TaskGraph",
     "TemplateSlot",

@@ -30,6 +30,7 @@ from factask.library import (  # noqa: F401
     catalog_placing,
     catalog_stacking,
     catalog_structures,
+    catalog_switches,
 )
 from factask.library.builders import BUILDERS
 from factask.library.tags import graph_tags, task_tags

@@ -29,6 +29,8 @@ from factask.graph import (
     StateVariable,
     SubtaskFactor,
     SubtaskTemplate,
+    SwitchedOff,
+    SwitchedOn,
     TargetPose,
     TaskGraph,
     TemplateSlot,
@@ -50,7 +52,7 @@ BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinde
          "ell"]
 # Kinds objects may rest on (``on`` support: support or receptacle; a cabinet's top).
 SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "bowl",
-            "cabinet"]
+            "cabinet", "stove"]
 
 #: Centre distance of a bridge's two pillars (m): with 4 cm pillars the gap is
 #: 4 cm, so a deck at least 12 cm long spans it with 2 cm resting on each pillar.
@@ -113,6 +115,26 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
             name="close",
             description="push the {drawer} shut",
             goal=Closed(objects=["drawer"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="switch_on",
+        description="Switch on the {switch}.",
+        slots=[slot("switch", "the switch to press down", ["switch"])],
+        factors=[SubtaskFactor(
+            name="switch_on",
+            description="press the {switch} down",
+            goal=SwitchedOn(objects=["switch"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="switch_off",
+        description="Switch off the {switch}.",
+        slots=[slot("switch", "the switch to pull back up", ["switch"])],
+        factors=[SubtaskFactor(
+            name="switch_off",
+            description="pull the {switch} back up",
+            goal=SwitchedOff(objects=["switch"]),
         )],
     ),
     SubtaskTemplate(

@@ -5,7 +5,7 @@ switch is a push button, a body *inside* the host's body moved by one slide join
 down the host's -z axis (range 0 .. :func:`~factask.vocabulary.kinds.switch_travel`),
 so how far it is pressed is one number of ``qpos`` and the button goes wherever its
 host is put. The joint's dry friction keeps the button where the cup leaves it
-(down: on; pulled back up: off) against gravity; MuJoCo leaves out contacts between
+(down: on; pulled back up: off), its weight compensated; MuJoCo leaves out contacts between
 a body and its parent, so the button sinks into its host's top without touching it.
 Its pose is read and set through :class:`~factask.sim.build.cabinet.SlideHandle`,
 as a drawer's is.
@@ -56,7 +56,10 @@ def add_switch(spec: mujoco.MjSpec, plan: ObjectPlan, obj: SceneObject, host: Bo
     """
     del spec
     off = switch_off_offset(host_obj.kind, host_obj.size)
-    body = host.body.add_body(name=plan.name, pos=list(fmt(off)))
+    # Its weight compensated (a real button's spring and detent): a joint's dry
+    # friction is a soft constraint that lets a steady load creep, and the button
+    # crept down millimetres while the robot worked elsewhere.
+    body = host.body.add_body(name=plan.name, pos=list(fmt(off)), gravcomp=1.0)
     joint = body.add_joint(name=f"{plan.name}{GEOM_SEPARATOR}press",
                            type=mujoco.mjtJoint.mjJNT_SLIDE, axis=list(PRESS_AXIS),
                            range=[0.0, switch_travel()],

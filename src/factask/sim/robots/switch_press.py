@@ -100,20 +100,21 @@ def _run(robot: SuctionRobot, press: Pose, to: Pose) -> int | None:
     else:
         robot._follow(robot._path([(robot._cmd_pos + APPROACH_HEIGHT * up, yaw)]))
         raise PrimitiveAbort("no switch under the cup")
-    # The cup's tip where it touched; the move is relative to the top it met.
+    # The cup's tip where it touched the top; the tip ends where the top is to end
+    # (the planned heights, not the touch's: a guarded stop may already have nudged
+    # the button).
     start = robot._cmd_pos.copy()
-    drop = float(press.pos[2] - to.pos[2])
+    end = np.array([start[0], start[1], to.pos[2]])
     held = None
-    if drop > 0:  # on: push down past the end, the joint limit stops the button
-        goal = start - (drop + PRESS_OVERSHOOT) * up
-        robot._follow(robot._line(goal, yaw, PRESS_SPEED))
+    if to.pos[2] < press.pos[2]:  # on: push down past the end, the joint limit stops it
+        robot._follow(robot._line(end - PRESS_OVERSHOOT * up, yaw, PRESS_SPEED))
         robot._hold(max(1, round(PRESS_HOLD / robot.dt)))
     else:  # off: hold the top and pull it up
         if not robot.gripper.grasp(slider=True):
             robot._follow(robot._path([(robot._cmd_pos + APPROACH_HEIGHT * up, yaw)]))
             raise PrimitiveAbort("no switch under the cup")
         held = robot.gripper.held
-        robot._follow(robot._line(start - drop * up, yaw, PRESS_SPEED))
+        robot._follow(robot._line(end, yaw, PRESS_SPEED))
         robot._settle()
         robot._hold(max(1, round(PRESS_HOLD / robot.dt)))
         robot.suction_off()
