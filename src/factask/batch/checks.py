@@ -356,10 +356,11 @@ def check_drawer_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
 
 # ----------------------------------------------------------------- switches
 def switch_presses(host: SceneObject, host_pos: np.ndarray, host_quat: np.ndarray,
-                   pos: np.ndarray) -> np.ndarray:
-    """How far a switch is pressed down in every world (W,), a fraction of its travel:
-    the batched twin of :func:`factask.scene.switch.switch_pressed` (its slide along
-    the host's -z axis, 0 off, not clipped).
+                   pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """How far a switch is pressed down in every world (W,), a fraction of its travel,
+    and how far it stands off its mount sideways (W,), metres: the batched twin of
+    :func:`factask.scene.switch.switch_pressed` (its slide along the host's -z axis,
+    0 off, not clipped).
 
     Args:
         host: The switchable fixture.
@@ -367,24 +368,27 @@ def switch_presses(host: SceneObject, host_pos: np.ndarray, host_quat: np.ndarra
         host_quat: Its orientation in every world (W, 4).
         pos: The switch's position in every world (W, 3).
     """
-    local_z = np.einsum("wi,wi->w", rotation_matrices(host_quat)[:, :, 2], pos - host_pos)
-    off_z = switch_off_offset(host.kind, host.size)[2]
-    return (off_z - local_z) / switch_travel()
+    local = np.einsum("wij,wi->wj", rotation_matrices(host_quat), pos - host_pos)
+    off = switch_off_offset(host.kind, host.size)
+    lateral = np.hypot(local[:, 0] - off[0], local[:, 1] - off[1])
+    return (off[2] - local[:, 2]) / switch_travel(), lateral
 
 
 def check_switch_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
                        ) -> BatchFactorStatus:
-    """``switched_on`` / ``switched_off``: each switch's press against the relation's
-    threshold (its own ``holds``, applied to the array); a held switch never counts."""
+    """``switched_on`` / ``switched_off``: each switch on its mount, its press against
+    the relation's threshold (its own ``holds``, applied to the array); a held switch
+    never counts."""
     assert isinstance(goal, SwitchRelation)
     cols = scene.columns(t.objects)
     placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)
     for i in range(len(t.objects)):
         host = t.supports[i]
         (c,) = scene.columns([host])
-        pressed = switch_presses(scene.objects[host], scene.pos[:, c], scene.quat[:, c],
-                                 scene.pos[:, cols[i]])
-        placed[:, i] = np.asarray(goal.holds(pressed), dtype=bool)
+        pressed, off_mount = switch_presses(scene.objects[host], scene.pos[:, c],
+                                            scene.quat[:, c], scene.pos[:, cols[i]])
+        placed[:, i] = np.asarray(goal.holds(pressed), dtype=bool) & (
+            off_mount <= goal.tolerances.xy)
     placed &= ~scene.held[:, cols]
     return _from_placed(placed)
 

@@ -75,13 +75,14 @@ def put_block_on_stove_and_turn_it_on() -> TaskGraph:
 
 @register("turn-off-stove-and-move-pot-to-zone")
 def turn_off_stove_and_move_pot_to_zone() -> TaskGraph:
-    host, switch = stove(on=True)
+    host, switch = stove("black_stove", on=True, color="black")
     pot = var("blue_pot", "bowl", "blue", BOWL, fixed=False, description="the blue pot",
               initial=start_on(host))
     zone = var("green_zone", "zone", "green", WIDE_ZONE)
     off = use("switch_off", switch=switch)
     return assemble("turn-off-stove-and-move-pot-to-zone",
-                    "Turn off the stove, then move the blue pot from it to the green zone.",
+                    "Turn off the black stove, then move the blue pot from it to the green "
+                    "zone.",
                     off, use("place_in_zone", objects=pot, zone=zone, after=[off]),
                     extra=[host])
 

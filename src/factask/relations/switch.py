@@ -65,15 +65,20 @@ class SwitchRelation(RelationBase):
                          check_yaw=False)
 
     def check(self, solved: SolvedFactor, scene: CheckScene) -> Verdict:
-        """A switch is placed when its press meets the goal and the robot does not
-        hold it."""
+        """A switch is placed when it is on its mount, its press meets the goal and
+        the robot does not hold it."""
         placed: dict[str, int | None] = {}
         problems = []
         for i, name in enumerate(solved.objects):
             host = solved.supports[i]
-            pressed = switch_pressed(scene.objects[host], scene.pose(host), scene.pose(name))
+            pressed, off_mount = switch_pressed(scene.objects[host], scene.pose(host),
+                                                scene.pose(name))
             if name in scene.held:
                 problems.append(f"{name}: held by the robot")
+            elif off_mount > self.tolerances.xy:
+                # Its joint keeps a button on its mount; a pose off it is no state of
+                # this switch (a scene moved by hand), and its press means nothing.
+                problems.append(f"{name}: {off_mount * 100:.1f} cm off its mount on {host}")
             elif self.holds(pressed):
                 placed[name] = i
             else:

@@ -58,18 +58,23 @@ def switch_pose(host: SceneObject, host_pose: Pose, pressed: float) -> Pose:
     return Pose(host_pose.pos + rotation_matrix(host_pose.quat) @ local, host_pose.quat.copy())
 
 
-def switch_pressed(host: SceneObject, host_pose: Pose, pose: Pose) -> float:
+def switch_pressed(host: SceneObject, host_pose: Pose, pose: Pose) -> tuple[float, float]:
     """How far a switch at ``pose`` is pressed down, a fraction of its travel (its
-    slide along the host's -z axis; 0 off, 1 on; not clipped).
+    slide along the host's -z axis; 0 off, 1 on; not clipped), and how far (m) it
+    stands off its mount sideways (0 for any state its joint allows).
 
     Args:
         host: The switchable fixture the switch is mounted on.
         host_pose: Its pose.
         pose: The switch's pose.
+
+    Returns:
+        (pressed fraction, horizontal distance from its mount's axis).
     """
     local = rotation_matrix(host_pose.quat).T @ (pose.pos - host_pose.pos)
-    off_z = switch_off_offset(host.kind, host.size)[2]
-    return float((off_z - local[2]) / switch_travel())
+    off = switch_off_offset(host.kind, host.size)
+    lateral = float(np.hypot(local[0] - off[0], local[1] - off[1]))
+    return float((off[2] - local[2]) / switch_travel()), lateral
 
 
 def button_top(switch: SceneObject, pose: Pose) -> np.ndarray:
