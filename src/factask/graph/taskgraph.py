@@ -325,8 +325,11 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
         for name in f.goal.objects:
             v = variables.get(name)
             # A drawer (a switch) is fixed (never picked) but slides in its cabinet (its
-            # host): 'open' ('switched_on') moves it.
-            if v is not None and v.is_fixed and v.kind not in ("drawer", "switch"):
+            # host): 'open' ('switched_on') moves it. A kind the relation does not move
+            # at all is said by the relation (its fix names the right variable).
+            moves = f.goal.moves_kinds
+            if (v is not None and v.is_fixed and v.kind not in ("drawer", "switch")
+                    and (moves is None or v.kind in moves)):
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))
         out.extend(f.goal.problems(f.name, variables))

@@ -97,7 +97,8 @@ def _run(robot: SuctionRobot, press: Pose, to: Pose) -> int | None:
     if robot._follow(robot._line(press.pos - PICK_OVERSHOOT * up, yaw, GUARDED_SPEED),
                      stop=robot.gripper.cup_in_contact):
         robot._hold_here()
-    else:
+    # Only a body on a slide joint of its own is pushed (never the table, an object).
+    if not robot.gripper.touched_sliders():
         robot._follow(robot._path([(robot._cmd_pos + APPROACH_HEIGHT * up, yaw)]))
         raise PrimitiveAbort("no switch under the cup")
     # The cup's tip where it touched the top; the tip ends where the top is to end
