@@ -272,3 +272,23 @@ def test_switch_kinds_table_and_library_builder() -> None:
         host, switch = stove("thing", kind=kind)
         graph = TaskGraph(name="t", variables=[host, switch])
         assert not [p for p in graph.problems() if p.field != "factors"]
+
+
+# ------------------------------------------------------------------ the batch
+def test_switch_tasks_are_left_to_the_scalar_oracle_in_a_batch() -> None:
+    from factask.batch.agreement import NOT_BATCHED, batched
+
+    assert {"switched_on", "switched_off"} <= NOT_BATCHED
+    assert not any(batched(get_task(t)) for t in SWITCH_TASKS)
+
+
+def test_a_switch_task_is_refused_by_the_batched_env_with_a_typed_error() -> None:
+    import importlib.util
+
+    if importlib.util.find_spec("mujoco_warp") is None or importlib.util.find_spec("warp") is None:
+        pytest.skip("the gpu extra is not installed")
+    from factask.batch import make_batch
+    from factask.vocabulary.errors import InvalidValueError
+
+    with pytest.raises(InvalidValueError, match=r"switch's pose follows its slide joint"):
+        make_batch("turn-on-stove", 1, device="cpu")
