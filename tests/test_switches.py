@@ -254,6 +254,14 @@ def test_bad_switch_is_refused_naming_the_field(variables: list[dict[str, Any]],
     assert any(n == node and f == field and fix for n, f, fix in problems), problems
 
 
+@pytest.mark.parametrize(("relation", "on"), [("switched_on", True), ("switched_off", False)])
+def test_a_switch_that_starts_as_the_goal_asks_is_refused(relation: str, on: bool) -> None:
+    variables = _stove_vars(initial={"type": "mounted_on", "host": "hob", "on": on})
+    problems = _problems(_graph(variables, {"type": relation, "objects": ["knob"]}))
+    assert [(n, f) for n, f, _ in problems] == [("f", "goal")]
+    assert f'"on": {str(not on).lower()}' in problems[0][2]
+
+
 @pytest.mark.parametrize("relation", ["switched_on", "switched_off"])
 def test_switch_relations_refuse_what_is_not_a_switch(relation: str) -> None:
     # The stove itself is not what is pressed: its switch is.

@@ -335,10 +335,8 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
         out.extend(f.goal.problems(f.name, variables))
         host = None if f.after else f.goal.met_at_start(variables)
         if host is not None:  # every reset would be refused: say it once, up front
-            out.append(Problem(f.name, "goal", f"met at the start: every object it moves "
-                               f"starts on or in {host!r}, where the goal puts it",
-                               "start them elsewhere (initial: table), or choose another "
-                               "goal"))
+            message, fix = f.goal.met_at_start_problem(host)
+            out.append(Problem(f.name, "goal", message, fix))
         for a in f.after:
             if a == f.name:
                 out.append(Problem(f.name, "after", "factor is ordered after itself",

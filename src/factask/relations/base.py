@@ -174,6 +174,21 @@ class RelationBase(BaseModel, abc.ABC):
             return host
         return None
 
+    def met_at_start_problem(self, host: str) -> tuple[str, str]:
+        """What validation says when :meth:`met_at_start` found ``host``: (message,
+        fix). Relations whose start state is not a placement (a switch that starts
+        on) say it in their own words.
+
+        Args:
+            host: What :meth:`met_at_start` returned.
+
+        Returns:
+            The problem's message and its fix.
+        """
+        return (f"met at the start: every object it moves starts on or in {host!r}, where "
+                "the goal puts it",
+                "start them elsewhere (initial: table), or choose another goal")
+
     def layout_reserves(self, variables: Mapping[str, StateVariable]) -> list[Reserve]:
         """Table the goal's anchors must keep clear at reset (see :class:`Reserve`);
         none by default: most slots are chosen among many spots.

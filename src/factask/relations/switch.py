@@ -13,7 +13,8 @@ yet (a button is on once the cup has let it go and it stays down).
 from __future__ import annotations
 
 import abc
-from typing import Any, ClassVar
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -22,6 +23,9 @@ from factask.relations.solving import Plan, SolveContext, SolvedFactor, make_pla
 from factask.relations.status import CheckScene, Verdict
 from factask.scene.objects import SceneObject
 from factask.scene.switch import switch_host, switch_pose, switch_pressed
+
+if TYPE_CHECKING:  # the graph model sits above the relations
+    from factask.vocabulary.variables import StateVariable
 
 #: The kind whose variables these relations move.
 SWITCH_KIND = "switch"
@@ -49,6 +53,27 @@ class SwitchRelation(RelationBase):
     def holds(self, pressed: Any) -> Any:
         """Whether a switch pressed down by ``pressed`` (a fraction, or an array of
         them) meets the goal."""
+
+    def met_at_start(self, variables: Mapping[str, StateVariable]) -> str | None:
+        """The first switch when every switch the goal names starts in the state it
+        asks for (``mounted_on`` with ``on`` = the goal's): every reset would be
+        refused; else None.
+
+        Args:
+            variables: The graph's variables by name.
+        """
+        wanted = self.target_pressed > 0.5
+        starts = [getattr(getattr(variables.get(o), "initial", None), "on", None)
+                  for o in self.objects]
+        return self.objects[0] if starts and all(s is wanted for s in starts) else None
+
+    def met_at_start_problem(self, host: str) -> tuple[str, str]:
+        """Switches that start as the goal asks: say so, with the fix."""
+        state = "on" if self.target_pressed > 0.5 else "off"
+        return (f"met at the start: every switch it names starts {state} ({host!r} "
+                f"among them)",
+                f'start them {"off" if state == "on" else "on"} (initial "on": '
+                f'{"false" if state == "on" else "true"}), or choose another goal')
 
     def solve(self, ctx: SolveContext, movers: list[SceneObject]) -> Plan:
         """One slot per switch: its pose at :attr:`target_pressed` on its host as the
