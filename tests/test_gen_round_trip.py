@@ -74,7 +74,7 @@ MISREAD: dict[str, tuple[str, ...]] = {
                                "turn-on-stove-and-put-pot-on-it",
                                "put-block-on-stove-and-turn-it-on",
                                "turn-off-stove-and-move-pot-to-zone", "turn-on-two-stoves",
-                               "turn-on-lamp"),
+                               "turn-on-lamp", "put-pot-on-stove-and-turn-it-on"),
 }
 _WHY = {task: why for why, tasks in MISREAD.items() for task in tasks}
 

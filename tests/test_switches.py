@@ -28,7 +28,8 @@ from factask.vocabulary.tolerances import SWITCH_OFF_FRACTION, SWITCH_ON_FRACTIO
 #: The library's switch tasks (catalog_switches).
 SWITCH_TASKS = ["turn-on-stove", "turn-off-stove", "turn-on-stove-and-put-pot-on-it",
                 "put-block-on-stove-and-turn-it-on", "turn-off-stove-and-move-pot-to-zone",
-                "turn-on-two-stoves", "turn-on-lamp"]
+                "turn-on-two-stoves", "turn-on-lamp",
+                "put-pot-on-stove-and-turn-it-on"]
 
 
 def _pressed(env: FactaskEnv, switch: str, host: str) -> float:

@@ -102,3 +102,15 @@ def turn_on_lamp() -> TaskGraph:
     host, switch = stove("lamp", kind="lamp", color="yellow")
     return assemble("turn-on-lamp", "Turn on the lamp.",
                     use("switch_on", switch=switch), extra=[host])
+
+
+@register("put-pot-on-stove-and-turn-it-on")
+def put_pot_on_stove_and_turn_it_on() -> TaskGraph:
+    # The other order of turn-on-stove-and-put-pot-on-it: a 12 cm pot on the stove
+    # first, then the press; the button on the control strip stays clear of the pot.
+    host, switch = stove("white_stove", color="white")
+    pot = var("red_pot", "bowl", "red", BOWL, fixed=False, description="the red pot")
+    put = use("place_on_top", objects=pot, support=host)
+    return assemble("put-pot-on-stove-and-turn-it-on",
+                    "Put the red pot on the white stove, then turn the stove on.",
+                    put, use("switch_on", switch=switch, after=[put]))
