@@ -378,7 +378,16 @@ def check_switch_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
                        ) -> BatchFactorStatus:
     """``switched_on`` / ``switched_off``: each switch on its mount, its press against
     the relation's threshold (its own ``holds``, applied to the array); a held switch
-    never counts."""
+    never counts.
+
+    Args:
+        goal: A ``switched_on`` / ``switched_off`` goal.
+        t: Its targets (``supports``: each switch's host).
+        scene: Every world's poses.
+
+    Returns:
+        The factor's status in every world.
+    """
     assert isinstance(goal, SwitchRelation)
     cols = scene.columns(t.objects)
     placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)

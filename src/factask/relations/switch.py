@@ -51,8 +51,15 @@ class SwitchRelation(RelationBase):
 
     @abc.abstractmethod
     def holds(self, pressed: Any) -> Any:
-        """Whether a switch pressed down by ``pressed`` (a fraction, or an array of
-        them) meets the goal."""
+        """Whether a switch pressed down by ``pressed`` meets the goal.
+
+        Args:
+            pressed: A fraction of the button's travel, or an array of them (the
+                batched check applies the same threshold).
+
+        Returns:
+            A bool, or an array of them.
+        """
 
     def met_at_start(self, variables: Mapping[str, StateVariable]) -> str | None:
         """The first switch when every switch the goal names starts in the state it

@@ -79,5 +79,13 @@ def switch_pressed(host: SceneObject, host_pose: Pose, pose: Pose) -> tuple[floa
 
 def button_top(switch: SceneObject, pose: Pose) -> np.ndarray:
     """World position (3,) of the centre of a switch's top: where the cup presses it
-    (and holds it to pull it back up)."""
+    (and holds it to pull it back up).
+
+    Args:
+        switch: The switch.
+        pose: Its pose.
+
+    Returns:
+        The point, metres.
+    """
     return pose.pos + rotation_matrix(pose.quat) @ np.array([0.0, 0.0, switch.size[2] / 2])

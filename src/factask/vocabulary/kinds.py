@@ -204,7 +204,17 @@ SWITCH_TRAVEL_FRACTION = 0.75
 
 
 def switch_size(host_kind: str) -> tuple[float, float, float]:
-    """The size a switch of a host of kind ``host_kind`` has (its mount's button)."""
+    """The size a switch of a host of kind ``host_kind`` has (its mount's button).
+
+    Args:
+        host_kind: A switchable kind (a key of :data:`SWITCH_HOSTS`).
+
+    Returns:
+        Full extents (x, y, z), metres.
+
+    Raises:
+        KeyError: ``host_kind`` has no switch (validation says so first).
+    """
     return SWITCH_HOSTS[host_kind].button
 
 
@@ -218,7 +228,15 @@ def switch_off_offset(host_kind: str,
     """Centre of the switch of a host of ``host_kind`` and ``host_size``, off, in the
     host's frame: in the middle of the -x strip, its top :data:`SWITCH_RISE_OFF`
     above the host's top (its lower part sunk in the host, which it never touches:
-    MuJoCo leaves out contacts between a body and its parent)."""
+    MuJoCo leaves out contacts between a body and its parent).
+
+    Args:
+        host_kind: A switchable kind (a key of :data:`SWITCH_HOSTS`).
+        host_size: The host's full extents, metres.
+
+    Returns:
+        The switch's centre (x, y, z) in the host's frame, metres.
+    """
     mount = SWITCH_HOSTS[host_kind]
     return (-host_size[0] / 2 + mount.strip / 2, 0.0,
             host_size[2] / 2 + SWITCH_RISE_OFF - mount.button[2] / 2)

@@ -407,8 +407,7 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating",
                                            classes[0])
         elif obj.kind == "switch":
             host = switch_host_object(graph, obj)
-            by_name[obj.name] = add_switch(spec, plan, obj, by_name[host.name], host,
-                                           classes[0])
+            by_name[obj.name] = add_switch(plan, by_name[host.name], host, classes[0])
         else:
             by_name[obj.name] = add_object(spec, plan, classes)
     handles = [by_name[o.name] for o in objects]

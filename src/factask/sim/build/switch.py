@@ -38,15 +38,12 @@ BUTTON_ARMATURE = 0.02
 LIMIT_SOLREF = (0.005, 1.0)
 
 
-def add_switch(spec: mujoco.MjSpec, plan: ObjectPlan, obj: SceneObject, host: BodyHandles,
-               host_obj: SceneObject, obj_cls: mujoco.MjsDefault) -> BodyHandles:
+def add_switch(plan: ObjectPlan, host: BodyHandles, host_obj: SceneObject,
+               obj_cls: mujoco.MjsDefault) -> BodyHandles:
     """Add a switch's body inside its host's, with its slide joint.
 
     Args:
-        spec: The scene's spec (unused beyond the host's body; kept for symmetry with
-            :func:`~factask.sim.build.cabinet.add_drawer`).
         plan: The switch's plan (a free body's: it has a mass).
-        obj: The switch.
         host: Its host's body.
         host_obj: Its host.
         obj_cls: The spec's default class of object geoms.
@@ -54,7 +51,6 @@ def add_switch(spec: mujoco.MjSpec, plan: ObjectPlan, obj: SceneObject, host: Bo
     Returns:
         Handles of the body, its geoms and its slide joint.
     """
-    del spec
     off = switch_off_offset(host_obj.kind, host_obj.size)
     # Its weight compensated (a real button's spring and detent): a joint's dry
     # friction is a soft constraint that lets a steady load creep, and the button
