@@ -213,8 +213,11 @@ def switch_size(host_kind: str) -> tuple[float, float, float]:
         Full extents (x, y, z), metres.
 
     Raises:
-        KeyError: ``host_kind`` has no switch (validation says so first).
+        UnknownKindError: ``host_kind`` has no switch (validation says so first).
     """
+    if host_kind not in SWITCH_HOSTS:
+        raise UnknownKindError(f"a {host_kind} has no switch; switchable kinds: "
+                               f"{', '.join(SWITCH_HOSTS)}")
     return SWITCH_HOSTS[host_kind].button
 
 
