@@ -35,6 +35,7 @@ from factask.vocabulary.variables import (
     StartInside,
     StateVariable,
     cabinet_problems,
+    gates_of,
 )
 
 #: Weights must sum to 1 within this absolute tolerance.
@@ -156,9 +157,11 @@ class TaskGraph(BaseModel):
 
         Edges come from B's explicit ``after`` and from implied order: B's goal is
         anchored to (rests on, goes into, aligns with) a variable that A moves
-        (see :mod:`factask.graph.order`).
+        (see :mod:`factask.graph.order`); a goal anchored to a receptacle that a
+        drawer or door gates is anchored to that gate too
+        (:func:`~factask.vocabulary.variables.gates_of`).
         """
-        return dependency_graph(self.factors)
+        return dependency_graph(self.factors, gates_of(self.variables))
 
     def factor_order(self) -> list[str]:
         """Factors in an order that respects every dependency (declaration order
@@ -321,8 +324,9 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             out.append(Problem(f.name, "goal.objects", f"{name!r} listed twice", "list it once"))
         for name in f.goal.objects:
             v = variables.get(name)
-            # A drawer is fixed (never picked) but slides in its cabinet: 'open' moves it.
-            if v is not None and v.is_fixed and v.kind != "drawer":
+            # A drawer (a door) is fixed, never picked, but slides in its cabinet (swings
+            # on its microwave): 'open' moves it.
+            if v is not None and v.is_fixed and v.kind not in ("drawer", "door"):
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))
         out.extend(f.goal.problems(f.name, variables))

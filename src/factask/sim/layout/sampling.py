@@ -20,7 +20,8 @@ import numpy as np
 from factask.geometry import Pose
 from factask.graph.taskgraph import TaskGraph
 from factask.relations.base import Reserve
-from factask.scene.cabinet import drawer_pose, drawer_seat, front_reserve
+from factask.relations.drawer import pose_at
+from factask.scene.cabinet import front_reserve
 from factask.scene.collision import (
     CLEARANCE,
     MAX_TRIES_PER_OBJECT,
@@ -36,6 +37,7 @@ from factask.scene.collision import (
     on_table,
     random_yaws,
 )
+from factask.scene.microwave import swing_reserve
 from factask.scene.objects import (
     GEOMETRY_EPS,
     SceneObject,
@@ -154,13 +156,17 @@ def _layout_reserves(graph: TaskGraph) -> dict[str, list[Reserve]]:
     for f in graph.factors:
         for r in f.goal.layout_reserves(variables):
             out.setdefault(r.anchor, []).append(r)
-    # A cabinet keeps the table in front of it clear: its drawers slide out there.
+    # A cabinet (a microwave) keeps the table in front of it clear: its drawers slide
+    # (its door swings) out there.
     objs = objects_by_name(graph)
     for v in graph.variables:
         drawers = drawers_of(graph.variables, v.name) if v.kind == "cabinet" else []
         if drawers:
             depth = drawer_size(v.extents, len(drawers))[0]
             x, y, size = front_reserve(objs[v.instances[0]], depth)
+            out.setdefault(v.name, []).append(Reserve(v.name, x, y, size))
+        if v.kind == "microwave":  # its door swings out there
+            x, y, size = swing_reserve(objs[v.instances[0]])
             out.setdefault(v.name, []).append(Reserve(v.name, x, y, size))
     return out
 
@@ -282,11 +288,10 @@ def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
         hosts = graph.variable(host_var).instances
         by_host: dict[str, list[tuple[str, bool]]] = {}
         for v in group:
-            if isinstance(v.initial, InCabinet):  # its place in its cabinet is a fact
-                seat = drawer_seat(graph, v.name)
-                cabinet = objs[seat.cabinet]
-                pose = drawer_pose(cabinet, poses[seat.cabinet], seat, objs[v.name],
-                                   v.initial.opening)
+            if isinstance(v.initial, InCabinet):  # its place in its host is a fact
+                host = v.initial.cabinet
+                pose = pose_at(graph, objs[v.name], objs[host], poses[host],
+                               v.initial.opening)
                 poses[v.name] = pose
                 occ.put(v.name, objs[v.name], pose)
                 continue
