@@ -40,6 +40,7 @@ from factask.sim.build.compile import (
 from factask.sim.layout.checks import TaskStatus, check_task
 from factask.sim.layout.reset import reset_layout
 from factask.sim.robots.attach import SuctionRobot, make_robot
+from factask.sim.robots.door_swing import door_swing
 from factask.sim.robots.health import physics_problem
 from factask.sim.robots.low_carry import low_pick_and_place
 from factask.sim.robots.slide_pull import slide_pull
@@ -101,6 +102,17 @@ def _pose4(value: Any, what: str) -> Pose:
     return Pose.from_xyz_yaw(*arr)
 
 
+def _xy(value: Any, what: str) -> np.ndarray:
+    """A point (x, y) of an action, checked (two finite numbers; a third is ignored)."""
+    try:
+        arr = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        arr = np.full(1, np.nan)  # not numbers at all: reported below
+    if arr.shape not in ((2,), (3,)) or not np.all(np.isfinite(arr)):
+        raise ActionError(f"{what} must be 2 finite numbers (x, y in metres), got {value!r}")
+    return arr[:2]
+
+
 class FactaskEnv(gym.Env):
     """A task graph as a gymnasium environment with a suction pick-and-place action.
 
@@ -126,6 +138,9 @@ class FactaskEnv(gym.Env):
     segment, Ravens' ``PickPlace(height=0.02)``). An action with ``grasp`` and
     ``slide_to`` (x, y, z, yaw) holds a drawer's handle at ``grasp`` and slides it
     level until the tip is over ``slide_to``'s x, y (:mod:`factask.sim.robots.slide_pull`).
+    An action with ``grasp``, ``swing_to`` (x, y, z, yaw) and ``hinge`` (x, y) holds a
+    door's handle at ``grasp`` and swings it level about the hinge's vertical axis
+    until the tip is on ``swing_to``'s bearing (:mod:`factask.sim.robots.door_swing`).
 
     Raises:
         GraphValidationError, CompileError: the graph cannot be compiled.
@@ -311,15 +326,18 @@ class FactaskEnv(gym.Env):
             raise ResetNeededError("call reset() before step()")
         pushing = isinstance(action, dict) and {"start", "end"} <= set(action)
         sliding = isinstance(action, dict) and {"grasp", "slide_to"} <= set(action)
-        if not (pushing or sliding) and (not isinstance(action, dict)
-                                         or not {"pick", "place"} <= set(action)):
+        swinging = isinstance(action, dict) and {"grasp", "swing_to", "hinge"} <= set(action)
+        if not (pushing or sliding or swinging) and (
+                not isinstance(action, dict) or not {"pick", "place"} <= set(action)):
             raise ActionError(f"action must be a dict with 'pick' and 'place' (or 'start' and "
-                              f"'end' of a push, or 'grasp' and 'slide_to' of a drawer's "
-                              f"slide), got {action!r}")
+                              f"'end' of a push, 'grasp' and 'slide_to' of a drawer's "
+                              f"slide, or 'grasp', 'swing_to' and 'hinge' of a door's "
+                              f"swing), got {action!r}")
         first, second = (("start", "end") if pushing else ("grasp", "slide_to") if sliding
-                         else ("pick", "place"))
+                         else ("grasp", "swing_to") if swinging else ("pick", "place"))
         pick = _pose4(action[first], first)
         place = _pose4(action[second], second)
+        hinge = _xy(action["hinge"], "hinge") if swinging else None
         if self.failure is not None:
             return self._obs(), 0.0, True, False, self._info(self._status)
         # The reward is what *this action* changed: measure the baseline now, so
@@ -329,6 +347,9 @@ class FactaskEnv(gym.Env):
         if pushing:  # a spatula's push (factask.sim.robots.spatula)
             result = push(self.robot, pick, place, on_step=self.frame_callback,
                           max_steps=max_steps)
+        elif hinge is not None:  # a door held by its handle (factask.sim.robots.door_swing)
+            result = door_swing(self.robot, pick, place, hinge, on_step=self.frame_callback,
+                                max_steps=max_steps)
         elif sliding:  # a drawer held by its handle (factask.sim.robots.slide_pull)
             result = slide_pull(self.robot, pick, place, on_step=self.frame_callback,
                                 max_steps=max_steps)

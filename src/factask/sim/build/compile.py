@@ -26,7 +26,7 @@ import numpy as np
 
 from factask.geometry import Pose, without_roll
 from factask.graph.taskgraph import TaskGraph
-from factask.scene.cabinet import drawer_seat
+from factask.relations.drawer import host_of
 from factask.scene.objects import SceneObject, objects_by_name, points_in_rect, scene_objects
 from factask.sim.build.cabinet import (
     FURNITURE_KINDS,
@@ -35,6 +35,7 @@ from factask.sim.build.cabinet import (
     furniture_plan,
     slide_handle,
 )
+from factask.sim.build.microwave import HingeHandle, add_door, hinge_handle
 from factask.sim.build.mjspec import BodyHandles, add_object, add_table, default_classes, new_spec
 from factask.sim.build.parts import (
     GEOM_SEPARATOR,
@@ -95,8 +96,8 @@ class ObjectHandle:
         qpos_adr: Address of its free joint in ``qpos`` (7 numbers), or None if fixed.
         qvel_adr: Address of its free joint in ``qvel`` (6 numbers), or None if fixed.
         mocap_id: Index into ``mocap_pos``/``mocap_quat`` if fixed, else None.
-        slide: A drawer's slide joint in its cabinet (its pose follows from it), else
-            None.
+        slide: A drawer's slide joint in its cabinet or a door's hinge on its
+            microwave (its pose follows from it), else None.
     """
 
     name: str
@@ -108,7 +109,7 @@ class ObjectHandle:
     qpos_adr: int | None
     qvel_adr: int | None
     mocap_id: int | None
-    slide: SlideHandle | None = None
+    slide: SlideHandle | HingeHandle | None = None
 
     @property
     def fixed(self) -> bool:
@@ -261,9 +262,8 @@ def _marker_slots(graph: TaskGraph) -> list[tuple[str, int, str]]:
 
 
 def drawer_cabinet(graph: TaskGraph, drawer: SceneObject) -> SceneObject:
-    """The scene object of the cabinet a drawer sits in."""
-    seat = drawer_seat(graph, drawer.variable)
-    return objects_by_name(graph)[seat.cabinet]
+    """The scene object of the cabinet a drawer sits in (the microwave a door hangs on)."""
+    return objects_by_name(graph)[host_of(graph, drawer.variable)]
 
 
 _NAME_IN_ERROR = re.compile(r"name '([^']+)'")
@@ -385,13 +385,17 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating",
     spec = new_spec(graph.name, timestep, GRAVITY, IMPRATIO)
     add_table(spec)
     classes = default_classes(spec)
-    # A drawer's body goes inside its cabinet's, so cabinets come first.
+    # A drawer's (door's) body goes inside its cabinet's (microwave's): hosts first.
     by_name: dict[str, BodyHandles] = {}
-    for obj, plan in sorted(zip(objects, plans, strict=True), key=lambda p: p[0].kind == "drawer"):
+    for obj, plan in sorted(zip(objects, plans, strict=True),
+                            key=lambda p: p[0].kind in ("drawer", "door")):
         if obj.kind == "drawer":
             cab = drawer_cabinet(graph, obj)
             by_name[obj.name] = add_drawer(spec, plan, obj, graph, by_name[cab.name], cab,
                                            classes[0])
+        elif obj.kind == "door":
+            mw = drawer_cabinet(graph, obj)
+            by_name[obj.name] = add_door(spec, plan, obj, by_name[mw.name], mw, classes[0])
         else:
             by_name[obj.name] = add_object(spec, plan, classes)
     handles = [by_name[o.name] for o in objects]
@@ -442,14 +446,16 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
     bodies_of = {o.name: h for o, h in zip(objects, bodies, strict=True)}
     for index, obj in enumerate(objects):
         geoms = geom_ids[index]
-        if obj.kind == "drawer":  # on a slide joint inside its cabinet
+        if obj.kind in ("drawer", "door"):  # on a joint inside its cabinet (microwave)
             geom_object[list(geoms)] = index
             cab = drawer_cabinet(graph, obj)
+            joint = (slide_handle(model, obj, graph, bodies[index], cab, bodies_of[cab.name])
+                     if obj.kind == "drawer"
+                     else hinge_handle(model, bodies[index], cab, bodies_of[cab.name]))
             handles[obj.name] = ObjectHandle(
                 name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size,
                 body_id=body_ids[index], geom_ids=geoms, qpos_adr=None, qvel_adr=None,
-                mocap_id=None, slide=slide_handle(model, obj, graph, bodies[index], cab,
-                                                  bodies_of[cab.name]))
+                mocap_id=None, slide=joint)
             continue
         geom_object[list(geoms)] = index
         mocap, qpos_adr, dof_adr = mocap_ids[index], qpos_adrs[index], dof_adrs[index]
