@@ -28,7 +28,7 @@ from factask.vocabulary.tolerances import DRAWER_CLOSED_FRACTION, DRAWER_OPEN_FR
 
 DOOR_TASKS = ["open-microwave", "close-microwave", "open-microwave-and-put-bowl-inside",
               "put-bowl-in-microwave-and-close-it", "put-bowl-in-open-microwave-and-close-it",
-              "put-bowl-in-open-drawer-and-close-it"]
+              "put-bowl-in-open-drawer-and-close-it", "put-mug-in-white-microwave-and-close-it"]
 
 
 def _opening(env: FactaskEnv) -> float:

@@ -1,5 +1,5 @@
-"""Library tasks with hinged doors: a microwave opened, shut, a bowl put inside; and
-a drawer that starts open, a bowl put in it, shut.
+"""Library tasks with hinged doors: a microwave opened, shut, a bowl (or a mug's
+stand-in) put inside; and a drawer that starts open, a bowl put in it, shut.
 
 A microwave stands fixed on the table, open at its -x side behind its door (and at
 the top, for the top-down cups); the door is a variable of its own that starts
@@ -23,20 +23,27 @@ from factask.vocabulary.kinds import door_size, kind_spec
 MICROWAVE = kind_spec("microwave").default_size
 
 
-def microwave(opening: float = 0.0, color: str = "gray") -> tuple[StateVariable, StateVariable]:
-    """A microwave variable and its door, the door sized for it.
+#: A mug's stand-in: an upright cylinder the cup takes by its top.
+MUG = (0.05, 0.05, 0.07)
+
+
+def microwave(opening: float = 0.0, color: str = "gray",
+              name: str = "microwave") -> tuple[StateVariable, StateVariable]:
+    """A microwave variable and its door (``<name>_door``), the door sized for it.
 
     Args:
         opening: How far the door starts swung out (a fraction of its range).
         color: Their colour.
+        name: The microwave variable's name.
 
     Returns:
         The microwave and its door.
     """
-    box = var("microwave", "microwave", color, MICROWAVE)
-    door = var("microwave_door", "door", color, door_size(MICROWAVE),
-               description="the door of the microwave",
-               initial=InCabinet(cabinet="microwave", opening=opening))
+    box = var(name, "microwave", color, MICROWAVE,
+              description=f"the {name.replace('_', ' ')}")
+    door = var(f"{name}_door", "door", color, door_size(MICROWAVE),
+               description=f"the door of the {name.replace('_', ' ')}",
+               initial=InCabinet(cabinet=name, opening=opening))
     return box, door
 
 
@@ -98,6 +105,19 @@ def put_bowl_in_open_microwave_and_close_it() -> TaskGraph:
         "put-bowl-in-open-microwave-and-close-it",
         "Put the blue bowl inside the microwave, whose door is open, and close the door.",
         use("put_in_container", objects=_bowl(), container=box),
+        use("close_door", door=door),
+    )
+
+
+@register("put-mug-in-white-microwave-and-close-it", family="articulated")
+def put_mug_in_white_microwave_and_close_it() -> TaskGraph:
+    box, door = microwave(color="white", name="white_microwave")
+    mug = var("red_mug", "cylinder", "red", MUG, description="the red mug (a cylinder)")
+    return assemble(
+        "put-mug-in-white-microwave-and-close-it",
+        "Open the white microwave, put the red mug inside it and close its door.",
+        use("open_door", door=door, milestone=True),
+        use("put_in_container", objects=mug, container=box),
         use("close_door", door=door),
     )
 
