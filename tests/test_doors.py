@@ -103,6 +103,28 @@ def test_door_pose_follows_its_hinge_joint() -> None:
     assert abs(np.dot(pose.quat, env.data.xquat[body])) == pytest.approx(1.0, abs=1e-9)
 
 
+def test_the_scene_mjcf_keeps_the_door_on_its_hinge() -> None:
+    from factask.sim.build.compile import compile_graph
+
+    scene = compile_graph(get_task("put-bowl-in-microwave-and-close-it"), robot="arm")
+    model = mujoco.MjModel.from_xml_string(scene.xml)
+    joint = model.joint("microwave_door:hinge")
+    assert int(joint.type[0]) == int(mujoco.mjtJoint.mjJNT_HINGE)
+    # MuJoCo writes the range with 6 significant digits (1.5708).
+    np.testing.assert_allclose(joint.range, [0.0, DOOR_RANGE], atol=1e-5)
+    assert model.nq == scene.model.nq
+    # The same joint angle puts the door's body at the same place in both models.
+    for m in (model, scene.model):
+        data = mujoco.MjData(m)
+        data.qpos[m.jnt_qposadr[m.joint("microwave_door:hinge").id]] = 0.7
+        mujoco.mj_forward(m, data)
+        if m is model:
+            exported = data.xpos[m.body("microwave_door").id].copy()
+        else:
+            np.testing.assert_allclose(data.xpos[m.body("microwave_door").id], exported,
+                                       atol=1e-9)
+
+
 # ------------------------------------------------------------ the oracle
 @pytest.mark.parametrize("robot", ["floating", "arm"])
 def test_oracle_swings_the_door_open_and_it_reads_open(robot: str) -> None:
