@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from factask.geometry import Pose, quat_from_yaw, quat_mul, rotation_matrix, wrap_angle
+from factask.geometry import Pose, quat_from_yaw, quat_mul, rotation_matrix, wrap_angle, yaw_of
 from factask.scene.objects import SceneObject
 from factask.sim.build.mjspec import BodyHandles, add_plan_geoms
 from factask.sim.build.parts import GEOM_SEPARATOR, ObjectPlan, fmt
@@ -69,7 +69,7 @@ class HingeHandle:
         """Swing the door to ``pose``'s yaw relative to its microwave (the microwave
         stays; the rest of ``pose`` follows from the microwave's), and stop it."""
         quat = data.mocap_quat[self.cabinet_mocap]
-        angle = wrap_angle(pose.yaw - Pose(np.zeros(3), quat.copy()).yaw)
+        angle = wrap_angle(pose.yaw - yaw_of(quat))
         data.qpos[self.qpos_adr] = float(np.clip(angle, 0.0, self.travel))
         data.qvel[self.qvel_adr] = 0.0
 
