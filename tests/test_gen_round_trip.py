@@ -68,7 +68,7 @@ MISREAD: dict[str, tuple[str, ...]] = {
                     "open-bottom-drawer", "close-top-drawer", "open-two-drawers",
                     "put-two-blocks-in-open-drawer", "open-drawer-and-take-block-out",
                     "take-block-out-of-drawer-to-zone",
-                    "put-bowl-on-cabinet-and-close-drawer"),
+                    "put-bowl-on-cabinet-and-close-drawer", "take-block-out-of-shut-drawer"),
 }
 _WHY = {task: why for why, tasks in MISREAD.items() for task in tasks}
 
