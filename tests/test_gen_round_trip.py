@@ -68,10 +68,10 @@ MISREAD: dict[str, tuple[str, ...]] = {
         "put-block-in-drawer-and-close-it", "open-top-drawer", "open-bottom-drawer",
         "close-top-drawer", "open-two-drawers", "put-two-blocks-in-open-drawer",
         "open-drawer-and-take-block-out", "take-block-out-of-drawer-to-zone",
-        "put-bowl-on-cabinet-and-close-drawer", "open-microwave", "close-microwave",
-        "open-microwave-and-put-bowl-inside", "put-bowl-in-microwave-and-close-it",
-        "put-bowl-in-open-microwave-and-close-it", "put-bowl-in-open-drawer-and-close-it",
-        "put-mug-in-white-microwave-and-close-it"),
+        "put-bowl-on-cabinet-and-close-drawer", "take-block-out-of-shut-drawer",
+        "open-microwave", "close-microwave", "open-microwave-and-put-bowl-inside",
+        "put-bowl-in-microwave-and-close-it", "put-bowl-in-open-microwave-and-close-it",
+        "put-bowl-in-open-drawer-and-close-it", "put-mug-in-white-microwave-and-close-it"),
 }
 _WHY = {task: why for why, tasks in MISREAD.items() for task in tasks}
 
