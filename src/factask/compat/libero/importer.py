@@ -15,10 +15,12 @@ predicate or object and why):
   fixture's stand-in; ``(In obj <receptacle>_<region>)`` → :class:`StartInside`.
 * ``:goal``: ``(On a b)`` → ``on`` when ``b`` is a support, ``inside`` when it is a
   receptacle; ``(In a <receptacle>_<region>)`` → ``inside``; ``(On a <fixture>_<top
-  region>)`` → ``on`` the fixture (:data:`TOP_REGIONS`); ``(On a <table>_<region>)`` →
-  ``in_zone`` of a goal zone made for the region (:meth:`_Importer.goal_zone`). A
-  stand-in fixed by default that a goal moves becomes movable; a goal that moves a
-  fixture is refused.
+  region>)`` → ``on`` the fixture, ``(In a <fixture>_<inside region>)`` →
+  ``inside`` it (the region's role: :func:`~factask.compat.libero.kinds.region_role`;
+  a covered shelf level, a region behind a door or a side face is refused);
+  ``(On a <table>_<region>)`` → ``in_zone`` of a goal zone made for the region
+  (:meth:`_Importer.goal_zone`). A stand-in fixed by default that a goal moves
+  becomes movable; a goal that moves a fixture is refused.
 * Drawers: a cabinet type with drawer regions (:attr:`LiberoKind.drawers`) gets one
   ``drawer`` variable per region (``<cabinet>_<level>_drawer``, ``in_cabinet``, pulled
   out where ``:init`` says ``Open``); ``Open`` / ``Close`` of a drawer region are
@@ -49,7 +51,14 @@ from pathlib import Path
 from typing import Any
 
 from factask.compat.libero.bddl import load_bddl
-from factask.compat.libero.kinds import LiberoKind, LiberoUnsupported, libero_kind
+from factask.compat.libero.kinds import (
+    LiberoKind,
+    LiberoUnsupported,
+    UnknownLiberoRegion,
+    libero_kind,
+    region_role,
+    scene_of,
+)
 from factask.compat.libero.model import BddlProblem, Predicate, Region
 from factask.graph import TaskGraph, parse_graph
 from factask.vocabulary.kinds import WALL_THICKNESS, drawer_size, kind_spec
@@ -67,10 +76,6 @@ MIN_REGION = 0.20
 #: ... or to the object's larger side plus this (metres), if that is larger: a 16 cm
 #: plate in a 20 cm square has 4 cm to move in, too little beside a fixture.
 START_SLACK = 0.10
-#: Fixture type → its regions that are the stand-in's top face (things stand there).
-TOP_REGIONS = {"flat_stove": frozenset({"cook_region"}),
-               "wooden_cabinet": frozenset({"top_side"}),
-               "wine_rack": frozenset({"top_region"})}
 #: A goal zone (a goal on a bare table region) is at least the object's larger side
 #: plus this (metres): factask's region check wants the whole footprint inside, LIBERO's
 #: the object's centre, so a 6 cm region gets a zone a 16 cm plate fits in.
@@ -82,6 +87,11 @@ ARTICULATION = frozenset({"open", "close", "turnon", "turnoff"})
 #: Those factask models: a drawer's ``Open`` / ``Close`` → ``open`` / ``closed``.
 DRAWER_GOALS = {"open": "open", "close": "closed"}
 _WHY_ARTICULATED = "switches and hinged doors are not in factask yet (drawers are)"
+#: Why a region of each refused role is refused.
+_WHY_ROLE = {"covered": "a shelf level under the board above it: a top-down suction cup "
+                        "cannot reach it",
+             "door": "behind a door factask does not model yet",
+             "side": "a side face of it: no factask relation puts things against a side"}
 
 
 @dataclass(frozen=True)
@@ -137,6 +147,67 @@ class _Importer:
                 self.drawers[f"{libero}_{region}"] = (var, libero, level)
         #: Drawer variable → how far it starts pulled out (``Open`` in ``:init``).
         self.openings: dict[str, float] = {}
+        if scene_of(problem.name) is None:
+            self.warnings.append(f"problem {problem.name!r} is no LIBERO scene factask "
+                                 "knows; read as a tabletop scene")
+
+    def is_fixture(self, name: str) -> bool:
+        """A fixture: declared under ``:fixtures`` or of a fixture type."""
+        return name in self.p.fixtures or (name in self.specs and self.specs[name].fixture)
+
+    def refuse_articulation(self, pred: Predicate) -> LiberoUnsupported:
+        """``Open``, ``Close``, ``Turnon``, ``Turnoff`` of what factask does not model:
+        the message names the fixture's moving part."""
+        arg = str(pred.args[0]) if pred.args else ""
+        region = self.p.regions_by_full_name.get(arg)
+        target = region.target if region is not None else arg
+        spec = self.specs.get(target)
+        what = (f"the {self.types[target]}'s {spec.articulation}"
+                if spec is not None and spec.articulation else f"{target!r}")
+        return self.refuse(pred, f"{pred.name}: {what} is not modelled; {_WHY_ARTICULATED}")
+
+    def region_host(self, pred: Predicate, region: Region) -> tuple[str, str] | None:
+        """What a fixture's or object's own region means, by its role
+        (:func:`~factask.compat.libero.kinds.region_role`): ``("on", variable)`` for
+        its top, ``("inside", variable)`` for its inside; None for an object's region
+        no rule types (the object itself is then the host).
+
+        Raises:
+            LiberoUnsupported: the region is a covered shelf level, behind a door, a
+                side, or a fixture's region no rule types (:class:`UnknownLiberoRegion`).
+        """
+        target = region.target
+        if target not in self.specs:
+            raise self.refuse(pred, f"{region.full_name}: its target {target!r} is no "
+                              "declared object or fixture")
+        spec, type_name = self.specs[target], self.types[target]
+        role = region_role(spec, region.name)
+        if role == "top":
+            return "on", self.names[target]
+        if role == "inside":
+            if not kind_spec(spec.kind or "").receptacle:
+                raise self.refuse(pred, f"{region.full_name} is inside the {type_name}, "
+                                  f"whose stand-in (a {spec.kind}) holds nothing")
+            if region.name != "contain_region":
+                self.warnings.append(f"{region.full_name}: a compartment of the {type_name}; "
+                                     f"factask's stand-in has one inside: inside {target}")
+            return "inside", self.names[target]
+        if role is not None:
+            raise self._refuse_role(pred, region, role, type_name, spec)
+        if not self.is_fixture(target):
+            return None
+        known = [r for r, _ in spec.regions] + list(spec.drawers)
+        raise UnknownLiberoRegion(
+            f"{self.where}: {pred}: region {region.name!r} of the {type_name} "
+            f"({region.full_name}) is no region factask knows for this type (known: "
+            f"{', '.join(known) or 'none'})")
+
+    def _refuse_role(self, pred: Predicate, region: Region, role: str, type_name: str,
+                     spec: LiberoKind) -> LiberoUnsupported:
+        why = _WHY_ROLE[role]
+        if role == "door" and spec.articulation:
+            why = f"behind the {type_name}'s {spec.articulation}; {_WHY_ARTICULATED}"
+        return self.refuse(pred, f"{region.full_name} is {why}")
 
     def refuse(self, pred: Predicate | str, why: str) -> LiberoUnsupported:
         return LiberoUnsupported(f"{self.where}: {pred}: {why}")
@@ -169,8 +240,7 @@ class _Importer:
                 self.openings[drawer] = 1.0 if pred.name == "open" else 0.0
                 continue
             if pred.name in ARTICULATION:
-                raise self.refuse(pred, f"a fixture that starts {pred.name}: "
-                                  f"{_WHY_ARTICULATED}")
+                raise self.refuse_articulation(pred)
             if pred.name not in ("on", "in") or len(pred.args) != 2:
                 raise self.refuse(pred, "no factask start placement for this predicate")
             obj, host = (str(a) for a in pred.args)
@@ -184,7 +254,7 @@ class _Importer:
                                      "the table")
 
     def start_of(self, pred: Predicate, obj: str, host: str) -> dict[str, Any]:
-        fixture = self.specs[obj].fixture
+        fixture = self.is_fixture(obj)
         if self.is_table(host):
             return {"type": "table"}
         if host in self.drawers:
@@ -193,12 +263,14 @@ class _Importer:
         if region is not None:
             if self.is_table(region.target):
                 return self.table_start(pred, region, obj, fixture)
-            target_type = self.types.get(region.target, "")
-            if region.target in self.p.fixtures:
-                if pred.name == "on" and region.name in TOP_REGIONS.get(target_type, ()):
-                    return {"type": "on", "support": self.names[region.target]}
-                raise self.refuse(pred, f"{region.full_name} is a region of the "
-                                  f"{target_type} fixture: {_WHY_ARTICULATED}")
+            hosted = self.region_host(pred, region)
+            if hosted is not None:
+                relation, var = hosted
+                if relation == "on":
+                    return {"type": "on", "support": var}
+                if self.fits_inside(obj, region.target):
+                    return {"type": "inside", "container": var}
+                raise self.refuse(pred, f"{obj} does not fit inside {region.target}")
             host = region.target
         if host not in self.names:
             raise self.refuse(pred, f"{host!r} is no object or region factask models")
@@ -254,13 +326,13 @@ class _Importer:
                                 "goal": {"type": relation, "objects": [drawer]}})
                 continue
             if pred.name in ARTICULATION:
-                raise self.refuse(pred, f"{pred.name} of a fixture: {_WHY_ARTICULATED}")
+                raise self.refuse_articulation(pred)
             if pred.name not in ("on", "in") or len(pred.args) != 2:
                 raise self.refuse(pred, "no factask relation for this goal predicate")
             obj, host = (str(a) for a in pred.args)
             var = self.variable(obj, pred)
             goal = self.goal_of(pred, var, host)
-            if self.specs[obj].fixture:
+            if self.is_fixture(obj):
                 raise self.refuse(pred, f"{obj} is a fixture (a {self.specs[obj].kind} "
                                   "stand-in fixed to the table); no goal may move it")
             if self.specs[obj].fixed:
@@ -315,13 +387,12 @@ class _Importer:
                                       "in it, an object is on it")
                 return {"type": "in_zone", "objects": [var],
                         "zone": self.goal_zone(pred, region, pred.args[0])}
-            if region.target in self.p.fixtures:
-                target_type = self.types[region.target]
-                if pred.name == "on" and region.name in TOP_REGIONS.get(target_type, ()):
-                    return {"type": "on", "objects": [var],
-                            "support": self.names[region.target]}
-                raise self.refuse(pred, f"{host} is a region of the {target_type} fixture, "
-                                  f"not its top; {_WHY_ARTICULATED}")
+            hosted = self.region_host(pred, region)
+            if hosted is not None:
+                relation, target = hosted
+                if relation == "on":
+                    return {"type": "on", "objects": [var], "support": target}
+                return {"type": "inside", "objects": [var], "container": target}
             host = region.target
         elif pred.name == "in":
             raise self.refuse(pred, f"{host!r} is no region: In needs a receptacle's region")
@@ -378,6 +449,8 @@ class _Importer:
                 "description": f"{spec.note} (LIBERO {libero} of type {self.types[libero]})"}
             if var in self.moved:
                 data["fixed"] = False
+            elif libero in self.p.fixtures:
+                data["fixed"] = True
             elif spec.fixed is not None:
                 data["fixed"] = spec.fixed
             out.append(data)
