@@ -61,7 +61,13 @@ from factask.compat.libero.kinds import (
 )
 from factask.compat.libero.model import BddlProblem, Predicate, Region
 from factask.graph import TaskGraph, parse_graph
-from factask.vocabulary.kinds import WALL_THICKNESS, drawer_size, kind_spec
+from factask.vocabulary.kinds import (
+    HANDLE_DEPTH,
+    WALL_THICKNESS,
+    drawer_size,
+    drawer_travel,
+    kind_spec,
+)
 from factask.vocabulary.names import slugify, unique_name
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
@@ -80,6 +86,9 @@ START_SLACK = 0.10
 #: plus this (metres): factask's region check wants the whole footprint inside, LIBERO's
 #: the object's centre, so a 6 cm region gets a zone a 16 cm plate fits in.
 ZONE_MARGIN = 0.03
+#: Room (m) left between a cabinet's drawer pulled all the way out and the
+#: workspace's near edge.
+DRAWER_ROOM = 0.005
 #: Colour of the goal zones made from table regions.
 ZONE_COLOR = "gray"
 #: Predicates of articulated fixtures.
@@ -301,6 +310,8 @@ class _Importer:
             turned = round(abs(math.sin(math.radians(yaw)))) == 1  # a quarter turn
             half_x, half_y = (size[1], size[0]) if turned else (size[0], size[1])
             x = min(max(cx, WORKSPACE_X[0] + half_x / 2), WORKSPACE_X[1] - half_x / 2)
+            if self.specs[obj].drawers:
+                x = self.room_for_drawers(obj, size, x)
             y = min(max(cy, WORKSPACE_Y[0] + half_y / 2), WORKSPACE_Y[1] - half_y / 2)
             return {"type": "pose", "x": round(x, 4), "y": round(y, 4),
                     "yaw_deg": round(yaw, 3)}
@@ -310,6 +321,18 @@ class _Importer:
         return {"type": "region",
                 "x": [round(v, 4) for v in _clip(cx - half_x, cx + half_x, WORKSPACE_X)],
                 "y": [round(v, 4) for v in _clip(cy - half_y, cy + half_y, WORKSPACE_Y)]}
+
+    def room_for_drawers(self, obj: str, size: tuple[float, float, float], x: float) -> float:
+        """A cabinet's x moved away from the robot, where needed, so that its drawers
+        pulled all the way out stay on the workspace (they slide towards -x)."""
+        drawers = self.specs[obj].drawers
+        reach = size[0] / 2 + HANDLE_DEPTH + drawer_travel(drawer_size(size, len(drawers)))
+        least = WORKSPACE_X[0] + reach + DRAWER_ROOM
+        if x >= least:
+            return x
+        self.warnings.append(f"{obj}: moved from x {x:.3f} to {least:.3f} m so that its "
+                             "drawers pulled out stay on the workspace")
+        return min(least, WORKSPACE_X[1] - size[0] / 2)
 
     # ---- goal -----------------------------------------------------------------------
     def read_goal(self) -> list[dict[str, Any]]:
