@@ -249,7 +249,8 @@ class _Importer:
                 self.openings[drawer] = 1.0 if pred.name == "open" else 0.0
                 continue
             if pred.name in ARTICULATION:
-                raise self.refuse_articulation(pred)
+                self.start_state_not_modelled(pred)
+                continue
             if pred.name not in ("on", "in") or len(pred.args) != 2:
                 raise self.refuse(pred, "no factask start placement for this predicate")
             obj, host = (str(a) for a in pred.args)
@@ -261,6 +262,25 @@ class _Importer:
             if var not in self.initial:
                 self.warnings.append(f"{libero}: no start in :init; starts anywhere on "
                                      "the table")
+
+    def start_state_not_modelled(self, pred: Predicate) -> None:
+        """``(Open microwave_1)``, ``(Turnon flat_stove_1)`` in ``:init`` of a fixture
+        whose moving part factask does not model (:attr:`LiberoKind.articulation`):
+        the stand-in (a fixed box) has no such state; a goal that needs it is refused,
+        a start state alone only warns (the task may not touch that fixture).
+
+        Raises:
+            LiberoUnsupported: the fixture has no known moving part (a drawerless
+                object said to start open).
+        """
+        arg = str(pred.args[0]) if len(pred.args) == 1 else ""
+        region = self.p.regions_by_full_name.get(arg)
+        target = region.target if region is not None else arg
+        spec = self.specs.get(target)
+        if spec is None or not spec.articulation:
+            raise self.refuse_articulation(pred)
+        self.warnings.append(f"{pred}: the {self.types[target]}'s {spec.articulation} is "
+                             "not modelled; its stand-in ignores this start state")
 
     def start_of(self, pred: Predicate, obj: str, host: str) -> dict[str, Any]:
         fixture = self.is_fixture(obj)
@@ -417,12 +437,15 @@ class _Importer:
                     return {"type": "on", "objects": [var], "support": target}
                 return {"type": "inside", "objects": [var], "container": target}
             host = region.target
-        elif pred.name == "in":
-            raise self.refuse(pred, f"{host!r} is no region: In needs a receptacle's region")
         if self.is_table(host) or host not in self.names:
             raise self.refuse(pred, f"{host!r} is no object factask models")
         spec = kind_spec(self.host_kind(host) or "")
         if spec.receptacle:
+            if not self.fits_inside(str(pred.args[0]), host):
+                raise self.refuse(pred, f"{pred.args[0]} does not fit inside {host} (a "
+                                  f"{self.host_kind(host)} stand-in) and cannot rest on it: "
+                                  "an object resting on a receptacle it does not fit in is "
+                                  "not modelled")
             return {"type": "inside", "objects": [var], "container": self.names[host]}
         if spec.support and pred.name == "on":
             return {"type": "on", "objects": [var], "support": self.names[host]}
