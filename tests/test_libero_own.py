@@ -11,7 +11,10 @@ import pytest
 
 from factask.compat.libero import (
     LIBERO_KINDS,
+    BddlProblem,
     LiberoUnsupported,
+    Predicate,
+    Region,
     UnknownLiberoType,
     import_libero,
     load_bddl,
@@ -179,3 +182,53 @@ def test_the_floating_oracle_completes_every_own_file(stem):
 def test_the_arm_oracle_completes_every_own_file(stem):
     wins, failures = _wins(stem, "arm")
     assert wins >= 3, failures
+
+
+def _one_type_task(type_name: str) -> BddlProblem | None:
+    """A small kitchen task about one registered type: a fixture with a top gets the
+    butter on its top; a receptacle gets the butter inside (a bowl: the can of
+    cherries); anything else (a ramekin too) goes into the basket (onto the plate when larger than
+    15 cm).
+    None for the tables, zones and plates (nothing to do with them alone)."""
+    spec = LIBERO_KINDS[type_name]
+    if spec.kind in (None, "zone", "kit"):
+        return None
+    name, table = f"{type_name}_1", "kitchen_table"
+    movable = "cherries" if spec.kind == "bowl" else "butter"
+    if spec.fixture or (spec.fixed and not kind_spec(spec.kind).receptacle):
+        tops = [r for r, role in spec.regions if role == "top"]
+        if not tops:
+            return None
+        fixtures, objects = {name: type_name}, {"butter_1": "butter"}
+        goal, sub = Predicate("on", ("butter_1", f"{name}_{tops[0]}")), tops[0]
+    elif kind_spec(spec.kind).receptacle and max(spec.size or (0.0,)) >= 0.10:
+        inside = next(r for r, role in spec.regions if role == "inside")
+        fixtures, objects = {}, {name: type_name, f"{movable}_1": movable}
+        goal, sub = Predicate("in", (f"{movable}_1", f"{name}_{inside}")), inside
+    else:
+        host = "plate_1" if max(spec.size or (0.0,)) > 0.15 else "basket_1"
+        fixtures, objects = {}, {name: type_name, host: host[:-2]}
+        sub = "contain_region"
+        goal = (Predicate("on", (name, host)) if host == "plate_1" else
+                Predicate("in", (name, "basket_1_contain_region")))
+    places = dict(zip(objects if not fixtures else [*fixtures, *objects],
+                      ((-0.1, -0.2), (0.1, 0.2)), strict=False))
+    regions = [Region(f"{n}_init", table, ((x - 0.01, y - 0.01, x + 0.01, y + 0.01),))
+               for n, (x, y) in places.items()]
+    target = name if goal.args[1].startswith(name) else "basket_1"
+    regions.append(Region(sub, target))
+    return BddlProblem(
+        "LIBERO_Kitchen_Tabletop_Manipulation", "robosuite", f"{goal}", tuple(regions),
+        {table: table, **fixtures}, objects, (),
+        tuple(Predicate("on", (n, f"{table}_{n}_init")) for n in places), (goal,))
+
+
+@pytest.mark.parametrize("type_name", sorted(t for t in LIBERO_KINDS if _one_type_task(t)))
+def test_every_registered_type_imports_and_the_floating_cup_completes_a_task_with_it(
+        type_name):
+    from factask.sim.episode import run_episode
+
+    problem = _one_type_task(type_name)
+    graph = import_libero(problem, name=type_name.replace("_", "-")).graph
+    results = [run_episode(graph, seed, robot="floating") for seed in range(2)]
+    assert all(r.success for r in results), [r.failure for r in results]

@@ -60,7 +60,7 @@ TYPES: dict[str, LiberoKind] = {
                            "hinged door); its top side is a support",
                            regions=(("top_side", "top"), ("heating_region", "door")),
                            articulation="hinged door"),
-    "short_fridge": fixed_box((0.26, 0.26, 0.36), "white",
+    "short_fridge": fixed_box((0.26, 0.26, 0.30), "white",
                               "short fridge: a fixed box; its shelves are behind a "
                               "hinged door",
                               regions=(("top_side", "top"), ("upper_region", "door"),

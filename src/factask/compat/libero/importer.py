@@ -89,6 +89,9 @@ ZONE_MARGIN = 0.03
 #: Room (m) left between a cabinet's drawer pulled all the way out and the
 #: workspace's near edge.
 DRAWER_ROOM = 0.005
+#: Room (m) an object's footprint circle keeps inside a round receptacle's inner
+#: circle for it to count as fitting (the layout keeps objects off the walls).
+ROUND_FIT_MARGIN = 0.005
 #: Colour of the goal zones made from table regions.
 ZONE_COLOR = "gray"
 #: Predicates of articulated fixtures.
@@ -235,9 +238,15 @@ class _Importer:
         return spec.kind if spec else None
 
     def fits_inside(self, obj: str, host: str) -> bool:
+        """``obj``'s footprint fits inside ``host``'s walls (a round host: the
+        footprint's circumscribed circle inside its inner circle)."""
         o, h = self.specs[obj].size, self.specs[host].size
         assert o is not None and h is not None
         inner = sorted((h[0] - 2 * WALL_THICKNESS, h[1] - 2 * WALL_THICKNESS))
+        if kind_spec(self.host_kind(host) or "").round:
+            own = o[0] / 2 if kind_spec(self.specs[obj].kind or "").round else math.hypot(
+                o[0] / 2, o[1] / 2)
+            return own + ROUND_FIT_MARGIN <= inner[0] / 2
         return all(a <= b for a, b in zip(sorted(o[:2]), inner, strict=True))
 
     # ---- init -----------------------------------------------------------------------
@@ -375,6 +384,7 @@ class _Importer:
             obj, host = (str(a) for a in pred.args)
             var = self.variable(obj, pred)
             goal = self.goal_of(pred, var, host)
+            self.check_fits(pred, obj, goal)
             if self.is_fixture(obj):
                 raise self.refuse(pred, f"{obj} is a fixture (a {self.specs[obj].kind} "
                                   "stand-in fixed to the table); no goal may move it")
@@ -390,6 +400,21 @@ class _Importer:
         for f in factors:
             f["weight"] = 1.0 / len(factors)
         return factors
+
+    def check_fits(self, pred: Predicate, obj: str, goal: dict[str, Any]) -> None:
+        """Refuse a goal that puts ``obj`` inside a stand-in it does not fit in (a
+        butter pack in a bowl, a bowl stacked on a bowl of its size): factask's
+        ``inside`` needs the whole footprint inside the walls (drawers are sized for
+        what LIBERO puts in them and not checked here)."""
+        if goal["type"] != "inside":
+            return
+        host = next((n for n, v in self.names.items() if v == goal["container"]), None)
+        if host is None or self.fits_inside(obj, host):
+            return
+        raise self.refuse(pred, f"{obj} does not fit inside {host} (a "
+                          f"{self.host_kind(host)} stand-in) and cannot rest on it: an "
+                          "object resting on a receptacle it does not fit in is not "
+                          "modelled")
 
     def open_before_putting_inside(self, factors: list[dict[str, Any]], taken: set[str]
                                    ) -> None:
@@ -441,11 +466,6 @@ class _Importer:
             raise self.refuse(pred, f"{host!r} is no object factask models")
         spec = kind_spec(self.host_kind(host) or "")
         if spec.receptacle:
-            if not self.fits_inside(str(pred.args[0]), host):
-                raise self.refuse(pred, f"{pred.args[0]} does not fit inside {host} (a "
-                                  f"{self.host_kind(host)} stand-in) and cannot rest on it: "
-                                  "an object resting on a receptacle it does not fit in is "
-                                  "not modelled")
             return {"type": "inside", "objects": [var], "container": self.names[host]}
         if spec.support and pred.name == "on":
             return {"type": "on", "objects": [var], "support": self.names[host]}
