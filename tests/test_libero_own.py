@@ -232,3 +232,17 @@ def test_every_registered_type_imports_and_the_floating_cup_completes_a_task_wit
     graph = import_libero(problem, name=type_name.replace("_", "-")).graph
     results = [run_episode(graph, seed, robot="floating") for seed in range(2)]
     assert all(r.success for r in results), [r.failure for r in results]
+
+
+def test_the_low_tables_of_the_living_room_and_coffee_table_map_nearer_the_robot():
+    from factask.compat.libero.importer import LOW_TABLE_OFFSET_X, OFFSET_X, to_factask_xy
+    from factask.vocabulary.world import WORKSPACE_X
+
+    assert to_factask_xy(0.0, 0.0, LOW_TABLE_OFFSET_X)[0] < to_factask_xy(0.0, 0.0)[0]
+    # The 0.70 m deep table's whole depth lands on (about) the workspace.
+    near, far = (to_factask_xy(x, 0.0, LOW_TABLE_OFFSET_X)[0] for x in (-0.35, 0.35))
+    assert near >= WORKSPACE_X[0] - 0.02 and far <= WORKSPACE_X[1] + 0.02
+    assert OFFSET_X == 0.58
+    graph = import_libero(OWN["living_room_put_the_far_tomato_sauce_in_the_near_basket"]).graph
+    start = graph.variable("tomato_sauce_1").initial
+    assert start.x[1] <= WORKSPACE_X[1] and start.x[0] > 0.6

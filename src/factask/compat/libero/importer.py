@@ -35,7 +35,9 @@ about x = -0.66 m; factask's robot base is the origin and the workspace is x 0.2
 to 0.75, y -0.5 to 0.5. The shipped files' region centres span x -0.42 to 0.21
 (0.63 m, more than the workspace's 0.5 m depth), so the map scales uniformly:
 ``x' = OFFSET_X + SCALE * x``, ``y' = SCALE * y`` with ``SCALE = 0.75`` and
-``OFFSET_X = 0.58`` (x -0.42 → 0.265, 0.21 → 0.7375). Objects keep their real
+``OFFSET_X = 0.58`` (x -0.42 → 0.265, 0.21 → 0.7375); the living room's and the
+coffee table's 0.70 m deep tables, whose centre is nearer LIBERO's robot, use
+``OFFSET_X = 0.50`` (:data:`LOW_TABLE_OFFSET_X`). Objects keep their real
 sizes, so the scene is more crowded than LIBERO's: LIBERO's 2 cm (5 cm on the
 floor) start regions are widened to :data:`MIN_REGION` square around their centre
 (:data:`START_SLACK` more than the object's larger side where that is larger),
@@ -75,6 +77,12 @@ from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 SCALE = 0.75
 #: factask x of LIBERO's table centre (metres).
 OFFSET_X = 0.58
+#: factask x of the centre of the living room's and the coffee table scene's
+#: 0.70 m deep tables: LIBERO's robot stands 0.51 m behind their centre (0.66 m
+#: behind the 1.0 m deep tables'), and their whole depth maps to x 0.24 to 0.76.
+LOW_TABLE_OFFSET_X = 0.50
+#: Scenes whose table centre is :data:`LOW_TABLE_OFFSET_X`.
+LOW_TABLE_SCENES = frozenset({"living_room_table", "coffee_table"})
 #: factask y of LIBERO's table centre (metres).
 OFFSET_Y = 0.0
 #: Side (metres) of the square start region an object's LIBERO region is widened to.
@@ -124,9 +132,19 @@ class LiberoImport:
     problem: BddlProblem | None = None
 
 
-def to_factask_xy(x: float, y: float) -> tuple[float, float]:
-    """A point of LIBERO's table frame in factask's frame (metres)."""
-    return OFFSET_X + SCALE * x, OFFSET_Y + SCALE * y
+def to_factask_xy(x: float, y: float, offset_x: float = OFFSET_X) -> tuple[float, float]:
+    """A point of LIBERO's table frame in factask's frame (metres).
+
+    Args:
+        x: LIBERO x (away from the robot), metres from the table's centre.
+        y: LIBERO y (to the robot's left).
+        offset_x: factask x of the table's centre (the scene's: :data:`OFFSET_X`, or
+            :data:`LOW_TABLE_OFFSET_X` for the living room's and coffee table's).
+
+    Returns:
+        The point (x, y) in factask's frame.
+    """
+    return offset_x + SCALE * x, OFFSET_Y + SCALE * y
 
 
 def _clip(lo: float, hi: float, bounds: tuple[float, float]) -> tuple[float, float]:
@@ -159,9 +177,13 @@ class _Importer:
                 self.drawers[f"{libero}_{region}"] = (var, libero, level)
         #: Drawer variable → how far it starts pulled out (``Open`` in ``:init``).
         self.openings: dict[str, float] = {}
-        if scene_of(problem.name) is None:
+        scene = scene_of(problem.name)
+        if scene is None:
             self.warnings.append(f"problem {problem.name!r} is no LIBERO scene factask "
                                  "knows; read as a tabletop scene")
+        #: factask x of the scene's table centre.
+        self.offset_x = (LOW_TABLE_OFFSET_X if scene is not None
+                         and scene.table in LOW_TABLE_SCENES else OFFSET_X)
 
     def is_fixture(self, name: str) -> bool:
         """A fixture: declared under ``:fixtures`` or of a fixture type."""
@@ -326,7 +348,7 @@ class _Importer:
         if not region.ranges:
             raise self.refuse(pred, f"table region {region.full_name} has no ranges")
         x0, y0, x1, y1 = region.ranges[0]
-        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2, self.offset_x)
         size = self.specs[obj].size
         assert size is not None
         if fixture:
@@ -483,7 +505,7 @@ class _Importer:
         if not region.ranges:
             raise self.refuse(pred, f"table region {region.full_name} has no ranges")
         x0, y0, x1, y1 = region.ranges[0]
-        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2, self.offset_x)
         size = self.specs[str(obj)].size
         assert size is not None
         least = max(size[0], size[1]) + ZONE_MARGIN
