@@ -35,7 +35,7 @@ from factask.sim.build.compile import (
     compile_graph,
     get_object_pose,
     set_marker,
-    set_object_pose,
+    set_object_poses,
 )
 from factask.sim.layout.checks import TaskStatus, check_task
 from factask.sim.layout.reset import reset_layout
@@ -279,10 +279,7 @@ class FactaskEnv(gym.Env):
                    "targets": {o: p.to_list() for o, p in targets[name].items()}}
             for name, s in solved.items()}
         mujoco.mj_resetData(self.model, self.data)
-        # A drawer's pose is set along its slide once its cabinet's is.
-        for name, handle in sorted(self.scene.objects.items(),
-                                   key=lambda item: item[1].slide is not None):
-            set_object_pose(self.model, self.data, handle, layout[name])
+        set_object_poses(self.model, self.data, self.scene.objects, layout)
         for (factor, slot), mocap in self.scene.markers.items():
             inst = self.scene.marker_objects[(factor, slot)]
             if inst in targets[factor]:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -509,6 +510,29 @@ def set_object_pose(model: mujoco.MjModel, data: mujoco.MjData, handle: ObjectHa
     data.qpos[handle.qpos_adr + 3:handle.qpos_adr + 7] = pose.quat
     data.qvel[handle.qvel_adr:handle.qvel_adr + 6] = 0.0
 
+
+
+def set_object_poses(model: mujoco.MjModel, data: mujoco.MjData,
+                     handles: Mapping[str, ObjectHandle], poses: Mapping[str, Pose]) -> None:
+    """Put every object of ``handles`` at its pose in ``poses`` (by name), each stopped.
+
+    A drawer's or a door's pose is set along its joint from its cabinet's or
+    microwave's current pose, so every fixed and free object is set first and the
+    jointed ones after (one at a time, :func:`set_object_pose`, would read a stale
+    cabinet pose if the drawer came first). Call ``mujoco.mj_forward`` afterwards.
+
+    Args:
+        model: The compiled model.
+        data: Its data.
+        handles: The objects by name (``CompiledScene.objects``).
+        poses: World pose of each of them.
+
+    Raises:
+        CompileError: a handle does not belong to ``model``.
+        KeyError: an object has no pose in ``poses``.
+    """
+    for name, handle in sorted(handles.items(), key=lambda item: item[1].slide is not None):
+        set_object_pose(model, data, handle, poses[name])
 
 def get_object_pose(data: mujoco.MjData, handle: ObjectHandle) -> Pose:
     """Current pose of an object (from qpos or the mocap pose: no mj_forward needed).
