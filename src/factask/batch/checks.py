@@ -39,7 +39,7 @@ from factask.batch.geometry import (
 from factask.batch.scene import BatchScene
 from factask.batch.targets import BatchTargets
 from factask.relations.base import RelationBase
-from factask.relations.drawer import DrawerRelation
+from factask.relations.drawer import DOOR_KIND, ArticulatedRelation
 from factask.relations.pile_in_zone import PileInZone, block_side
 from factask.relations.region import RegionRelation
 from factask.relations.rope import RopeAlong, segment_scores
@@ -53,6 +53,7 @@ from factask.scene.objects import (
 )
 from factask.vocabulary.errors import InvalidValueError
 from factask.vocabulary.kinds import (
+    DOOR_RANGE,
     drawer_closed_offset,
     drawer_travel,
     switch_off_offset,
@@ -337,18 +338,30 @@ def drawer_openings(cabinet: SceneObject, cabinet_pos: np.ndarray, cabinet_quat:
     return (closed_x - local_x) / drawer_travel(drawer.size)
 
 
+def door_openings(microwave_quat: np.ndarray, quat: np.ndarray) -> np.ndarray:
+    """How far a door has swung out in every world (W,), a fraction of its range: the
+    batched twin of :func:`factask.scene.microwave.door_opening` (its yaw relative to
+    its microwave's, wrapped to (-pi, pi], not clipped)."""
+    turn = yaws(quat) - yaws(microwave_quat)
+    return np.arctan2(np.sin(turn), np.cos(turn)) / DOOR_RANGE
+
+
 def check_drawer_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
                        ) -> BatchFactorStatus:
-    """``open`` / ``closed``: each drawer's opening against the relation's threshold
-    (its own ``holds``, applied to the array); a held drawer never counts."""
-    assert isinstance(goal, DrawerRelation)
+    """``open`` / ``closed``: each drawer's (door's) opening against the relation's
+    threshold (its own ``holds``, applied to the array); a held part never counts."""
+    assert isinstance(goal, ArticulatedRelation)
     cols = scene.columns(t.objects)
     placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)
     for i, name in enumerate(t.objects):
         cabinet = t.supports[i]
         (c,) = scene.columns([cabinet])
-        opening = drawer_openings(scene.objects[cabinet], scene.pos[:, c], scene.quat[:, c],
-                                  scene.objects[name], scene.pos[:, cols[i]])
+        if scene.objects[name].kind == DOOR_KIND:
+            opening = door_openings(scene.quat[:, c], scene.quat[:, cols[i]])
+        else:
+            opening = drawer_openings(scene.objects[cabinet], scene.pos[:, c],
+                                      scene.quat[:, c], scene.objects[name],
+                                      scene.pos[:, cols[i]])
         placed[:, i] = np.asarray(goal.holds(opening), dtype=bool)  # type: ignore[arg-type]
     placed &= ~scene.held[:, cols]
     return _from_placed(placed)

@@ -27,7 +27,7 @@ from factask.graph.order import (
     topological_order,
 )
 from factask.vocabulary.errors import GraphValidationError, Problem, name_list
-from factask.vocabulary.kinds import kind_spec, shape_problem
+from factask.vocabulary.kinds import JOINTED_KINDS, kind_spec, shape_problem
 from factask.vocabulary.limits import MAX_FACTORS, MAX_OBJECTS, MAX_VARIABLES, Text, size_problem
 from factask.vocabulary.names import TaskName
 from factask.vocabulary.variables import (
@@ -36,6 +36,7 @@ from factask.vocabulary.variables import (
     StartInside,
     StateVariable,
     cabinet_problems,
+    gates_of,
     switch_problems,
 )
 
@@ -158,9 +159,11 @@ class TaskGraph(BaseModel):
 
         Edges come from B's explicit ``after`` and from implied order: B's goal is
         anchored to (rests on, goes into, aligns with) a variable that A moves
-        (see :mod:`factask.graph.order`).
+        (see :mod:`factask.graph.order`); a goal anchored to a receptacle that a
+        drawer or door gates is anchored to that gate too
+        (:func:`~factask.vocabulary.variables.gates_of`).
         """
-        return dependency_graph(self.factors)
+        return dependency_graph(self.factors, gates_of(self.variables))
 
     def factor_order(self) -> list[str]:
         """Factors in an order that respects every dependency (declaration order
@@ -324,11 +327,11 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             out.append(Problem(f.name, "goal.objects", f"{name!r} listed twice", "list it once"))
         for name in f.goal.objects:
             v = variables.get(name)
-            # A drawer (a switch) is fixed (never picked) but slides in its cabinet (its
-            # host): 'open' ('switched_on') moves it. A kind the relation does not move
-            # at all is said by the relation (its fix names the right variable).
+            # A drawer, a door or a switch is fixed (never picked) but moves on its joint
+            # in its host: 'open' ('switched_on') moves it. A kind the relation does not
+            # move at all is said by the relation (its fix names the right variable).
             moves = f.goal.moves_kinds
-            if (v is not None and v.is_fixed and v.kind not in ("drawer", "switch")
+            if (v is not None and v.is_fixed and v.kind not in JOINTED_KINDS
                     and (moves is None or v.kind in moves)):
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))

@@ -19,6 +19,7 @@ from factask.library import (  # noqa: F401
     catalog_arranging,
     catalog_articulated,
     catalog_deformable,
+    catalog_doors,
     catalog_gensim_insertion,
     catalog_gensim_layers,
     catalog_gensim_lines,

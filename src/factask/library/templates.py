@@ -45,7 +45,7 @@ STACKABLE = ["block", "box", "cylinder"]
 # Kinds usable as the footprint of an ``in_zone`` goal.
 REGIONS = ["zone", "pallet", "kit", "stand", "line", "bowl", "container", "fixture"]
 # Kinds one can put things inside.
-RECEPTACLES = ["container", "bowl", "fixture", "drawer"]
+RECEPTACLES = ["container", "bowl", "fixture", "drawer", "microwave"]
 # Kinds a column may stand on (``stack`` base: support or region; a corner marker
 # holds a column of ells, an ell carries an equal ell).
 BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinder", "corner",
@@ -135,6 +135,26 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
             name="switch_off",
             description="pull the {switch} back up",
             goal=SwitchedOff(objects=["switch"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="open_door",
+        description="Open the {door}.",
+        slots=[slot("door", "the door to swing open", ["door"])],
+        factors=[SubtaskFactor(
+            name="open",
+            description="swing the {door} open",
+            goal=Open(objects=["door"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="close_door",
+        description="Close the {door}.",
+        slots=[slot("door", "the door to swing shut", ["door"])],
+        factors=[SubtaskFactor(
+            name="close",
+            description="swing the {door} shut",
+            goal=Closed(objects=["door"]),
         )],
     ),
     SubtaskTemplate(

@@ -46,7 +46,7 @@ from factask.vocabulary.world import TABLE_Z
 #: Small slack (metres) for "inside" tests so a point on a boundary counts as inside.
 GEOMETRY_EPS = 1e-9
 #: Kinds of receptacle that have a floor (objects inside rest on it, not on the table).
-FLOORED_RECEPTACLES = ("container", "bowl", "drawer")
+FLOORED_RECEPTACLES = ("container", "bowl", "drawer", "microwave")
 #: Kinds whose shape is a sphere: rotation changes neither footprint nor height.
 SPHERE_KINDS = ("ball",)
 #: Line marker whose default width the corner marker's arms share (one definition).

@@ -35,11 +35,12 @@ from factask.sim.build.compile import (
     compile_graph,
     get_object_pose,
     set_marker,
-    set_object_pose,
+    set_object_poses,
 )
 from factask.sim.layout.checks import TaskStatus, check_task
 from factask.sim.layout.reset import reset_layout
 from factask.sim.robots.attach import SuctionRobot, make_robot
+from factask.sim.robots.door_swing import door_swing
 from factask.sim.robots.health import physics_problem
 from factask.sim.robots.low_carry import low_pick_and_place
 from factask.sim.robots.slide_pull import slide_pull
@@ -102,6 +103,17 @@ def _pose4(value: Any, what: str) -> Pose:
     return Pose.from_xyz_yaw(*arr)
 
 
+def _xy(value: Any, what: str) -> np.ndarray:
+    """A point (x, y) of an action, checked (two finite numbers; a third is ignored)."""
+    try:
+        arr = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        arr = np.full(1, np.nan)  # not numbers at all: reported below
+    if arr.shape not in ((2,), (3,)) or not np.all(np.isfinite(arr)):
+        raise ActionError(f"{what} must be 2 finite numbers (x, y in metres), got {value!r}")
+    return arr[:2]
+
+
 class FactaskEnv(gym.Env):
     """A task graph as a gymnasium environment with a suction pick-and-place action.
 
@@ -130,6 +142,9 @@ class FactaskEnv(gym.Env):
     An action with ``press`` and ``press_to`` (x, y, z, yaw) presses a switch's button
     whose top is at ``press`` down until its top is at ``press_to``'s z, or (above)
     holds it and pulls it up there (:mod:`factask.sim.robots.switch_press`).
+    An action with ``grasp``, ``swing_to`` (x, y, z, yaw) and ``hinge`` (x, y) holds a
+    door's handle at ``grasp`` and swings it level about the hinge's vertical axis
+    until the tip is on ``swing_to``'s bearing (:mod:`factask.sim.robots.door_swing`).
 
     Raises:
         GraphValidationError, CompileError: the graph cannot be compiled.
@@ -268,11 +283,7 @@ class FactaskEnv(gym.Env):
                    "targets": {o: p.to_list() for o, p in targets[name].items()}}
             for name, s in solved.items()}
         mujoco.mj_resetData(self.model, self.data)
-        # A drawer's (a switch's) pose is set along its slide once its cabinet's (its
-        # host's) is.
-        for name, handle in sorted(self.scene.objects.items(),
-                                   key=lambda item: item[1].slide is not None):
-            set_object_pose(self.model, self.data, handle, layout[name])
+        set_object_poses(self.model, self.data, self.scene.objects, layout)
         for (factor, slot), mocap in self.scene.markers.items():
             inst = self.scene.marker_objects[(factor, slot)]
             if inst in targets[factor]:
@@ -316,16 +327,20 @@ class FactaskEnv(gym.Env):
             raise ResetNeededError("call reset() before step()")
         pushing = isinstance(action, dict) and {"start", "end"} <= set(action)
         sliding = isinstance(action, dict) and {"grasp", "slide_to"} <= set(action)
+        swinging = isinstance(action, dict) and {"grasp", "swing_to", "hinge"} <= set(action)
         pressing = isinstance(action, dict) and {"press", "press_to"} <= set(action)
-        if not (pushing or sliding or pressing) and (not isinstance(action, dict)
-                                                     or not {"pick", "place"} <= set(action)):
+        if not (pushing or sliding or swinging or pressing) and (
+                not isinstance(action, dict) or not {"pick", "place"} <= set(action)):
             raise ActionError(f"action must be a dict with 'pick' and 'place' (or 'start' and "
                               f"'end' of a push, 'grasp' and 'slide_to' of a drawer's "
-                              f"slide, or 'press' and 'press_to' of a switch), got {action!r}")
+                              f"slide, 'grasp', 'swing_to' and 'hinge' of a door's swing, "
+                              f"or 'press' and 'press_to' of a switch), got {action!r}")
         first, second = (("start", "end") if pushing else ("grasp", "slide_to") if sliding
+                         else ("grasp", "swing_to") if swinging
                          else ("press", "press_to") if pressing else ("pick", "place"))
         pick = _pose4(action[first], first)
         place = _pose4(action[second], second)
+        hinge = _xy(action["hinge"], "hinge") if swinging else None
         if self.failure is not None:
             return self._obs(), 0.0, True, False, self._info(self._status)
         # The reward is what *this action* changed: measure the baseline now, so
@@ -335,6 +350,9 @@ class FactaskEnv(gym.Env):
         if pushing:  # a spatula's push (factask.sim.robots.spatula)
             result = push(self.robot, pick, place, on_step=self.frame_callback,
                           max_steps=max_steps)
+        elif hinge is not None:  # a door held by its handle (factask.sim.robots.door_swing)
+            result = door_swing(self.robot, pick, place, hinge, on_step=self.frame_callback,
+                                max_steps=max_steps)
         elif sliding:  # a drawer held by its handle (factask.sim.robots.slide_pull)
             result = slide_pull(self.robot, pick, place, on_step=self.frame_callback,
                                 max_steps=max_steps)

@@ -46,6 +46,8 @@ AssetKind = Literal[
     "stove",
     "lamp",
     "switch",
+    "microwave",
+    "door",
 ]
 
 KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
@@ -142,6 +144,14 @@ _SPECS = [
              "-x strip of its top (starts 'mounted_on' it; its size follows from the "
              "host's): pressed down it is on, pulled back up it is off",
              (0.03, 0.03, 0.02), movable=False),
+    KindSpec("microwave", "microwave-like box fixed to the table, open at its -x side behind "
+             "its hinged door (and, for top-down suction cups, at the top); things go "
+             "inside it once the door is open; size = outer extents",
+             (0.18, 0.22, 0.12), movable=False, asymmetric=True, receptacle=True),
+    KindSpec("door", "a microwave's door, swinging outwards about a vertical hinge at its "
+             "-y edge (starts 'in_cabinet' of its microwave; its size follows from the "
+             "microwave's); a handle tab sticks out of its -x face at the top of its +y "
+             "end", (0.045, 0.22, 0.12), movable=False, asymmetric=True),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.
@@ -166,8 +176,19 @@ HANDLE_THICKNESS = 0.01
 DRAWER_GAP = 0.004
 #: How far a drawer slides out, as a fraction of its depth (its joint's range).
 DRAWER_TRAVEL_FRACTION = 0.8
+#: Kinds whose variables move on a joint in a host variable rather than freely: a
+#: drawer slides in its cabinet, a door swings on its microwave, a switch's button
+#: slides in its stove or lamp. They are fixed (never picked) yet moved by goals;
+#: their bodies are built inside their hosts', after them.
+JOINTED_KINDS = frozenset({"drawer", "door", "switch"})
 #: Drawers one cabinet holds at most.
 MAX_DRAWERS = 3
+#: A microwave door's panel thickness (m); its handle is a drawer's (above).
+DOOR_THICKNESS = 0.01
+#: How far (rad) a door swings open about its hinge: its joint's range.
+DOOR_RANGE = math.pi / 2
+#: How far (m) a door's handle sits in from its free (+y) edge: room for the cup.
+DOOR_HANDLE_INSET = 0.03
 
 
 @dataclass(frozen=True)
@@ -296,6 +317,33 @@ def handle_top(size: tuple[float, float, float], bays: int,
     return (-size[0] / 2 + HANDLE_DEPTH / 2, (level - (bays - 1) / 2) * pitch, size[2] / 2)
 
 
+def door_size(microwave_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """The size the door of a microwave of ``microwave_size`` has: its panel and the
+    handle sticking out of it (x), the microwave's front (y, z)."""
+    return (DOOR_THICKNESS + HANDLE_DEPTH, microwave_size[1], microwave_size[2])
+
+
+def door_closed_offset(microwave_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """Centre of a microwave's door, closed, in the microwave's frame: its panel on
+    the microwave's -x face, its handle out in front of it."""
+    return (-microwave_size[0] / 2 - (DOOR_THICKNESS + HANDLE_DEPTH) / 2, 0.0, 0.0)
+
+
+def door_hinge(microwave_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """The hinge's axis point (at the door's mid-height) in the microwave's frame: the
+    outer corner of the door's panel at its -y edge, so the panel swings out without
+    sweeping into the microwave's side wall."""
+    return (-microwave_size[0] / 2 - DOOR_THICKNESS, -microwave_size[1] / 2, 0.0)
+
+
+def door_handle_top(size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """Centre of the top face of a door's handle in the door's frame: out of its -x
+    face, flush with its top, :data:`DOOR_HANDLE_INSET` plus half a handle in from its
+    free (+y) edge."""
+    return (-size[0] / 2 + HANDLE_DEPTH / 2, size[1] / 2 - DOOR_HANDLE_INSET - HANDLE_WIDTH / 2,
+            size[2] / 2)
+
+
 class UnknownKindError(FactaskError, ValueError):
     """An asset kind that factask does not have."""
 
@@ -391,6 +439,17 @@ def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str
                     f"make size x larger than {mount.strip + mount.clear + 0.04:.3f}, "
                     f"y larger than {mount.button[1] + 0.01:.3f} and z larger than "
                     f"{mount.button[2] - SWITCH_RISE_OFF + switch_travel() + 0.005:.3f}")
+    if kind == "microwave" and not (x > 2 * WALL_THICKNESS and y > 2 * DOOR_HANDLE_INSET
+                                    + 2 * HANDLE_WIDTH and z > 2 * WALL_THICKNESS):
+        return (f"a microwave of size {tuple(size)} has no room inside its walls or for its "
+                "door's handle", f"make size x larger than {2 * WALL_THICKNESS:.3f}, y larger "
+                f"than {2 * DOOR_HANDLE_INSET + 2 * HANDLE_WIDTH:.3f} and z larger than "
+                f"{2 * WALL_THICKNESS:.3f}")
+    if kind == "door" and not (x > HANDLE_DEPTH and y > DOOR_HANDLE_INSET + HANDLE_WIDTH
+                               and z > HANDLE_THICKNESS):
+        return (f"a door of size {tuple(size)} has no room for its panel and handle",
+                f"give the size its microwave gives it (door_size): x = "
+                f"{DOOR_THICKNESS + HANDLE_DEPTH:.3f}")
     if kind == "holed_box":
         side, _ = side_hole(size)
         if side > min(y, z) - 2 * WALL_THICKNESS:

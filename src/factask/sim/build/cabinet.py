@@ -19,6 +19,7 @@ import numpy as np
 
 from factask.geometry import Pose, rotation_matrix
 from factask.scene.cabinet import cabinet_boxes, drawer_boxes, drawer_seat
+from factask.scene.microwave import door_boxes, microwave_boxes
 from factask.scene.objects import SceneObject
 from factask.sim.build.mjspec import BodyHandles, add_plan_geoms
 from factask.sim.build.parts import GEOM_SEPARATOR, GeomPlan, ObjectPlan, fmt
@@ -26,7 +27,7 @@ from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
 from factask.vocabulary.variables import VariableSet, drawers_of
 
 #: Kinds built here rather than from their stand-alone parts.
-FURNITURE_KINDS = ("cabinet", "drawer")
+FURNITURE_KINDS = ("cabinet", "drawer", "microwave", "door")
 #: Damping (N s/m) of a drawer's slide: it stops within a few mm once let go.
 SLIDE_DAMPING = 20.0
 #: Dry friction (N) of a drawer's slide: it stays where it is left, though nudged.
@@ -89,20 +90,25 @@ def _geoms(plan: ObjectPlan, boxes: list, mass: float | None) -> tuple[GeomPlan,
 
 def furniture_plan(plan: ObjectPlan, obj: SceneObject, graph: VariableSet,
                    moving: bool = True) -> ObjectPlan:
-    """The plan of a cabinet (with its number of bays) or a drawer (its handle where
-    its level puts it), from the stand-alone plan of its kind.
+    """The plan of a cabinet (with its number of bays), a drawer (its handle where
+    its level puts it), a microwave or a door, from the stand-alone plan of its kind.
 
     Args:
         plan: The plan :func:`~factask.sim.build.parts.plan_object` made.
         obj: The scene object it is of.
         graph: The task graph (a cabinet's drawers, a drawer's seat).
-        moving: A drawer's own body (False: its goal marker).
+        moving: A drawer's (door's) own body (False: its goal marker).
     """
     if obj.kind == "cabinet":
         bays = len(drawers_of(graph.variables, obj.variable))
         return replace(plan, geoms=_geoms(plan, cabinet_boxes(obj.size, max(bays, 1)), None))
-    seat = drawer_seat(graph, obj.variable)
-    boxes = drawer_boxes(obj.size, seat.bays, seat.level)
+    if obj.kind == "microwave":
+        return replace(plan, geoms=_geoms(plan, microwave_boxes(obj.size), None))
+    if obj.kind == "door":
+        boxes = door_boxes(obj.size)
+    else:
+        seat = drawer_seat(graph, obj.variable)
+        boxes = drawer_boxes(obj.size, seat.bays, seat.level)
     if not moving:
         return replace(plan, geoms=_geoms(plan, boxes, None))
     return replace(plan, mocap=False, geoms=_geoms(plan, boxes, obj.mass))
