@@ -4,6 +4,7 @@ bit for bit (:mod:`factask.datasets.actions`)."""
 from __future__ import annotations
 
 import json
+from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
@@ -25,7 +26,7 @@ from factask.datasets.actions import (
 )
 from factask.datasets.recording import record_episode
 from factask.datasets.replay import compare_states, resimulate
-from factask.datasets.shards import CollectConfig, collect
+from factask.datasets.shards import SHARD_DIR, CollectConfig, CollectError, collect
 from factask.datasets.states import StatesFileError, read_states, write_states
 from factask.sim.env import ACTION_KINDS, ActionError, FactaskEnv, action_kind
 
@@ -171,3 +172,13 @@ def test_a_states_file_of_layout_1_reads_as_pick_and_places(tmp_path: Path) -> N
     np.savez(path, **old)
     with pytest.raises(StatesFileError, match="layout 7"):
         read_states(path)
+
+
+def test_shards_of_the_older_action_layout_are_not_resumed(tmp_path: Path) -> None:
+    """A run started by a factask of encoding 1 (its plan.json has no action_encoding)."""
+    config = CollectConfig(tasks=("turn-on-stove",), episodes=1, image_size=None)
+    shard_dir = tmp_path / "ds" / SHARD_DIR
+    shard_dir.mkdir(parents=True)
+    (shard_dir / "plan.json").write_text(json.dumps(asdict(config), sort_keys=True))
+    with pytest.raises(CollectError, match="another factask version"):
+        collect(config, tmp_path / "ds", workers=1)
