@@ -33,9 +33,11 @@ from factask.vocabulary.errors import InvalidValueError
 
 KINDS = sorted(RELATION_TYPES)
 #: Library tasks that add what the relation examples lack: supports in a group
-#: (a bar on two pillars), round bowls, milestones, many factors.
+#: (a bar on two pillars), round bowls, milestones, many factors, a door and a drawer
+#: shut over what was put in them.
 LIBRARY = ("build-house", "put-block-in-bowl", "towers-of-hanoi", "stack-block-pyramid",
-           "align-box-corner")
+           "align-box-corner", "put-bowl-in-microwave-and-close-it",
+           "put-bowl-in-open-drawer-and-close-it")
 
 
 def _example_graph(kind: str) -> TaskGraph:

@@ -460,7 +460,8 @@ def test_make_vec_with_an_id_gives_the_batch_with_the_ids_spaces() -> None:
 
 
 def test_a_task_with_drawers_is_refused_by_the_batch_with_a_typed_error() -> None:
-    with pytest.raises(InvalidValueError, match=r"drawers .* not in the batched env"):
+    with pytest.raises(InvalidValueError,
+                       match=r"drawers, doors and switches .* not in the batched env"):
         make_batch("open-drawer", 1, device="cpu")
 
 

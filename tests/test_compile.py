@@ -202,12 +202,14 @@ def test_mjspec_and_mjcf_export_build_the_same_model(task: str) -> None:
     from factask.library import get_task, task_names
     from factask.sim.build.compile import build_mjcf
     from factask.sim.build.mjcf import XML_PRECISION
+    from factask.vocabulary.kinds import JOINTED_KINDS
 
-    # Cabinets are built at compile time only (a drawer inside its cabinet's body on a
-    # slide joint); the MJCF export has their stand-alone assets, not a scene's.
+    # Jointed parts are built at compile time only (a drawer inside its cabinet's body,
+    # a door inside its microwave's, a button inside its host's, each on its joint);
+    # the MJCF export has their stand-alone assets, not a scene's.
     graphs = [_graph()] if task == "blocks-in-bowl" else [
         g for g in map(get_task, task_names())
-        if not any(v.kind in ("cabinet", "drawer") for v in g.variables)]
+        if not any(v.kind in JOINTED_KINDS for v in g.variables)]
     for graph in graphs:
         spec_model = compile_graph(graph, robot=None).model
         root, _ = build_mjcf(graph)

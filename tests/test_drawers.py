@@ -175,6 +175,7 @@ def test_library_cabinet_builder_gives_valid_drawers() -> None:
 MORE_DRAWER_TASKS = ["open-top-drawer", "open-bottom-drawer", "close-top-drawer",
                      "open-two-drawers", "put-two-blocks-in-open-drawer",
                      "open-drawer-and-take-block-out", "take-block-out-of-drawer-to-zone",
+                     "take-block-out-of-shut-drawer",
                      "put-bowl-on-cabinet-and-close-drawer"]
 
 

@@ -35,6 +35,8 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "13_reference_model.py": ("13_reference.json",),
     "14_libero_task.py": ("14_libero.json", "14_libero_scene.png"),
     "15_drawers.py": ("15_drawers.json", "15_drawer_shut.png", "15_drawer_open.png"),
+    "16_switches.py": ("16_switches.json", "16_switch_off.png", "16_switch_on.png"),
+    "17_doors.py": ("17_doors.json", "17_door_shut.png", "17_door_open.png"),
 }
 #: Examples that compile MuJoCo Warp's kernels: with the batched env's tests in one
 #: xdist group, so one worker compiles them (once per machine, then cached).

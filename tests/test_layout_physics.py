@@ -24,7 +24,12 @@ from factask.graph import TaskGraph
 from factask.library import get_task, task_names
 from factask.scene.collision import LayoutError
 from factask.scene.objects import objects_by_name
-from factask.sim.build.compile import CompiledScene, compile_graph, get_object_pose, set_object_pose
+from factask.sim.build.compile import (
+    CompiledScene,
+    compile_graph,
+    get_object_pose,
+    set_object_poses,
+)
 from factask.sim.layout.checks import check_task
 from factask.sim.layout.reset import reset_layout
 from factask.sim.layout.sampling import sample_layout
@@ -151,8 +156,7 @@ def _scene(key: str) -> tuple[TaskGraph, CompiledScene]:
 def _load(scene: CompiledScene, poses: dict[str, Pose]) -> mujoco.MjData:
     """Fresh data with every object at ``poses``, forward-computed."""
     data = mujoco.MjData(scene.model)
-    for name, handle in scene.objects.items():
-        set_object_pose(scene.model, data, handle, poses[name])
+    set_object_poses(scene.model, data, scene.objects, poses)
     mujoco.mj_forward(scene.model, data)
     return data
 

@@ -41,7 +41,8 @@ def _solved_scene(kind: str, seed: int):
 
 def test_registry_is_keyed_by_each_units_kind() -> None:
     assert sorted(["at_pose", "in_zone", "on", "inside", "stack", "row", "circle",
-                            "aligned", "pile_in_zone", "rope_along", "open", "closed"]) == KINDS
+                            "aligned", "pile_in_zone", "rope_along", "open", "closed",
+                            "switched_on", "switched_off"]) == KINDS
     for kind, cls in RELATION_TYPES.items():
         assert issubclass(cls, RelationBase)
         assert cls.kind() == kind

@@ -39,11 +39,12 @@ from factask.batch.geometry import (
 from factask.batch.scene import BatchScene
 from factask.batch.targets import BatchTargets
 from factask.relations.base import RelationBase
-from factask.relations.drawer import DrawerRelation
+from factask.relations.drawer import DOOR_KIND, ArticulatedRelation
 from factask.relations.pile_in_zone import PileInZone, block_side
 from factask.relations.region import RegionRelation
 from factask.relations.rope import RopeAlong, segment_scores
 from factask.relations.status import MAX_TILT_DEG
+from factask.relations.switch import SwitchRelation
 from factask.scene.objects import (
     GEOMETRY_EPS,
     SceneObject,
@@ -51,7 +52,13 @@ from factask.scene.objects import (
     inner_half_xy,
 )
 from factask.vocabulary.errors import InvalidValueError
-from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
+from factask.vocabulary.kinds import (
+    DOOR_RANGE,
+    drawer_closed_offset,
+    drawer_travel,
+    switch_off_offset,
+    switch_travel,
+)
 from factask.vocabulary.world import TABLE_Z
 
 
@@ -331,19 +338,79 @@ def drawer_openings(cabinet: SceneObject, cabinet_pos: np.ndarray, cabinet_quat:
     return (closed_x - local_x) / drawer_travel(drawer.size)
 
 
+def door_openings(microwave_quat: np.ndarray, quat: np.ndarray) -> np.ndarray:
+    """How far a door has swung out in every world (W,), a fraction of its range: the
+    batched twin of :func:`factask.scene.microwave.door_opening` (its yaw relative to
+    its microwave's, wrapped to (-pi, pi], not clipped)."""
+    turn = yaws(quat) - yaws(microwave_quat)
+    return np.arctan2(np.sin(turn), np.cos(turn)) / DOOR_RANGE
+
+
 def check_drawer_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
                        ) -> BatchFactorStatus:
-    """``open`` / ``closed``: each drawer's opening against the relation's threshold
-    (its own ``holds``, applied to the array); a held drawer never counts."""
-    assert isinstance(goal, DrawerRelation)
+    """``open`` / ``closed``: each drawer's (door's) opening against the relation's
+    threshold (its own ``holds``, applied to the array); a held part never counts."""
+    assert isinstance(goal, ArticulatedRelation)
     cols = scene.columns(t.objects)
     placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)
     for i, name in enumerate(t.objects):
         cabinet = t.supports[i]
         (c,) = scene.columns([cabinet])
-        opening = drawer_openings(scene.objects[cabinet], scene.pos[:, c], scene.quat[:, c],
-                                  scene.objects[name], scene.pos[:, cols[i]])
+        if scene.objects[name].kind == DOOR_KIND:
+            opening = door_openings(scene.quat[:, c], scene.quat[:, cols[i]])
+        else:
+            opening = drawer_openings(scene.objects[cabinet], scene.pos[:, c],
+                                      scene.quat[:, c], scene.objects[name],
+                                      scene.pos[:, cols[i]])
         placed[:, i] = np.asarray(goal.holds(opening), dtype=bool)  # type: ignore[arg-type]
+    placed &= ~scene.held[:, cols]
+    return _from_placed(placed)
+
+
+# ----------------------------------------------------------------- switches
+def switch_presses(host: SceneObject, host_pos: np.ndarray, host_quat: np.ndarray,
+                   pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """How far a switch is pressed down in every world (W,), a fraction of its travel,
+    and how far it stands off its mount sideways (W,), metres: the batched twin of
+    :func:`factask.scene.switch.switch_pressed` (its slide along the host's -z axis,
+    0 off, not clipped).
+
+    Args:
+        host: The switchable fixture.
+        host_pos: Its position in every world (W, 3).
+        host_quat: Its orientation in every world (W, 4).
+        pos: The switch's position in every world (W, 3).
+    """
+    local = np.einsum("wij,wi->wj", rotation_matrices(host_quat), pos - host_pos)
+    off = switch_off_offset(host.kind, host.size)
+    lateral = np.hypot(local[:, 0] - off[0], local[:, 1] - off[1])
+    return (off[2] - local[:, 2]) / switch_travel(), lateral
+
+
+def check_switch_batch(goal: RelationBase, t: BatchTargets, scene: BatchScene
+                       ) -> BatchFactorStatus:
+    """``switched_on`` / ``switched_off``: each switch on its mount, its press against
+    the relation's threshold (its own ``holds``, applied to the array); a held switch
+    never counts.
+
+    Args:
+        goal: A ``switched_on`` / ``switched_off`` goal.
+        t: Its targets (``supports``: each switch's host).
+        scene: Every world's poses.
+
+    Returns:
+        The factor's status in every world.
+    """
+    assert isinstance(goal, SwitchRelation)
+    cols = scene.columns(t.objects)
+    placed = np.zeros((scene.num_worlds, len(t.objects)), dtype=bool)
+    for i in range(len(t.objects)):
+        host = t.supports[i]
+        (c,) = scene.columns([host])
+        pressed, off_mount = switch_presses(scene.objects[host], scene.pos[:, c],
+                                            scene.quat[:, c], scene.pos[:, cols[i]])
+        placed[:, i] = np.asarray(goal.holds(pressed), dtype=bool) & (
+            off_mount <= goal.tolerances.xy)
     placed &= ~scene.held[:, cols]
     return _from_placed(placed)
 
@@ -362,6 +429,8 @@ BATCH_CHECKS: dict[str, BatchCheck] = {
     "rope_along": check_rope_batch,
     "open": check_drawer_batch,
     "closed": check_drawer_batch,
+    "switched_on": check_switch_batch,
+    "switched_off": check_switch_batch,
 }
 
 
@@ -405,9 +474,11 @@ __all__ = [
     "check_region_batch",
     "check_rope_batch",
     "check_slots_batch",
+    "check_switch_batch",
     "drawer_openings",
     "group_areas",
     "placement_areas",
     "rest_surfaces",
     "slot_fits",
+    "switch_presses",
 ]

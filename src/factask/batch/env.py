@@ -108,11 +108,12 @@ class BatchEnv:
         #: The single env that resets worlds (its reset is the batch's reset).
         self.cpu_env = FactaskEnv(graph, robot=robot)
         drawers = [n for n, h in self.cpu_env.scene.objects.items() if h.slide is not None]
-        if drawers:
+        if drawers:  # drawers and switches' buttons alike
             raise InvalidValueError(
-                f"drawers ({', '.join(drawers)}) are not in the batched env yet (a drawer's "
-                "pose follows its slide joint, which the batch does not read): run this "
-                "task in the single env (FactaskEnv) or gymnasium's sync vector env")
+                f"drawers, doors and switches ({', '.join(drawers)}) are not in the batched "
+                "env yet (a drawer's or a switch's pose follows its slide joint, a door's "
+                "its hinge, which the batch does not read): run this task in the single env "
+                "(FactaskEnv) or gymnasium's sync vector env")
         #: The batch's host model: the scene's, with one inactive weld per free object
         #: and the table top as a plane (factask.batch.model).
         self.model, welds = batch_model(self.cpu_env.scene)

@@ -60,10 +60,11 @@ from factask.vocabulary.kinds import yaw_symmetry_deg
 if TYPE_CHECKING:
     from factask.sim.env import FactaskEnv
 
-#: Relation kinds whose oracle actions (pushes, low carries, a drawer's slide) the
-#: lockstep primitive does not run yet: their worlds go to the scalar oracle, which
-#: asks for one and stops.
-NOT_BATCHED = frozenset({"pile_in_zone", "rope_along", "open", "closed"})
+#: Relation kinds whose oracle actions (pushes, low carries, a drawer's slide, a
+#: switch's press) the lockstep primitive does not run yet: their worlds go to the
+#: scalar oracle, which asks for one and stops.
+NOT_BATCHED = frozenset({"pile_in_zone", "rope_along", "open", "closed", "switched_on",
+                         "switched_off"})
 #: Assignment cost of a slot an object may not take (the scalar status's).
 _FORBIDDEN = 1e6
 #: Margin (m) the scalar occupancy checks shrink the moved object's footprint by.

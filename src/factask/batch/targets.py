@@ -38,7 +38,8 @@ class BatchTargets:
         check_yaw: Whether yaw is checked.
         chain: Slots form a column (slot k counts only if k - 1 does).
         supports: Per slot, what the object there rests on or slides in (an instance
-            name or ``table``): a drawer's cabinet for ``open`` / ``closed``.
+            name or ``table``): a drawer's cabinet for ``open`` / ``closed``, a
+            switch's host for ``switched_on`` / ``switched_off``.
     """
 
     factor: str

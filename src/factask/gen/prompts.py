@@ -35,6 +35,7 @@ from factask.vocabulary.variables import (
     AtFixedPose,
     InCabinet,
     InRegion,
+    MountedOn,
     OnTable,
     StartInside,
     StartOn,
@@ -197,7 +198,8 @@ def relations_text() -> str:
 def placements_text() -> str:
     """Each initial placement of a variable (field ``initial``)."""
     lines = []
-    for cls in (OnTable, InRegion, StartOn, StartInside, AtFixedPose, InCabinet):
+    for cls in (OnTable, InRegion, StartOn, StartInside, AtFixedPose, InCabinet,
+                MountedOn):
         kind = cls.model_fields["type"].default
         schema = compact_schema(cls)
         lines.append(f"- `{kind}`: {_doc(cls)} {json.dumps(schema, separators=(',', ':'))}")

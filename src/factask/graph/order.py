@@ -13,6 +13,13 @@ Order edges ``A -> B`` ("A before B") come from B's explicit ``after`` and from
 implied order: B's goal is anchored to (rests on, goes into, aligns with) a
 variable that A moves. When several factors move that variable, B relies on the
 pose it has when B runs: a mover that ``after`` edges put behind B gives no edge.
+A goal anchored to a receptacle is also anchored to its gates (a drawer is its own
+gate, a microwave's door gates the microwave: ``gates``). A mover whose relation
+shuts its objects (:attr:`~factask.relations.base.RelationBase.anchored_goals`
+``"before"``: ``closed``) comes *after* the goals anchored to them instead -- what
+goes into a drawer goes in before it is shut -- so "put the block in the drawer
+that starts open, then close it" needs no ``after`` at all, and one that says so
+is no cycle.
 
 Rules (each broken rule is a :class:`Problem` naming the factor):
 
@@ -24,7 +31,7 @@ Rules (each broken rule is a :class:`Problem` naming the factor):
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from itertools import pairwise
 from typing import TYPE_CHECKING
 
@@ -39,12 +46,15 @@ if TYPE_CHECKING:
 MAX_CYCLES_REPORTED = 5
 
 
-def dependency_graph(factors: Sequence[SubtaskFactor]) -> nx.DiGraph:
+def dependency_graph(factors: Sequence[SubtaskFactor],
+                     gates: Mapping[str, Sequence[str]] | None = None) -> nx.DiGraph:
     """Directed graph of factor order (an edge A -> B means A comes before B).
 
     Args:
         factors: The graph's factors (unknown names in ``after`` are skipped; the
             graph's validation reports them).
+        gates: Receptacle variable -> the variables that gate it
+            (:func:`~factask.vocabulary.variables.gates_of`); None: none.
 
     Returns:
         A DiGraph over every factor name; each edge's ``why`` says where it came from.
@@ -59,10 +69,20 @@ def dependency_graph(factors: Sequence[SubtaskFactor]) -> nx.DiGraph:
                 d.add_edge(a, f.name, why="after")
     explicit = d.copy()
     movers = movers_by_variable(factors)
+    by_name = {f.name: f for f in factors}
     for f in factors:
-        for anchor in f.anchors():
+        anchors = list(dict.fromkeys(a for anchor in f.anchors()
+                                     for a in (anchor, *(gates or {}).get(anchor, ()))))
+        for anchor in anchors:
             for m in movers.get(anchor, []):
                 if m == f.name:
+                    continue
+                if by_name[m].goal.anchored_goals == "before":
+                    # A shutting goal comes after what goes in, unless the author
+                    # ordered it before f on purpose.
+                    if not nx.has_path(explicit, m, f.name):
+                        d.add_edge(f.name, m, why=f"{m} shuts {anchor}, which {f.name} "
+                                   "is anchored to")
                     continue
                 # A mover ordered behind f moves the anchor only after f is done.
                 if len(movers[anchor]) > 1 and nx.has_path(explicit, f.name, m):

@@ -27,14 +27,17 @@ from factask.graph.order import (
     topological_order,
 )
 from factask.vocabulary.errors import GraphValidationError, Problem, name_list
-from factask.vocabulary.kinds import kind_spec, shape_problem
+from factask.vocabulary.kinds import JOINTED_KINDS, kind_spec, shape_problem
 from factask.vocabulary.limits import MAX_FACTORS, MAX_OBJECTS, MAX_VARIABLES, Text, size_problem
 from factask.vocabulary.names import TaskName
 from factask.vocabulary.variables import (
     InCabinet,
+    MountedOn,
     StartInside,
     StateVariable,
     cabinet_problems,
+    gates_of,
+    switch_problems,
 )
 
 #: Weights must sum to 1 within this absolute tolerance.
@@ -156,9 +159,11 @@ class TaskGraph(BaseModel):
 
         Edges come from B's explicit ``after`` and from implied order: B's goal is
         anchored to (rests on, goes into, aligns with) a variable that A moves
-        (see :mod:`factask.graph.order`).
+        (see :mod:`factask.graph.order`); a goal anchored to a receptacle that a
+        drawer or door gates is anchored to that gate too
+        (:func:`~factask.vocabulary.variables.gates_of`).
         """
-        return dependency_graph(self.factors)
+        return dependency_graph(self.factors, gates_of(self.variables))
 
     def factor_order(self) -> list[str]:
         """Factors in an order that respects every dependency (declaration order
@@ -272,7 +277,7 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             elif ref not in variables:
                 out.append(Problem(v.name, "initial", f"starts on/inside unknown variable "
                                    f"{ref!r}", f"use one of {name_list(var_names)}"))
-            elif not isinstance(v.initial, InCabinet):  # a drawer: cabinet_problems
+            elif not isinstance(v.initial, InCabinet | MountedOn):  # cabinet/switch_problems
                 need = "receptacle" if isinstance(v.initial, StartInside) else "support"
                 host = variables[ref]
                 if not getattr(kind_spec(host.kind), need):
@@ -280,6 +285,7 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
                                        f"a {host.kind}, which is not a {need}",
                                        "start it on the table or on/inside another variable"))
     out.extend(cabinet_problems(graph.variables))
+    out.extend(switch_problems(graph.variables))
     starts = nx.DiGraph()
     for v in graph.variables:
         for ref in v.references():
@@ -321,17 +327,19 @@ def graph_problems(graph: TaskGraph) -> list[Problem]:
             out.append(Problem(f.name, "goal.objects", f"{name!r} listed twice", "list it once"))
         for name in f.goal.objects:
             v = variables.get(name)
-            # A drawer is fixed (never picked) but slides in its cabinet: 'open' moves it.
-            if v is not None and v.is_fixed and v.kind != "drawer":
+            # A drawer, a door or a switch is fixed (never picked) but moves on its joint
+            # in its host: 'open' ('switched_on') moves it. A kind the relation does not
+            # move at all is said by the relation (its fix names the right variable).
+            moves = f.goal.moves_kinds
+            if (v is not None and v.is_fixed and v.kind not in JOINTED_KINDS
+                    and (moves is None or v.kind in moves)):
                 out.append(Problem(f.name, "goal.objects", f"moves fixed variable {name!r}",
                                    f"set {name!r} fixed=false or move another variable"))
         out.extend(f.goal.problems(f.name, variables))
         host = None if f.after else f.goal.met_at_start(variables)
         if host is not None:  # every reset would be refused: say it once, up front
-            out.append(Problem(f.name, "goal", f"met at the start: every object it moves "
-                               f"starts on or in {host!r}, where the goal puts it",
-                               "start them elsewhere (initial: table), or choose another "
-                               "goal"))
+            message, fix = f.goal.met_at_start_problem(host)
+            out.append(Problem(f.name, "goal", message, fix))
         for a in f.after:
             if a == f.name:
                 out.append(Problem(f.name, "after", "factor is ordered after itself",

@@ -159,8 +159,6 @@ def put_two_blocks_in_open_drawer() -> TaskGraph:
 
 @register("open-drawer-and-take-block-out")
 def open_drawer_and_take_block_out() -> TaskGraph:
-    # The drawer starts half open: the reset places a block inside a drawer only
-    # where the drawer stands out of its cabinet.
     box, drawers = cabinet(TWO_DRAWERS, opened={"top": 0.5})
     block = var("red_block", "block", "red", BLOCK, initial=start_inside(drawers["top"]))
     zone = var("green_zone", "zone", "green", ZONE)
@@ -169,6 +167,23 @@ def open_drawer_and_take_block_out() -> TaskGraph:
         "open-drawer-and-take-block-out",
         "Pull the half-open top drawer of the cabinet all the way open, take the red "
         "block out of it and place it in the green zone.",
+        opened,
+        use("place_in_zone", objects=block, zone=zone, after=[opened]),
+        extra=[box, drawers["bottom"]],
+    )
+
+
+@register("take-block-out-of-shut-drawer")
+def take_block_out_of_shut_drawer() -> TaskGraph:
+    # The block starts in the drawer with the drawer shut: hidden until it is opened.
+    box, drawers = cabinet(TWO_DRAWERS)
+    block = var("red_block", "block", "red", BLOCK, initial=start_inside(drawers["top"]))
+    zone = var("green_zone", "zone", "green", ZONE)
+    opened = use("open_drawer", drawer=drawers["top"])
+    return assemble(
+        "take-block-out-of-shut-drawer",
+        "Open the top drawer of the cabinet, take out the red block that lies in it and "
+        "place it in the green zone.",
         opened,
         use("place_in_zone", objects=block, zone=zone, after=[opened]),
         extra=[box, drawers["bottom"]],

@@ -19,6 +19,7 @@ from factask.library import (  # noqa: F401
     catalog_arranging,
     catalog_articulated,
     catalog_deformable,
+    catalog_doors,
     catalog_gensim_insertion,
     catalog_gensim_layers,
     catalog_gensim_lines,
@@ -30,6 +31,7 @@ from factask.library import (  # noqa: F401
     catalog_placing,
     catalog_stacking,
     catalog_structures,
+    catalog_switches,
 )
 from factask.library.builders import BUILDERS
 from factask.library.tags import graph_tags, task_tags

@@ -29,6 +29,8 @@ from factask.graph import (
     StateVariable,
     SubtaskFactor,
     SubtaskTemplate,
+    SwitchedOff,
+    SwitchedOn,
     TargetPose,
     TaskGraph,
     TemplateSlot,
@@ -43,14 +45,14 @@ STACKABLE = ["block", "box", "cylinder"]
 # Kinds usable as the footprint of an ``in_zone`` goal.
 REGIONS = ["zone", "pallet", "kit", "stand", "line", "bowl", "container", "fixture"]
 # Kinds one can put things inside.
-RECEPTACLES = ["container", "bowl", "fixture", "drawer"]
+RECEPTACLES = ["container", "bowl", "fixture", "drawer", "microwave"]
 # Kinds a column may stand on (``stack`` base: support or region; a corner marker
 # holds a column of ells, an ell carries an equal ell).
 BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinder", "corner",
          "ell"]
 # Kinds objects may rest on (``on`` support: support or receptacle; a cabinet's top).
 SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "bowl",
-            "cabinet"]
+            "cabinet", "stove"]
 
 #: Centre distance of a bridge's two pillars (m): with 4 cm pillars the gap is
 #: 4 cm, so a deck at least 12 cm long spans it with 2 cm resting on each pillar.
@@ -113,6 +115,46 @@ _TEMPLATE_LIST: list[SubtaskTemplate] = [
             name="close",
             description="push the {drawer} shut",
             goal=Closed(objects=["drawer"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="switch_on",
+        description="Switch on the {switch}.",
+        slots=[slot("switch", "the switch to press down", ["switch"])],
+        factors=[SubtaskFactor(
+            name="switch_on",
+            description="press the {switch} down",
+            goal=SwitchedOn(objects=["switch"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="switch_off",
+        description="Switch off the {switch}.",
+        slots=[slot("switch", "the switch to pull back up", ["switch"])],
+        factors=[SubtaskFactor(
+            name="switch_off",
+            description="pull the {switch} back up",
+            goal=SwitchedOff(objects=["switch"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="open_door",
+        description="Open the {door}.",
+        slots=[slot("door", "the door to swing open", ["door"])],
+        factors=[SubtaskFactor(
+            name="open",
+            description="swing the {door} open",
+            goal=Open(objects=["door"]),
+        )],
+    ),
+    SubtaskTemplate(
+        name="close_door",
+        description="Close the {door}.",
+        slots=[slot("door", "the door to swing shut", ["door"])],
+        factors=[SubtaskFactor(
+            name="close",
+            description="swing the {door} shut",
+            goal=Closed(objects=["door"]),
         )],
     ),
     SubtaskTemplate(

@@ -31,10 +31,13 @@ from factask.relations.pile_in_zone import PileInZone
 from factask.relations.rope import RopeAlong
 from factask.relations.row import Row
 from factask.relations.stack import Stack
+from factask.relations.switched_off import SwitchedOff
+from factask.relations.switched_on import SwitchedOn
 
 #: Every relation unit, in the order the schema and the prompts list them.
 _UNITS: tuple[type[RelationBase], ...] = (AtPose, InZone, On, Inside, Stack, Row, Circle,
-                                         Aligned, PileInZone, RopeAlong, Open, Closed)
+                                         Aligned, PileInZone, RopeAlong, Open, Closed,
+                                         SwitchedOn, SwitchedOff)
 
 #: The registry: relation kind (its ``type``) -> its class.
 RELATION_TYPES: dict[str, type[RelationBase]] = {cls.kind(): cls for cls in _UNITS}
@@ -56,4 +59,5 @@ ANCHOR_FIELDS: tuple[str, ...] = tuple(dict.fromkeys(
 
 __all__ = ["ANCHOR_CAPABILITY", "ANCHOR_FIELDS", "RELATION_TYPES", "Aligned", "AtPose",
            "Circle", "Closed", "InZone", "Inside", "On", "Open", "PileInZone", "Relation",
-           "RelationBase", "RopeAlong", "Row", "Stack", "TargetPose"]
+           "RelationBase", "RopeAlong", "Row", "Stack", "SwitchedOff", "SwitchedOn",
+           "TargetPose"]

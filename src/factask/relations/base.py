@@ -24,7 +24,7 @@ from __future__ import annotations
 import abc
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -86,6 +86,11 @@ class RelationBase(BaseModel, abc.ABC):
     moves_kinds: ClassVar[frozenset[str] | None] = None
     #: What to do instead when an object is not of :attr:`moves_kinds` (the fix).
     other_kinds_fix: ClassVar[str] = "choose another relation"
+    #: Where a goal anchored to a variable this relation moves goes in the factor
+    #: order (:mod:`factask.graph.order`): ``"after"`` it (it rests on where this goal
+    #: leaves the variable), or ``"before"`` it (``closed``: what goes into a drawer
+    #: goes in before it is shut).
+    anchored_goals: ClassVar[Literal["after", "before"]] = "after"
 
     objects: list[Name] = Field(
         min_length=1, description="Variables this goal moves (all instances of each)."
@@ -173,6 +178,21 @@ class RelationBase(BaseModel, abc.ABC):
         if len(hosts) == 1 and (host := hosts.pop()) in anchors:
             return host
         return None
+
+    def met_at_start_problem(self, host: str) -> tuple[str, str]:
+        """What validation says when :meth:`met_at_start` found ``host``: (message,
+        fix). Relations whose start state is not a placement (a switch that starts
+        on) say it in their own words.
+
+        Args:
+            host: What :meth:`met_at_start` returned.
+
+        Returns:
+            The problem's message and its fix.
+        """
+        return (f"met at the start: every object it moves starts on or in {host!r}, where "
+                "the goal puts it",
+                "start them elsewhere (initial: table), or choose another goal")
 
     def layout_reserves(self, variables: Mapping[str, StateVariable]) -> list[Reserve]:
         """Table the goal's anchors must keep clear at reset (see :class:`Reserve`);

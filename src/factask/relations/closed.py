@@ -1,18 +1,19 @@
-"""``closed``: drawers pushed into their cabinets."""
+"""``closed``: drawers pushed into their cabinets, doors swung shut."""
 
 from __future__ import annotations
 
 from typing import Any, Literal
 
-from factask.relations.drawer import DrawerRelation, drawer_example
+from factask.relations.drawer import ArticulatedRelation, drawer_example
 from factask.vocabulary.tolerances import DRAWER_CLOSED_FRACTION
 
 
-class Closed(DrawerRelation):
-    """Push the drawers ``objects`` (kind drawer) shut: each out by at most 5% of
-    its travel."""
+class Closed(ArticulatedRelation):
+    """Shut the drawers and doors ``objects`` (kind drawer or door): each open by at
+    most 5% of its travel (a drawer) or range (a door)."""
 
     target_opening = 0.0
+    anchored_goals = "before"
 
     type: Literal["closed"] = "closed"
 

@@ -1,16 +1,17 @@
-"""``open``: drawers pulled out of their cabinets."""
+"""``open``: drawers pulled out of their cabinets, doors swung open."""
 
 from __future__ import annotations
 
 from typing import Any, Literal
 
-from factask.relations.drawer import DrawerRelation, drawer_example
+from factask.relations.drawer import ArticulatedRelation, drawer_example
 from factask.vocabulary.tolerances import DRAWER_OPEN_FRACTION
 
 
-class Open(DrawerRelation):
-    """Pull the drawers ``objects`` (kind drawer) open: each out by at least 90% of
-    its travel."""
+class Open(ArticulatedRelation):
+    """Open the drawers and doors ``objects`` (kind drawer or door): each drawer
+    pulled out by at least 90% of its travel, each door swung out by at least 90%
+    of its range."""
 
     target_opening = 1.0
 

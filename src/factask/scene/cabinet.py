@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from factask.geometry import Pose, rotation_matrix
-from factask.scene.objects import SceneObject
+from factask.scene.objects import Area, SceneObject, placement_area, yaw_rotation_2d
 from factask.vocabulary.errors import InvalidValueError
 from factask.vocabulary.kinds import (
     HANDLE_DEPTH,
@@ -122,6 +122,25 @@ def drawer_opening(cabinet: SceneObject, cabinet_pose: Pose, drawer: SceneObject
     local = rotation_matrix(cabinet_pose.quat).T @ (pose.pos - cabinet_pose.pos)
     closed_x = drawer_closed_offset(cabinet.size, 1, 0)[0]  # the same for every bay
     return float((closed_x - local[0]) / drawer_travel(drawer.size))
+
+
+def drawer_shown_area(drawer: SceneObject, pose: Pose) -> Area:
+    """The part of a drawer's inside that stands out of its cabinet once the drawer
+    is all the way open: the front of its floor, :func:`drawer_travel` deep behind
+    its front wall. Only there can a top-down robot reach what lies in the drawer
+    (the rest stays under the cabinet's top or the bay above), so a thing starts in
+    a drawer there.
+
+    Args:
+        drawer: The drawer.
+        pose: Its pose (any opening: the area moves with it).
+    """
+    inner = placement_area(drawer, pose)
+    front = -drawer.half[0] + HANDLE_DEPTH + WALL_THICKNESS  # the inner x of its front wall
+    back = -drawer.half[0] + HANDLE_DEPTH + drawer_travel(drawer.size)
+    centre_x = (front + back) / 2
+    centre = pose.pos[:2] + yaw_rotation_2d(pose.yaw) @ np.array([centre_x, 0.0])
+    return Area(centre, pose.yaw, np.array([max(back - front, 0.0) / 2, inner.half[1]]))
 
 
 def handle_point(drawer: SceneObject, pose: Pose, seat: DrawerSeat) -> np.ndarray:

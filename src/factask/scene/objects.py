@@ -33,14 +33,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from factask.geometry import Pose, rotation_matrix
-from factask.vocabulary.kinds import HANDLE_DEPTH, WALL_THICKNESS, KindSpec, kind_spec
+from factask.vocabulary.kinds import (
+    HANDLE_DEPTH,
+    SWITCH_HOSTS,
+    WALL_THICKNESS,
+    KindSpec,
+    kind_spec,
+)
 from factask.vocabulary.variables import VariableSet
 from factask.vocabulary.world import TABLE_Z
 
 #: Small slack (metres) for "inside" tests so a point on a boundary counts as inside.
 GEOMETRY_EPS = 1e-9
 #: Kinds of receptacle that have a floor (objects inside rest on it, not on the table).
-FLOORED_RECEPTACLES = ("container", "bowl", "drawer")
+FLOORED_RECEPTACLES = ("container", "bowl", "drawer", "microwave")
 #: Kinds whose shape is a sphere: rotation changes neither footprint nor height.
 SPHERE_KINDS = ("ball",)
 #: Line marker whose default width the corner marker's arms share (one definition).
@@ -358,6 +364,11 @@ def placement_area(obj: SceneObject, pose: Pose) -> Area:
     A receptacle: its inner area (a disk for round kinds). Anything else: its
     footprint (the top face of a support, the marked area of a zone).
     """
+    if obj.kind in SWITCH_HOSTS:  # its top behind the control strip its switch stands on
+        strip = SWITCH_HOSTS[obj.kind].strip + SWITCH_HOSTS[obj.kind].clear
+        half = np.maximum(obj.half_xy - np.array([strip / 2, 0.0]), 0.0)
+        centre = pose.pos[:2] + yaw_rotation_2d(pose.yaw) @ np.array([strip / 2, 0.0])
+        return Area(centre, pose.yaw, half)
     if obj.kind == "drawer":  # inside its walls, behind its handle (at its -x end)
         half = np.maximum(obj.half_xy - WALL_THICKNESS - np.array([HANDLE_DEPTH / 2, 0.0]), 0.0)
         centre = pose.pos[:2] + yaw_rotation_2d(pose.yaw) @ np.array([HANDLE_DEPTH / 2, 0.0])

@@ -35,15 +35,17 @@ from factask.sim.build.compile import (
     compile_graph,
     get_object_pose,
     set_marker,
-    set_object_pose,
+    set_object_poses,
 )
 from factask.sim.layout.checks import TaskStatus, check_task
 from factask.sim.layout.reset import reset_layout
 from factask.sim.robots.attach import SuctionRobot, make_robot
+from factask.sim.robots.door_swing import door_swing
 from factask.sim.robots.health import physics_problem
 from factask.sim.robots.low_carry import low_pick_and_place
 from factask.sim.robots.slide_pull import slide_pull
 from factask.sim.robots.spatula import push
+from factask.sim.robots.switch_press import press_switch
 from factask.vocabulary.errors import FactaskError, InvalidValueError
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y, WORKSPACE_Z
 
@@ -61,7 +63,60 @@ RENDER_CAMERA = "front"
 
 
 class ActionError(FactaskError):
-    """An action that is not a finite (pick, place) pair of (x, y, z, yaw)."""
+    """An action that is not one primitive's keys (:data:`ACTION_KINDS`) of finite numbers."""
+
+
+@dataclass(frozen=True)
+class ActionKind:
+    """One action primitive ``step`` takes: the keys that select it and what they hold.
+
+    Attributes:
+        name: The primitive ("pick_place", "low_carry", "push", "slide", "swing", "press").
+        code: Its stable number (the ``primitive`` column of recorded datasets,
+            :mod:`factask.datasets.actions`; never renumber, append new kinds).
+        poses: The two (x, y, z, yaw) keys, in order (the "pick" and the "place").
+        extras: The other keys and how many numbers each holds (``lift``: metres;
+            ``hinge``: x, y).
+    """
+
+    name: str
+    code: int
+    poses: tuple[str, str]
+    extras: tuple[tuple[str, int], ...] = ()
+
+    @property
+    def keys(self) -> frozenset[str]:
+        """Every key the action must hold."""
+        return frozenset(self.poses) | {k for k, _ in self.extras}
+
+
+#: The action primitives, in the order ``step`` tries them (the first whose keys all
+#: are in the action runs; a plain pick-and-place last).
+ACTION_KINDS: tuple[ActionKind, ...] = (
+    ActionKind("push", 2, ("start", "end")),
+    ActionKind("swing", 4, ("grasp", "swing_to"), (("hinge", 2),)),
+    ActionKind("slide", 3, ("grasp", "slide_to")),
+    ActionKind("press", 5, ("press", "press_to")),
+    ActionKind("low_carry", 1, ("pick", "place"), (("lift", 1),)),
+    ActionKind("pick_place", 0, ("pick", "place")),
+)
+
+
+def action_kind(action: Any) -> ActionKind:
+    """The primitive an action dict selects (:data:`ACTION_KINDS`).
+
+    Raises:
+        ActionError: not a dict, or no primitive's keys are all in it.
+    """
+    if isinstance(action, dict):
+        for kind in ACTION_KINDS:
+            if kind.keys <= set(action):
+                return kind
+    shapes = " or ".join("{" + ", ".join(repr(k) for k in (*kind.poses, *dict(kind.extras)))
+                         + "}" for kind in ACTION_KINDS)
+    got = sorted(map(str, action)) if isinstance(action, dict) else type(action).__name__
+    raise ActionError(f"action must be a dict with the keys of one primitive ({shapes}), "
+                      f"got {got}: {action!r}")
 
 
 class ResetNeededError(FactaskError, RuntimeError):
@@ -101,6 +156,17 @@ def _pose4(value: Any, what: str) -> Pose:
     return Pose.from_xyz_yaw(*arr)
 
 
+def _xy(value: Any, what: str) -> np.ndarray:
+    """A point (x, y) of an action, checked (two finite numbers; a third is ignored)."""
+    try:
+        arr = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        arr = np.full(1, np.nan)  # not numbers at all: reported below
+    if arr.shape not in ((2,), (3,)) or not np.all(np.isfinite(arr)):
+        raise ActionError(f"{what} must be 2 finite numbers (x, y in metres), got {value!r}")
+    return arr[:2]
+
+
 class FactaskEnv(gym.Env):
     """A task graph as a gymnasium environment with a suction pick-and-place action.
 
@@ -126,6 +192,12 @@ class FactaskEnv(gym.Env):
     segment, Ravens' ``PickPlace(height=0.02)``). An action with ``grasp`` and
     ``slide_to`` (x, y, z, yaw) holds a drawer's handle at ``grasp`` and slides it
     level until the tip is over ``slide_to``'s x, y (:mod:`factask.sim.robots.slide_pull`).
+    An action with ``press`` and ``press_to`` (x, y, z, yaw) presses a switch's button
+    whose top is at ``press`` down until its top is at ``press_to``'s z, or (above)
+    holds it and pulls it up there (:mod:`factask.sim.robots.switch_press`).
+    An action with ``grasp``, ``swing_to`` (x, y, z, yaw) and ``hinge`` (x, y) holds a
+    door's handle at ``grasp`` and swings it level about the hinge's vertical axis
+    until the tip is on ``swing_to``'s bearing (:mod:`factask.sim.robots.door_swing`).
 
     Raises:
         GraphValidationError, CompileError: the graph cannot be compiled.
@@ -264,10 +336,7 @@ class FactaskEnv(gym.Env):
                    "targets": {o: p.to_list() for o, p in targets[name].items()}}
             for name, s in solved.items()}
         mujoco.mj_resetData(self.model, self.data)
-        # A drawer's pose is set along its slide once its cabinet's is.
-        for name, handle in sorted(self.scene.objects.items(),
-                                   key=lambda item: item[1].slide is not None):
-            set_object_pose(self.model, self.data, handle, layout[name])
+        set_object_poses(self.model, self.data, self.scene.objects, layout)
         for (factor, slot), mocap in self.scene.markers.items():
             inst = self.scene.marker_objects[(factor, slot)]
             if inst in targets[factor]:
@@ -309,17 +378,12 @@ class FactaskEnv(gym.Env):
         """
         if self._status is None:
             raise ResetNeededError("call reset() before step()")
-        pushing = isinstance(action, dict) and {"start", "end"} <= set(action)
-        sliding = isinstance(action, dict) and {"grasp", "slide_to"} <= set(action)
-        if not (pushing or sliding) and (not isinstance(action, dict)
-                                         or not {"pick", "place"} <= set(action)):
-            raise ActionError(f"action must be a dict with 'pick' and 'place' (or 'start' and "
-                              f"'end' of a push, or 'grasp' and 'slide_to' of a drawer's "
-                              f"slide), got {action!r}")
-        first, second = (("start", "end") if pushing else ("grasp", "slide_to") if sliding
-                         else ("pick", "place"))
+        kind = action_kind(action)
+        first, second = kind.poses
+        pushing, sliding, pressing = (kind.name == k for k in ("push", "slide", "press"))
         pick = _pose4(action[first], first)
         place = _pose4(action[second], second)
+        hinge = _xy(action["hinge"], "hinge") if kind.name == "swing" else None
         if self.failure is not None:
             return self._obs(), 0.0, True, False, self._info(self._status)
         # The reward is what *this action* changed: measure the baseline now, so
@@ -329,10 +393,16 @@ class FactaskEnv(gym.Env):
         if pushing:  # a spatula's push (factask.sim.robots.spatula)
             result = push(self.robot, pick, place, on_step=self.frame_callback,
                           max_steps=max_steps)
+        elif hinge is not None:  # a door held by its handle (factask.sim.robots.door_swing)
+            result = door_swing(self.robot, pick, place, hinge, on_step=self.frame_callback,
+                                max_steps=max_steps)
         elif sliding:  # a drawer held by its handle (factask.sim.robots.slide_pull)
             result = slide_pull(self.robot, pick, place, on_step=self.frame_callback,
                                 max_steps=max_steps)
-        elif "lift" in action:  # a low carry (a rope's segment: factask.sim.robots.low_carry)
+        elif pressing:  # a switch's button (factask.sim.robots.switch_press)
+            result = press_switch(self.robot, pick, place, on_step=self.frame_callback,
+                                  max_steps=max_steps)
+        elif kind.name == "low_carry":  # a rope's segment (factask.sim.robots.low_carry)
             lift = float(np.asarray(action["lift"], dtype=float).reshape(-1)[0])
             if not np.isfinite(lift) or not 0.0 < lift <= WORKSPACE_Z[1]:
                 raise ActionError(f"lift must be in (0, {WORKSPACE_Z[1]}] m, got {lift}")

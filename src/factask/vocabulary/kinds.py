@@ -43,6 +43,11 @@ AssetKind = Literal[
     "rope",
     "cabinet",
     "drawer",
+    "stove",
+    "lamp",
+    "switch",
+    "microwave",
+    "door",
 ]
 
 KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
@@ -128,6 +133,25 @@ _SPECS = [
              "'in_cabinet'; its size follows from the cabinet's); its handle sticks out "
              "of its -x face inside its size", (0.20, 0.26, 0.08), movable=False,
              asymmetric=True, receptacle=True),
+    KindSpec("stove", "low cooktop fixed to the table; things can stand on its top behind "
+             "its control strip (the -x strip of its top, where its switch stands); size = "
+             "outer extents", (0.22, 0.24, 0.04), movable=False, asymmetric=True,
+             support=True),
+    KindSpec("lamp", "lamp base fixed to the table with a switch on the -x strip of its "
+             "top; size = outer extents", (0.12, 0.14, 0.05), movable=False,
+             asymmetric=True),
+    KindSpec("switch", "push button of a switchable fixture (stove, lamp), standing on the "
+             "-x strip of its top (starts 'mounted_on' it; its size follows from the "
+             "host's): pressed down it is on, pulled back up it is off",
+             (0.03, 0.03, 0.02), movable=False),
+    KindSpec("microwave", "microwave-like box fixed to the table, open at its -x side behind "
+             "its hinged door (and, for top-down suction cups, at the top); things go "
+             "inside it once the door is open; size = outer extents",
+             (0.18, 0.22, 0.12), movable=False, asymmetric=True, receptacle=True),
+    KindSpec("door", "a microwave's door, swinging outwards about a vertical hinge at its "
+             "-y edge (starts 'in_cabinet' of its microwave; its size follows from the "
+             "microwave's); a handle tab sticks out of its -x face at the top of its +y "
+             "end", (0.045, 0.22, 0.12), movable=False, asymmetric=True),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.
@@ -152,8 +176,94 @@ HANDLE_THICKNESS = 0.01
 DRAWER_GAP = 0.004
 #: How far a drawer slides out, as a fraction of its depth (its joint's range).
 DRAWER_TRAVEL_FRACTION = 0.8
+#: Kinds whose variables move on a joint in a host variable rather than freely: a
+#: drawer slides in its cabinet, a door swings on its microwave, a switch's button
+#: slides in its stove or lamp. They are fixed (never picked) yet moved by goals;
+#: their bodies are built inside their hosts', after them.
+JOINTED_KINDS = frozenset({"drawer", "door", "switch"})
 #: Drawers one cabinet holds at most.
 MAX_DRAWERS = 3
+#: A microwave door's panel thickness (m); its handle is a drawer's (above).
+DOOR_THICKNESS = 0.01
+#: How far (rad) a door swings open about its hinge: its joint's range.
+DOOR_RANGE = math.pi / 2
+#: How far (m) a door's handle sits in from its free (+y) edge: room for the cup.
+DOOR_HANDLE_INSET = 0.03
+
+
+@dataclass(frozen=True)
+class SwitchMount:
+    """Where a switchable kind carries its switch: a push button standing in the
+    middle of the -x strip of its top (the strip is kept clear of what is put on the
+    host, so the button stays reachable from above).
+
+    Attributes:
+        strip: Depth (x, m) of the control strip along the host's -x side.
+        clear: Depth (x, m) of the host's top kept free behind the strip, so that
+            what stands on the host leaves room round the button for the cup.
+        button: Full extents (x, y, z) of the button, metres.
+    """
+
+    strip: float = 0.05
+    clear: float = 0.02
+    button: tuple[float, float, float] = (0.03, 0.03, 0.02)
+
+
+#: Switchable kind -> its switch mount. A new switchable fixture is one entry here
+#: (and its :class:`KindSpec`): validation, building, the relations and the oracle
+#: read this table.
+SWITCH_HOSTS: dict[str, SwitchMount] = {
+    "stove": SwitchMount(),
+    "lamp": SwitchMount(strip=0.045),
+}
+#: How far a switch's button stands above its host's top when off (m); pressed all
+#: the way down (on) it stands :data:`SWITCH_RISE_OFF` - travel above it.
+SWITCH_RISE_OFF = 0.016
+#: Fraction of :data:`SWITCH_RISE_OFF` a button travels down: its joint's range (a
+#: pressed button still sticks out, so the cup can take it to pull it back up).
+SWITCH_TRAVEL_FRACTION = 0.75
+
+
+def switch_size(host_kind: str) -> tuple[float, float, float]:
+    """The size a switch of a host of kind ``host_kind`` has (its mount's button).
+
+    Args:
+        host_kind: A switchable kind (a key of :data:`SWITCH_HOSTS`).
+
+    Returns:
+        Full extents (x, y, z), metres.
+
+    Raises:
+        UnknownKindError: ``host_kind`` has no switch (validation says so first).
+    """
+    if host_kind not in SWITCH_HOSTS:
+        raise UnknownKindError(f"a {host_kind} has no switch; switchable kinds: "
+                               f"{', '.join(SWITCH_HOSTS)}")
+    return SWITCH_HOSTS[host_kind].button
+
+
+def switch_travel() -> float:
+    """How far (m) a switch's button moves down from off to on: its joint's range."""
+    return SWITCH_TRAVEL_FRACTION * SWITCH_RISE_OFF
+
+
+def switch_off_offset(host_kind: str,
+                      host_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """Centre of the switch of a host of ``host_kind`` and ``host_size``, off, in the
+    host's frame: in the middle of the -x strip, its top :data:`SWITCH_RISE_OFF`
+    above the host's top (its lower part sunk in the host, which it never touches:
+    MuJoCo leaves out contacts between a body and its parent).
+
+    Args:
+        host_kind: A switchable kind (a key of :data:`SWITCH_HOSTS`).
+        host_size: The host's full extents, metres.
+
+    Returns:
+        The switch's centre (x, y, z) in the host's frame, metres.
+    """
+    mount = SWITCH_HOSTS[host_kind]
+    return (-host_size[0] / 2 + mount.strip / 2, 0.0,
+            host_size[2] / 2 + SWITCH_RISE_OFF - mount.button[2] / 2)
 
 
 def side_hole(size: tuple[float, float, float]) -> tuple[float, float]:
@@ -205,6 +315,33 @@ def handle_top(size: tuple[float, float, float], bays: int,
     its -x end, flush with its rim, the cabinet's handles side by side along y."""
     pitch = (size[1] - 2 * WALL_THICKNESS) / bays
     return (-size[0] / 2 + HANDLE_DEPTH / 2, (level - (bays - 1) / 2) * pitch, size[2] / 2)
+
+
+def door_size(microwave_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """The size the door of a microwave of ``microwave_size`` has: its panel and the
+    handle sticking out of it (x), the microwave's front (y, z)."""
+    return (DOOR_THICKNESS + HANDLE_DEPTH, microwave_size[1], microwave_size[2])
+
+
+def door_closed_offset(microwave_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """Centre of a microwave's door, closed, in the microwave's frame: its panel on
+    the microwave's -x face, its handle out in front of it."""
+    return (-microwave_size[0] / 2 - (DOOR_THICKNESS + HANDLE_DEPTH) / 2, 0.0, 0.0)
+
+
+def door_hinge(microwave_size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """The hinge's axis point (at the door's mid-height) in the microwave's frame: the
+    outer corner of the door's panel at its -y edge, so the panel swings out without
+    sweeping into the microwave's side wall."""
+    return (-microwave_size[0] / 2 - DOOR_THICKNESS, -microwave_size[1] / 2, 0.0)
+
+
+def door_handle_top(size: tuple[float, float, float]) -> tuple[float, float, float]:
+    """Centre of the top face of a door's handle in the door's frame: out of its -x
+    face, flush with its top, :data:`DOOR_HANDLE_INSET` plus half a handle in from its
+    free (+y) edge."""
+    return (-size[0] / 2 + HANDLE_DEPTH / 2, size[1] / 2 - DOOR_HANDLE_INSET - HANDLE_WIDTH / 2,
+            size[2] / 2)
 
 
 class UnknownKindError(FactaskError, ValueError):
@@ -293,6 +430,26 @@ def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str
                                  and y > 2 * WALL_THICKNESS and z > 2 * WALL_THICKNESS):
         return (f"a drawer of size {tuple(size)} has no room inside its walls and handle",
                 f"make size x larger than {HANDLE_DEPTH + 4 * WALL_THICKNESS:.3f}")
+    if kind in SWITCH_HOSTS:
+        mount = SWITCH_HOSTS[kind]
+        if not (x > mount.strip + mount.clear + 0.04 and y > mount.button[1] + 0.01
+                and z > mount.button[2] - SWITCH_RISE_OFF + switch_travel() + 0.005):
+            return (f"a {kind} of size {tuple(size)} has no room for its switch (a "
+                    f"{mount.strip} m control strip and a button of {mount.button})",
+                    f"make size x larger than {mount.strip + mount.clear + 0.04:.3f}, "
+                    f"y larger than {mount.button[1] + 0.01:.3f} and z larger than "
+                    f"{mount.button[2] - SWITCH_RISE_OFF + switch_travel() + 0.005:.3f}")
+    if kind == "microwave" and not (x > 2 * WALL_THICKNESS and y > 2 * DOOR_HANDLE_INSET
+                                    + 2 * HANDLE_WIDTH and z > 2 * WALL_THICKNESS):
+        return (f"a microwave of size {tuple(size)} has no room inside its walls or for its "
+                "door's handle", f"make size x larger than {2 * WALL_THICKNESS:.3f}, y larger "
+                f"than {2 * DOOR_HANDLE_INSET + 2 * HANDLE_WIDTH:.3f} and z larger than "
+                f"{2 * WALL_THICKNESS:.3f}")
+    if kind == "door" and not (x > HANDLE_DEPTH and y > DOOR_HANDLE_INSET + HANDLE_WIDTH
+                               and z > HANDLE_THICKNESS):
+        return (f"a door of size {tuple(size)} has no room for its panel and handle",
+                f"give the size its microwave gives it (door_size): x = "
+                f"{DOOR_THICKNESS + HANDLE_DEPTH:.3f}")
     if kind == "holed_box":
         side, _ = side_hole(size)
         if side > min(y, z) - 2 * WALL_THICKNESS:

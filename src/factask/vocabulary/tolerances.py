@@ -16,6 +16,11 @@ REGION_FRACTION = 1.0
 DRAWER_OPEN_FRACTION = 0.9
 #: ... and ``closed`` up to this fraction (a 5 % gap reads as shut).
 DRAWER_CLOSED_FRACTION = 0.05
+#: A switch is ``switched_on`` from this fraction of its button's travel pressed
+#: down (its joint's range) ...
+SWITCH_ON_FRACTION = 0.8
+#: ... and ``switched_off`` up to this fraction (a button nudged 2 mm reads as up).
+SWITCH_OFF_FRACTION = 0.2
 #: Reward above which an episode counts as a success (the research's definition).
 SUCCESS_REWARD = 0.99
 #: Fraction of episodes that must succeed for a task to count as completed.

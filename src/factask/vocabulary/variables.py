@@ -10,10 +10,13 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from factask.vocabulary.errors import InvalidValueError, Problem
 from factask.vocabulary.kinds import (
     MAX_DRAWERS,
+    SWITCH_HOSTS,
     AssetKind,
     default_mass,
+    door_size,
     drawer_size,
     kind_spec,
+    switch_size,
     yaw_symmetry_deg,
 )
 from factask.vocabulary.limits import MAX_COUNT, MAX_HORIZONTAL, MIN_LENGTH, Text
@@ -85,13 +88,26 @@ class StartInside(_OnHost):
 class InCabinet(BaseModel):
     """Start as drawer ``level`` (0: the bottom one) of the cabinet variable
     ``cabinet``, pulled out by ``opening`` (a fraction of its travel: 0 closed, 1 all
-    the way out). Only a drawer starts so; its cabinet has one bay per drawer in it."""
+    the way out); its cabinet has one bay per drawer in it. A door starts so on the
+    microwave variable ``cabinet`` (level 0, ``opening`` a fraction of its swing).
+    Only drawers and doors start so."""
 
     model_config = ConfigDict(extra="forbid")
     type: Literal["in_cabinet"] = "in_cabinet"
     cabinet: Name
     level: int = Field(0, ge=0, le=MAX_DRAWERS - 1)
     opening: Annotated[float, Field(ge=0, le=1, allow_inf_nan=False)] = 0.0
+
+
+class MountedOn(BaseModel):
+    """Start as the switch of the switchable fixture variable ``host`` (a stove, a
+    lamp: :data:`~factask.vocabulary.kinds.SWITCH_HOSTS`), on (pressed down) or off
+    (up). Only a switch starts so; a host has one switch."""
+
+    model_config = ConfigDict(extra="forbid")
+    type: Literal["mounted_on"] = "mounted_on"
+    host: Name
+    on: bool = False
 
 
 class AtFixedPose(BaseModel):
@@ -105,7 +121,7 @@ class AtFixedPose(BaseModel):
 
 
 Placement = Annotated[
-    OnTable | InRegion | StartOn | StartInside | AtFixedPose | InCabinet,
+    OnTable | InRegion | StartOn | StartInside | AtFixedPose | InCabinet | MountedOn,
     Field(discriminator="type"),
 ]
 
@@ -205,6 +221,8 @@ class StateVariable(BaseModel):
             return [self.initial.container]
         if isinstance(self.initial, InCabinet):
             return [self.initial.cabinet]
+        if isinstance(self.initial, MountedOn):
+            return [self.initial.host]
         return []
 
 
@@ -235,6 +253,30 @@ def drawers_of(variables: Sequence[StateVariable], cabinet: str) -> list[StateVa
     return sorted(found, key=lambda v: v.initial.level)  # type: ignore[union-attr]
 
 
+#: The kind of furniture each articulated kind starts in (:class:`InCabinet`).
+FURNITURE_OF = {"drawer": "cabinet", "door": "microwave"}
+
+
+def gates_of(variables: Sequence[StateVariable]) -> dict[str, list[str]]:
+    """Receptacle variable -> the articulated variables that must be open before
+    anything goes into it: a drawer is its own gate, a microwave's door gates the
+    microwave. The graph's order reads it (:mod:`factask.graph.order`).
+
+    Args:
+        variables: A graph's variables.
+
+    Returns:
+        The gates of each articulated receptacle (absent: none).
+    """
+    out: dict[str, list[str]] = {}
+    for v in variables:
+        if v.kind == "drawer":
+            out.setdefault(v.name, []).append(v.name)
+        elif v.kind == "door" and isinstance(v.initial, InCabinet):
+            out.setdefault(v.initial.cabinet, []).append(v.name)
+    return out
+
+
 def cabinet_problems(variables: Sequence[StateVariable]) -> list[Problem]:
     """What is wrong with the graph's cabinets and drawers: a drawer starts
     ``in_cabinet`` of a cabinet variable (and nothing else does), both stand for one
@@ -244,18 +286,20 @@ def cabinet_problems(variables: Sequence[StateVariable]) -> list[Problem]:
     Args:
         variables: A graph's variables.
     """
-    out: list[Problem] = []
+    out: list[Problem] = _door_problems(variables)
     by_name = {v.name: v for v in variables}
     for v in variables:
         placed = isinstance(v.initial, InCabinet)
+        if v.kind in ("door", "microwave"):  # _door_problems
+            continue
         if v.kind == "drawer" and not placed:
             out.append(Problem(v.name, "initial", "a drawer starts in a cabinet",
                                'give initial {"type": "in_cabinet", "cabinet": <a cabinet '
                                'variable>, "level": 0}'))
         if placed and v.kind != "drawer":
-            out.append(Problem(v.name, "initial", f"only a drawer starts in_cabinet, not a "
-                               f"{v.kind}", "start it on the table or on/inside another "
-                               "variable"))
+            out.append(Problem(v.name, "initial", "only a drawer or a door starts "
+                               f"in_cabinet, not a {v.kind}", "start it on the table or "
+                               "on/inside another variable"))
         if v.kind in ("drawer", "cabinet") and v.count != 1:
             out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
                                f"got count {v.count}", "give each its own variable"))
@@ -287,5 +331,117 @@ def cabinet_problems(variables: Sequence[StateVariable]) -> list[Problem]:
                 out.append(Problem(d.name, "size", f"a drawer of {cab.name!r} (its "
                                    f"{len(drawers)} drawer(s)) has size "
                                    f"{tuple(round(w, 6) for w in want)}, got {d.extents}",
+                                   f"give size {[round(w, 6) for w in want]}"))
+    return out
+
+
+def switches_of(variables: Sequence[StateVariable], host: str) -> list[StateVariable]:
+    """The switch variables mounted on ``host`` (:class:`MountedOn`).
+
+    Args:
+        variables: A graph's variables.
+        host: The switchable fixture variable's name.
+
+    Returns:
+        Those switches, in graph order (a valid graph has one).
+    """
+    return [v for v in variables if isinstance(v.initial, MountedOn) and v.initial.host == host]
+
+
+def switch_problems(variables: Sequence[StateVariable]) -> list[Problem]:
+    """What is wrong with the graph's switches and switchable fixtures: a switch
+    starts ``mounted_on`` a switchable fixture (and nothing else does), both stand for
+    one object, a host has exactly one switch, and a switch's size is the one its
+    host's mount gives it (:func:`~factask.vocabulary.kinds.switch_size`).
+
+    Args:
+        variables: A graph's variables.
+
+    Returns:
+        The problems, each naming the field and its fix.
+    """
+    out: list[Problem] = []
+    by_name = {v.name: v for v in variables}
+    hosts = " or ".join(SWITCH_HOSTS)
+    for v in variables:
+        mounted = isinstance(v.initial, MountedOn)
+        if v.kind == "switch" and not mounted:
+            out.append(Problem(v.name, "initial", "a switch is mounted on a switchable fixture",
+                               'give initial {"type": "mounted_on", "host": <a ' + hosts
+                               + ' variable>}'))
+        if mounted and v.kind != "switch":
+            out.append(Problem(v.name, "initial", f"only a switch starts mounted_on, not a "
+                               f"{v.kind}", "start it on the table or on/inside another "
+                               "variable, or make it kind switch"))
+        if (v.kind == "switch" or v.kind in SWITCH_HOSTS) and v.count != 1:
+            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
+                               f"got count {v.count}", "give each its own variable"))
+        if v.kind == "switch" and not v.is_fixed:
+            out.append(Problem(v.name, "fixed", "a switch moves only along its button's "
+                               "slide; it cannot be free", "leave fixed out"))
+        if not (mounted and v.kind == "switch"):
+            continue
+        host = by_name.get(v.initial.host)  # type: ignore[union-attr]
+        if host is None:
+            continue  # an unknown variable: the graph's reference check says so
+        if host.kind not in SWITCH_HOSTS:
+            out.append(Problem(v.name, "initial.host", f"{host.name!r} is a {host.kind}, "
+                               "which has no switch", f"name a {hosts} variable"))
+            continue
+        want = switch_size(host.kind)
+        if any(abs(a - b) > 1e-6 for a, b in zip(v.extents, want, strict=True)):
+            out.append(Problem(v.name, "size", f"the switch of a {host.kind} has size "
+                               f"{want}, got {v.extents}",
+                               f"give size {list(want)}"))
+    for host in (v for v in variables if v.kind in SWITCH_HOSTS):
+        mine = switches_of(variables, host.name)
+        if len(mine) != 1:
+            out.append(Problem(host.name, "kind", f"a {host.kind} has one switch, got "
+                               f"{len(mine)}", 'give it one switch variable with initial '
+                               f'{{"type": "mounted_on", "host": "{host.name}"}}'))
+    return out
+
+
+def _door_problems(variables: Sequence[StateVariable]) -> list[Problem]:
+    """What is wrong with the graph's microwaves and doors: a door starts
+    ``in_cabinet`` of a microwave variable at level 0, a microwave has exactly one
+    door, both stand for one object, fixed, and a door's size is the one its
+    microwave gives it (:func:`~factask.vocabulary.kinds.door_size`)."""
+    out: list[Problem] = []
+    by_name = {v.name: v for v in variables}
+    for v in variables:
+        if v.kind not in ("door", "microwave"):
+            continue
+        if v.count != 1:
+            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
+                               f"got count {v.count}", "give each its own variable"))
+        if v.kind == "microwave":
+            doors = [d for d in variables if d.kind == "door" and isinstance(d.initial, InCabinet)
+                     and d.initial.cabinet == v.name]
+            if len(doors) != 1:
+                out.append(Problem(v.name, "kind", f"a microwave has exactly one door, got "
+                                   f"{len(doors)}", 'give it one door variable with initial '
+                                   f'{{"type": "in_cabinet", "cabinet": "{v.name}"}}'))
+            continue
+        if not v.is_fixed:
+            out.append(Problem(v.name, "fixed", "a door swings on its microwave's hinge; it "
+                               "cannot be free", "leave fixed out"))
+        if not isinstance(v.initial, InCabinet):
+            out.append(Problem(v.name, "initial", "a door starts on a microwave",
+                               'give initial {"type": "in_cabinet", "cabinet": <a microwave '
+                               'variable>}'))
+            continue
+        host = by_name.get(v.initial.cabinet)
+        if v.initial.level != 0:
+            out.append(Problem(v.name, "initial.level", f"a door has no level, got "
+                               f"{v.initial.level}", "leave level out (0)"))
+        if host is not None and host.kind != "microwave":
+            out.append(Problem(v.name, "initial.cabinet", f"{host.name!r} is a {host.kind}, "
+                               "not a microwave", "name a microwave variable"))
+        elif host is not None:
+            want = door_size(host.extents)
+            if any(abs(a - b) > 1e-6 for a, b in zip(v.extents, want, strict=True)):
+                out.append(Problem(v.name, "size", f"the door of {host.name!r} has size "
+                                   f"{tuple(round(w, 6) for w in want)}, got {v.extents}",
                                    f"give size {[round(w, 6) for w in want]}"))
     return out

@@ -4,7 +4,8 @@ LIBERO (Liu et al., 2023) defines its manipulation tasks as BDDL problems. This
 package reads them (:func:`parse_bddl`, :func:`load_bddl`) into a
 :class:`BddlProblem` and writes them back (:func:`format_bddl`);
 :func:`import_libero` turns a problem into a factask task graph, its objects mapped
-to factask stand-ins (:data:`LIBERO_KINDS`). Three of LIBERO's suites ship with factask,
+to factask stand-ins (:data:`LIBERO_KINDS`: every type LIBERO registers; its scenes:
+:data:`LIBERO_SCENES`). Three of LIBERO's suites ship with factask,
 unchanged, for development and tests (``factask/data/libero``, MIT licence):
 :func:`shipped_bddl_files`.
 """
@@ -18,8 +19,10 @@ from factask.compat.libero.bddl import load_bddl, parse_bddl
 from factask.compat.libero.importer import LiberoImport, import_libero
 from factask.compat.libero.kinds import (
     LIBERO_KINDS,
+    LIBERO_SCENES,
     LiberoKind,
     LiberoUnsupported,
+    UnknownLiberoRegion,
     UnknownLiberoType,
 )
 from factask.compat.libero.model import BddlProblem, Predicate, Region, format_bddl
@@ -58,8 +61,9 @@ def shipped_bddl_files(suite: str | None = None) -> list[Path]:
 
 
 __all__ = [
-    "LIBERO_KINDS", "SHIPPED_SUITES", "BddlError", "BddlProblem", "LiberoImport",
-    "LiberoKind", "LiberoUnsupported", "Predicate", "Region", "UnknownLiberoType",
+    "LIBERO_KINDS", "LIBERO_SCENES", "SHIPPED_SUITES", "BddlError", "BddlProblem",
+    "LiberoImport", "LiberoKind", "LiberoUnsupported", "Predicate", "Region",
+    "UnknownLiberoRegion", "UnknownLiberoType",
     "format_bddl", "import_libero", "libero_data_dir", "load_bddl", "parse_bddl",
     "shipped_bddl_files",
 ]

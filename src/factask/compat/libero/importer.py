@@ -15,10 +15,12 @@ predicate or object and why):
   fixture's stand-in; ``(In obj <receptacle>_<region>)`` → :class:`StartInside`.
 * ``:goal``: ``(On a b)`` → ``on`` when ``b`` is a support, ``inside`` when it is a
   receptacle; ``(In a <receptacle>_<region>)`` → ``inside``; ``(On a <fixture>_<top
-  region>)`` → ``on`` the fixture (:data:`TOP_REGIONS`); ``(On a <table>_<region>)`` →
-  ``in_zone`` of a goal zone made for the region (:meth:`_Importer.goal_zone`). A
-  stand-in fixed by default that a goal moves becomes movable; a goal that moves a
-  fixture is refused.
+  region>)`` → ``on`` the fixture, ``(In a <fixture>_<inside region>)`` →
+  ``inside`` it (the region's role: :func:`~factask.compat.libero.kinds.region_role`;
+  a covered shelf level, a region behind a door or a side face is refused);
+  ``(On a <table>_<region>)`` → ``in_zone`` of a goal zone made for the region
+  (:meth:`_Importer.goal_zone`). A stand-in fixed by default that a goal moves
+  becomes movable; a goal that moves a fixture is refused.
 * Drawers: a cabinet type with drawer regions (:attr:`LiberoKind.drawers`) gets one
   ``drawer`` variable per region (``<cabinet>_<level>_drawer``, ``in_cabinet``, pulled
   out where ``:init`` says ``Open``); ``Open`` / ``Close`` of a drawer region are
@@ -33,7 +35,9 @@ about x = -0.66 m; factask's robot base is the origin and the workspace is x 0.2
 to 0.75, y -0.5 to 0.5. The shipped files' region centres span x -0.42 to 0.21
 (0.63 m, more than the workspace's 0.5 m depth), so the map scales uniformly:
 ``x' = OFFSET_X + SCALE * x``, ``y' = SCALE * y`` with ``SCALE = 0.75`` and
-``OFFSET_X = 0.58`` (x -0.42 → 0.265, 0.21 → 0.7375). Objects keep their real
+``OFFSET_X = 0.58`` (x -0.42 → 0.265, 0.21 → 0.7375); the living room's and the
+coffee table's 0.70 m deep tables, whose centre is nearer LIBERO's robot, use
+``OFFSET_X = 0.50`` (:data:`LOW_TABLE_OFFSET_X`). Objects keep their real
 sizes, so the scene is more crowded than LIBERO's: LIBERO's 2 cm (5 cm on the
 floor) start regions are widened to :data:`MIN_REGION` square around their centre
 (:data:`START_SLACK` more than the object's larger side where that is larger),
@@ -49,10 +53,23 @@ from pathlib import Path
 from typing import Any
 
 from factask.compat.libero.bddl import load_bddl
-from factask.compat.libero.kinds import LiberoKind, LiberoUnsupported, libero_kind
+from factask.compat.libero.kinds import (
+    LiberoKind,
+    LiberoUnsupported,
+    UnknownLiberoRegion,
+    libero_kind,
+    region_role,
+    scene_of,
+)
 from factask.compat.libero.model import BddlProblem, Predicate, Region
 from factask.graph import TaskGraph, parse_graph
-from factask.vocabulary.kinds import WALL_THICKNESS, drawer_size, kind_spec
+from factask.vocabulary.kinds import (
+    HANDLE_DEPTH,
+    WALL_THICKNESS,
+    drawer_size,
+    drawer_travel,
+    kind_spec,
+)
 from factask.vocabulary.names import slugify, unique_name
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
@@ -60,6 +77,12 @@ from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 SCALE = 0.75
 #: factask x of LIBERO's table centre (metres).
 OFFSET_X = 0.58
+#: factask x of the centre of the living room's and the coffee table scene's
+#: 0.70 m deep tables: LIBERO's robot stands 0.51 m behind their centre (0.66 m
+#: behind the 1.0 m deep tables'), and their whole depth maps to x 0.24 to 0.76.
+LOW_TABLE_OFFSET_X = 0.50
+#: Scenes whose table centre is :data:`LOW_TABLE_OFFSET_X`.
+LOW_TABLE_SCENES = frozenset({"living_room_table", "coffee_table"})
 #: factask y of LIBERO's table centre (metres).
 OFFSET_Y = 0.0
 #: Side (metres) of the square start region an object's LIBERO region is widened to.
@@ -67,14 +90,16 @@ MIN_REGION = 0.20
 #: ... or to the object's larger side plus this (metres), if that is larger: a 16 cm
 #: plate in a 20 cm square has 4 cm to move in, too little beside a fixture.
 START_SLACK = 0.10
-#: Fixture type → its regions that are the stand-in's top face (things stand there).
-TOP_REGIONS = {"flat_stove": frozenset({"cook_region"}),
-               "wooden_cabinet": frozenset({"top_side"}),
-               "wine_rack": frozenset({"top_region"})}
 #: A goal zone (a goal on a bare table region) is at least the object's larger side
 #: plus this (metres): factask's region check wants the whole footprint inside, LIBERO's
 #: the object's centre, so a 6 cm region gets a zone a 16 cm plate fits in.
 ZONE_MARGIN = 0.03
+#: Room (m) left between a cabinet's drawer pulled all the way out and the
+#: workspace's near edge.
+DRAWER_ROOM = 0.005
+#: Room (m) an object's footprint circle keeps inside a round receptacle's inner
+#: circle for it to count as fitting (the layout keeps objects off the walls).
+ROUND_FIT_MARGIN = 0.005
 #: Colour of the goal zones made from table regions.
 ZONE_COLOR = "gray"
 #: Predicates of articulated fixtures.
@@ -82,6 +107,11 @@ ARTICULATION = frozenset({"open", "close", "turnon", "turnoff"})
 #: Those factask models: a drawer's ``Open`` / ``Close`` → ``open`` / ``closed``.
 DRAWER_GOALS = {"open": "open", "close": "closed"}
 _WHY_ARTICULATED = "switches and hinged doors are not in factask yet (drawers are)"
+#: Why a region of each refused role is refused.
+_WHY_ROLE = {"covered": "a shelf level under the board above it: a top-down suction cup "
+                        "cannot reach it",
+             "door": "behind a door factask does not model yet",
+             "side": "a side face of it: no factask relation puts things against a side"}
 
 
 @dataclass(frozen=True)
@@ -102,9 +132,19 @@ class LiberoImport:
     problem: BddlProblem | None = None
 
 
-def to_factask_xy(x: float, y: float) -> tuple[float, float]:
-    """A point of LIBERO's table frame in factask's frame (metres)."""
-    return OFFSET_X + SCALE * x, OFFSET_Y + SCALE * y
+def to_factask_xy(x: float, y: float, offset_x: float = OFFSET_X) -> tuple[float, float]:
+    """A point of LIBERO's table frame in factask's frame (metres).
+
+    Args:
+        x: LIBERO x (away from the robot), metres from the table's centre.
+        y: LIBERO y (to the robot's left).
+        offset_x: factask x of the table's centre (the scene's: :data:`OFFSET_X`, or
+            :data:`LOW_TABLE_OFFSET_X` for the living room's and coffee table's).
+
+    Returns:
+        The point (x, y) in factask's frame.
+    """
+    return offset_x + SCALE * x, OFFSET_Y + SCALE * y
 
 
 def _clip(lo: float, hi: float, bounds: tuple[float, float]) -> tuple[float, float]:
@@ -137,6 +177,71 @@ class _Importer:
                 self.drawers[f"{libero}_{region}"] = (var, libero, level)
         #: Drawer variable → how far it starts pulled out (``Open`` in ``:init``).
         self.openings: dict[str, float] = {}
+        scene = scene_of(problem.name)
+        if scene is None:
+            self.warnings.append(f"problem {problem.name!r} is no LIBERO scene factask "
+                                 "knows; read as a tabletop scene")
+        #: factask x of the scene's table centre.
+        self.offset_x = (LOW_TABLE_OFFSET_X if scene is not None
+                         and scene.table in LOW_TABLE_SCENES else OFFSET_X)
+
+    def is_fixture(self, name: str) -> bool:
+        """A fixture: declared under ``:fixtures`` or of a fixture type."""
+        return name in self.p.fixtures or (name in self.specs and self.specs[name].fixture)
+
+    def refuse_articulation(self, pred: Predicate) -> LiberoUnsupported:
+        """``Open``, ``Close``, ``Turnon``, ``Turnoff`` of what factask does not model:
+        the message names the fixture's moving part."""
+        arg = str(pred.args[0]) if pred.args else ""
+        region = self.p.regions_by_full_name.get(arg)
+        target = region.target if region is not None else arg
+        spec = self.specs.get(target)
+        what = (f"the {self.types[target]}'s {spec.articulation}"
+                if spec is not None and spec.articulation else f"{target!r}")
+        return self.refuse(pred, f"{pred.name}: {what} is not modelled; {_WHY_ARTICULATED}")
+
+    def region_host(self, pred: Predicate, region: Region) -> tuple[str, str] | None:
+        """What a fixture's or object's own region means, by its role
+        (:func:`~factask.compat.libero.kinds.region_role`): ``("on", variable)`` for
+        its top, ``("inside", variable)`` for its inside; None for an object's region
+        no rule types (the object itself is then the host).
+
+        Raises:
+            LiberoUnsupported: the region is a covered shelf level, behind a door, a
+                side, or a fixture's region no rule types (:class:`UnknownLiberoRegion`).
+        """
+        target = region.target
+        if target not in self.specs:
+            raise self.refuse(pred, f"{region.full_name}: its target {target!r} is no "
+                              "declared object or fixture")
+        spec, type_name = self.specs[target], self.types[target]
+        role = region_role(spec, region.name)
+        if role == "top":
+            return "on", self.names[target]
+        if role == "inside":
+            if not kind_spec(spec.kind or "").receptacle:
+                raise self.refuse(pred, f"{region.full_name} is inside the {type_name}, "
+                                  f"whose stand-in (a {spec.kind}) holds nothing")
+            if region.name != "contain_region":
+                self.warnings.append(f"{region.full_name}: a compartment of the {type_name}; "
+                                     f"factask's stand-in has one inside: inside {target}")
+            return "inside", self.names[target]
+        if role is not None:
+            raise self._refuse_role(pred, region, role, type_name, spec)
+        if not self.is_fixture(target):
+            return None
+        known = [r for r, _ in spec.regions] + list(spec.drawers)
+        raise UnknownLiberoRegion(
+            f"{self.where}: {pred}: region {region.name!r} of the {type_name} "
+            f"({region.full_name}) is no region factask knows for this type (known: "
+            f"{', '.join(known) or 'none'})")
+
+    def _refuse_role(self, pred: Predicate, region: Region, role: str, type_name: str,
+                     spec: LiberoKind) -> LiberoUnsupported:
+        why = _WHY_ROLE[role]
+        if role == "door" and spec.articulation:
+            why = f"behind the {type_name}'s {spec.articulation}; {_WHY_ARTICULATED}"
+        return self.refuse(pred, f"{region.full_name} is {why}")
 
     def refuse(self, pred: Predicate | str, why: str) -> LiberoUnsupported:
         return LiberoUnsupported(f"{self.where}: {pred}: {why}")
@@ -155,9 +260,15 @@ class _Importer:
         return spec.kind if spec else None
 
     def fits_inside(self, obj: str, host: str) -> bool:
+        """``obj``'s footprint fits inside ``host``'s walls (a round host: the
+        footprint's circumscribed circle inside its inner circle)."""
         o, h = self.specs[obj].size, self.specs[host].size
         assert o is not None and h is not None
         inner = sorted((h[0] - 2 * WALL_THICKNESS, h[1] - 2 * WALL_THICKNESS))
+        if kind_spec(self.host_kind(host) or "").round:
+            own = o[0] / 2 if kind_spec(self.specs[obj].kind or "").round else math.hypot(
+                o[0] / 2, o[1] / 2)
+            return own + ROUND_FIT_MARGIN <= inner[0] / 2
         return all(a <= b for a, b in zip(sorted(o[:2]), inner, strict=True))
 
     # ---- init -----------------------------------------------------------------------
@@ -169,8 +280,8 @@ class _Importer:
                 self.openings[drawer] = 1.0 if pred.name == "open" else 0.0
                 continue
             if pred.name in ARTICULATION:
-                raise self.refuse(pred, f"a fixture that starts {pred.name}: "
-                                  f"{_WHY_ARTICULATED}")
+                self.start_state_not_modelled(pred)
+                continue
             if pred.name not in ("on", "in") or len(pred.args) != 2:
                 raise self.refuse(pred, "no factask start placement for this predicate")
             obj, host = (str(a) for a in pred.args)
@@ -183,8 +294,27 @@ class _Importer:
                 self.warnings.append(f"{libero}: no start in :init; starts anywhere on "
                                      "the table")
 
+    def start_state_not_modelled(self, pred: Predicate) -> None:
+        """``(Open microwave_1)``, ``(Turnon flat_stove_1)`` in ``:init`` of a fixture
+        whose moving part factask does not model (:attr:`LiberoKind.articulation`):
+        the stand-in (a fixed box) has no such state; a goal that needs it is refused,
+        a start state alone only warns (the task may not touch that fixture).
+
+        Raises:
+            LiberoUnsupported: the fixture has no known moving part (a drawerless
+                object said to start open).
+        """
+        arg = str(pred.args[0]) if len(pred.args) == 1 else ""
+        region = self.p.regions_by_full_name.get(arg)
+        target = region.target if region is not None else arg
+        spec = self.specs.get(target)
+        if spec is None or not spec.articulation:
+            raise self.refuse_articulation(pred)
+        self.warnings.append(f"{pred}: the {self.types[target]}'s {spec.articulation} is "
+                             "not modelled; its stand-in ignores this start state")
+
     def start_of(self, pred: Predicate, obj: str, host: str) -> dict[str, Any]:
-        fixture = self.specs[obj].fixture
+        fixture = self.is_fixture(obj)
         if self.is_table(host):
             return {"type": "table"}
         if host in self.drawers:
@@ -193,12 +323,14 @@ class _Importer:
         if region is not None:
             if self.is_table(region.target):
                 return self.table_start(pred, region, obj, fixture)
-            target_type = self.types.get(region.target, "")
-            if region.target in self.p.fixtures:
-                if pred.name == "on" and region.name in TOP_REGIONS.get(target_type, ()):
-                    return {"type": "on", "support": self.names[region.target]}
-                raise self.refuse(pred, f"{region.full_name} is a region of the "
-                                  f"{target_type} fixture: {_WHY_ARTICULATED}")
+            hosted = self.region_host(pred, region)
+            if hosted is not None:
+                relation, var = hosted
+                if relation == "on":
+                    return {"type": "on", "support": var}
+                if self.fits_inside(obj, region.target):
+                    return {"type": "inside", "container": var}
+                raise self.refuse(pred, f"{obj} does not fit inside {region.target}")
             host = region.target
         if host not in self.names:
             raise self.refuse(pred, f"{host!r} is no object or region factask models")
@@ -216,7 +348,7 @@ class _Importer:
         if not region.ranges:
             raise self.refuse(pred, f"table region {region.full_name} has no ranges")
         x0, y0, x1, y1 = region.ranges[0]
-        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2, self.offset_x)
         size = self.specs[obj].size
         assert size is not None
         if fixture:
@@ -229,6 +361,8 @@ class _Importer:
             turned = round(abs(math.sin(math.radians(yaw)))) == 1  # a quarter turn
             half_x, half_y = (size[1], size[0]) if turned else (size[0], size[1])
             x = min(max(cx, WORKSPACE_X[0] + half_x / 2), WORKSPACE_X[1] - half_x / 2)
+            if self.specs[obj].drawers:
+                x = self.room_for_drawers(obj, size, x)
             y = min(max(cy, WORKSPACE_Y[0] + half_y / 2), WORKSPACE_Y[1] - half_y / 2)
             return {"type": "pose", "x": round(x, 4), "y": round(y, 4),
                     "yaw_deg": round(yaw, 3)}
@@ -238,6 +372,18 @@ class _Importer:
         return {"type": "region",
                 "x": [round(v, 4) for v in _clip(cx - half_x, cx + half_x, WORKSPACE_X)],
                 "y": [round(v, 4) for v in _clip(cy - half_y, cy + half_y, WORKSPACE_Y)]}
+
+    def room_for_drawers(self, obj: str, size: tuple[float, float, float], x: float) -> float:
+        """A cabinet's x moved away from the robot, where needed, so that its drawers
+        pulled all the way out stay on the workspace (they slide towards -x)."""
+        drawers = self.specs[obj].drawers
+        reach = size[0] / 2 + HANDLE_DEPTH + drawer_travel(drawer_size(size, len(drawers)))
+        least = WORKSPACE_X[0] + reach + DRAWER_ROOM
+        if x >= least:
+            return x
+        self.warnings.append(f"{obj}: moved from x {x:.3f} to {least:.3f} m so that its "
+                             "drawers pulled out stay on the workspace")
+        return min(least, WORKSPACE_X[1] - size[0] / 2)
 
     # ---- goal -----------------------------------------------------------------------
     def read_goal(self) -> list[dict[str, Any]]:
@@ -254,13 +400,14 @@ class _Importer:
                                 "goal": {"type": relation, "objects": [drawer]}})
                 continue
             if pred.name in ARTICULATION:
-                raise self.refuse(pred, f"{pred.name} of a fixture: {_WHY_ARTICULATED}")
+                raise self.refuse_articulation(pred)
             if pred.name not in ("on", "in") or len(pred.args) != 2:
                 raise self.refuse(pred, "no factask relation for this goal predicate")
             obj, host = (str(a) for a in pred.args)
             var = self.variable(obj, pred)
             goal = self.goal_of(pred, var, host)
-            if self.specs[obj].fixture:
+            self.check_fits(pred, obj, goal)
+            if self.is_fixture(obj):
                 raise self.refuse(pred, f"{obj} is a fixture (a {self.specs[obj].kind} "
                                   "stand-in fixed to the table); no goal may move it")
             if self.specs[obj].fixed:
@@ -275,6 +422,21 @@ class _Importer:
         for f in factors:
             f["weight"] = 1.0 / len(factors)
         return factors
+
+    def check_fits(self, pred: Predicate, obj: str, goal: dict[str, Any]) -> None:
+        """Refuse a goal that puts ``obj`` inside a stand-in it does not fit in (a
+        butter pack in a bowl, a bowl stacked on a bowl of its size): factask's
+        ``inside`` needs the whole footprint inside the walls (drawers are sized for
+        what LIBERO puts in them and not checked here)."""
+        if goal["type"] != "inside":
+            return
+        host = next((n for n, v in self.names.items() if v == goal["container"]), None)
+        if host is None or self.fits_inside(obj, host):
+            return
+        raise self.refuse(pred, f"{obj} does not fit inside {host} (a "
+                          f"{self.host_kind(host)} stand-in) and cannot rest on it: an "
+                          "object resting on a receptacle it does not fit in is not "
+                          "modelled")
 
     def open_before_putting_inside(self, factors: list[dict[str, Any]], taken: set[str]
                                    ) -> None:
@@ -315,16 +477,13 @@ class _Importer:
                                       "in it, an object is on it")
                 return {"type": "in_zone", "objects": [var],
                         "zone": self.goal_zone(pred, region, pred.args[0])}
-            if region.target in self.p.fixtures:
-                target_type = self.types[region.target]
-                if pred.name == "on" and region.name in TOP_REGIONS.get(target_type, ()):
-                    return {"type": "on", "objects": [var],
-                            "support": self.names[region.target]}
-                raise self.refuse(pred, f"{host} is a region of the {target_type} fixture, "
-                                  f"not its top; {_WHY_ARTICULATED}")
+            hosted = self.region_host(pred, region)
+            if hosted is not None:
+                relation, target = hosted
+                if relation == "on":
+                    return {"type": "on", "objects": [var], "support": target}
+                return {"type": "inside", "objects": [var], "container": target}
             host = region.target
-        elif pred.name == "in":
-            raise self.refuse(pred, f"{host!r} is no region: In needs a receptacle's region")
         if self.is_table(host) or host not in self.names:
             raise self.refuse(pred, f"{host!r} is no object factask models")
         spec = kind_spec(self.host_kind(host) or "")
@@ -346,7 +505,7 @@ class _Importer:
         if not region.ranges:
             raise self.refuse(pred, f"table region {region.full_name} has no ranges")
         x0, y0, x1, y1 = region.ranges[0]
-        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2)
+        cx, cy = to_factask_xy((x0 + x1) / 2, (y0 + y1) / 2, self.offset_x)
         size = self.specs[str(obj)].size
         assert size is not None
         least = max(size[0], size[1]) + ZONE_MARGIN
@@ -378,6 +537,8 @@ class _Importer:
                 "description": f"{spec.note} (LIBERO {libero} of type {self.types[libero]})"}
             if var in self.moved:
                 data["fixed"] = False
+            elif libero in self.p.fixtures:
+                data["fixed"] = True
             elif spec.fixed is not None:
                 data["fixed"] = spec.fixed
             out.append(data)

@@ -19,6 +19,7 @@ import numpy as np
 
 from factask.geometry import Pose, rotation_matrix
 from factask.scene.cabinet import cabinet_boxes, drawer_boxes, drawer_seat
+from factask.scene.microwave import door_boxes, microwave_boxes
 from factask.scene.objects import SceneObject
 from factask.sim.build.mjspec import BodyHandles, add_plan_geoms
 from factask.sim.build.parts import GEOM_SEPARATOR, GeomPlan, ObjectPlan, fmt
@@ -26,7 +27,7 @@ from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
 from factask.vocabulary.variables import VariableSet, drawers_of
 
 #: Kinds built here rather than from their stand-alone parts.
-FURNITURE_KINDS = ("cabinet", "drawer")
+FURNITURE_KINDS = ("cabinet", "drawer", "microwave", "door")
 #: Damping (N s/m) of a drawer's slide: it stops within a few mm once let go.
 SLIDE_DAMPING = 20.0
 #: Dry friction (N) of a drawer's slide: it stays where it is left, though nudged.
@@ -37,14 +38,17 @@ SLIDE_ARMATURE = 0.05
 
 @dataclass(frozen=True)
 class SlideHandle:
-    """Where a drawer's state lives in a compiled model.
+    """Where the state of a body sliding in a fixed host lives in a compiled model: a
+    drawer in its cabinet, a switch's button in its stove (:mod:`factask.sim.build.switch`).
 
     Attributes:
-        qpos_adr: Address of its slide joint in ``qpos`` (metres pulled out).
+        qpos_adr: Address of its slide joint in ``qpos`` (metres along ``axis``).
         qvel_adr: Address of the joint in ``qvel``.
-        cabinet_mocap: Mocap id of its cabinet.
-        closed: Its centre, closed, in the cabinet's frame (3,).
+        cabinet_mocap: Mocap id of its host (a cabinet, a stove).
+        closed: Its centre at joint position 0, in the host's frame (3,).
         travel: The joint's range (m).
+        axis: The joint's direction in the host's frame (a drawer slides out along
+            -x, a button down along -z).
     """
 
     qpos_adr: int
@@ -52,19 +56,21 @@ class SlideHandle:
     cabinet_mocap: int
     closed: tuple[float, float, float]
     travel: float
+    axis: tuple[float, float, float] = (-1.0, 0.0, 0.0)
 
     def pose(self, data: mujoco.MjData) -> Pose:
-        """The drawer's world pose: its cabinet's, moved out by the joint."""
+        """The body's world pose: its host's, moved along the axis by the joint."""
         quat = data.mocap_quat[self.cabinet_mocap].copy()
-        local = np.array(self.closed) - np.array([float(data.qpos[self.qpos_adr]), 0.0, 0.0])
+        local = np.array(self.closed) + float(data.qpos[self.qpos_adr]) * np.array(self.axis)
         return Pose(data.mocap_pos[self.cabinet_mocap] + rotation_matrix(quat) @ local, quat)
 
     def set_pose(self, data: mujoco.MjData, pose: Pose) -> None:
-        """Slide the drawer to where ``pose`` is along its joint (its cabinet stays;
-        the rest of ``pose`` follows from the cabinet's), and stop it."""
+        """Slide the body to where ``pose`` is along its joint (its host stays; the
+        rest of ``pose`` follows from the host's), and stop it."""
         quat = data.mocap_quat[self.cabinet_mocap]
         local = rotation_matrix(quat).T @ (pose.pos - data.mocap_pos[self.cabinet_mocap])
-        data.qpos[self.qpos_adr] = float(np.clip(self.closed[0] - local[0], 0.0, self.travel))
+        along = float(np.dot(local - np.array(self.closed), self.axis))
+        data.qpos[self.qpos_adr] = float(np.clip(along, 0.0, self.travel))
         data.qvel[self.qvel_adr] = 0.0
 
 
@@ -84,20 +90,25 @@ def _geoms(plan: ObjectPlan, boxes: list, mass: float | None) -> tuple[GeomPlan,
 
 def furniture_plan(plan: ObjectPlan, obj: SceneObject, graph: VariableSet,
                    moving: bool = True) -> ObjectPlan:
-    """The plan of a cabinet (with its number of bays) or a drawer (its handle where
-    its level puts it), from the stand-alone plan of its kind.
+    """The plan of a cabinet (with its number of bays), a drawer (its handle where
+    its level puts it), a microwave or a door, from the stand-alone plan of its kind.
 
     Args:
         plan: The plan :func:`~factask.sim.build.parts.plan_object` made.
         obj: The scene object it is of.
         graph: The task graph (a cabinet's drawers, a drawer's seat).
-        moving: A drawer's own body (False: its goal marker).
+        moving: A drawer's (door's) own body (False: its goal marker).
     """
     if obj.kind == "cabinet":
         bays = len(drawers_of(graph.variables, obj.variable))
         return replace(plan, geoms=_geoms(plan, cabinet_boxes(obj.size, max(bays, 1)), None))
-    seat = drawer_seat(graph, obj.variable)
-    boxes = drawer_boxes(obj.size, seat.bays, seat.level)
+    if obj.kind == "microwave":
+        return replace(plan, geoms=_geoms(plan, microwave_boxes(obj.size), None))
+    if obj.kind == "door":
+        boxes = door_boxes(obj.size)
+    else:
+        seat = drawer_seat(graph, obj.variable)
+        boxes = drawer_boxes(obj.size, seat.bays, seat.level)
     if not moving:
         return replace(plan, geoms=_geoms(plan, boxes, None))
     return replace(plan, mocap=False, geoms=_geoms(plan, boxes, obj.mass))

@@ -18,7 +18,8 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import mujoco
@@ -26,8 +27,9 @@ import numpy as np
 
 from factask.geometry import Pose, without_roll
 from factask.graph.taskgraph import TaskGraph
-from factask.scene.cabinet import drawer_seat
+from factask.relations.drawer import host_of
 from factask.scene.objects import SceneObject, objects_by_name, points_in_rect, scene_objects
+from factask.scene.switch import switch_host
 from factask.sim.build.cabinet import (
     FURNITURE_KINDS,
     SlideHandle,
@@ -35,6 +37,7 @@ from factask.sim.build.cabinet import (
     furniture_plan,
     slide_handle,
 )
+from factask.sim.build.microwave import HingeHandle, add_door, hinge_handle
 from factask.sim.build.mjspec import BodyHandles, add_object, add_table, default_classes, new_spec
 from factask.sim.build.parts import (
     GEOM_SEPARATOR,
@@ -46,10 +49,12 @@ from factask.sim.build.parts import (
 )
 from factask.sim.build.rope_links import add_rope_links, add_rope_links_mjcf
 from factask.sim.build.stage import TABLE_HEIGHT
+from factask.sim.build.switch import add_switch, switch_handle
 from factask.sim.robots.attach import attach_robot
 from factask.sim.robots.registry import ROBOT_NAMES
 from factask.sim.robots.spatula import add_spatula, needs_spatula
 from factask.vocabulary.errors import SubjectError
+from factask.vocabulary.kinds import JOINTED_KINDS
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
 #: Physics timestep (s) of a compiled scene unless asked otherwise.
@@ -95,8 +100,8 @@ class ObjectHandle:
         qpos_adr: Address of its free joint in ``qpos`` (7 numbers), or None if fixed.
         qvel_adr: Address of its free joint in ``qvel`` (6 numbers), or None if fixed.
         mocap_id: Index into ``mocap_pos``/``mocap_quat`` if fixed, else None.
-        slide: A drawer's slide joint in its cabinet (its pose follows from it), else
-            None.
+        slide: A drawer's slide joint in its cabinet, a switch's in its host or a
+            door's hinge on its microwave (its pose follows from it), else None.
     """
 
     name: str
@@ -108,7 +113,7 @@ class ObjectHandle:
     qpos_adr: int | None
     qvel_adr: int | None
     mocap_id: int | None
-    slide: SlideHandle | None = None
+    slide: SlideHandle | HingeHandle | None = None
 
     @property
     def fixed(self) -> bool:
@@ -261,9 +266,13 @@ def _marker_slots(graph: TaskGraph) -> list[tuple[str, int, str]]:
 
 
 def drawer_cabinet(graph: TaskGraph, drawer: SceneObject) -> SceneObject:
-    """The scene object of the cabinet a drawer sits in."""
-    seat = drawer_seat(graph, drawer.variable)
-    return objects_by_name(graph)[seat.cabinet]
+    """The scene object of the cabinet a drawer sits in (the microwave a door hangs on)."""
+    return objects_by_name(graph)[host_of(graph, drawer.variable)]
+
+
+def switch_host_object(graph: TaskGraph, switch: SceneObject) -> SceneObject:
+    """The scene object of the fixture a switch is mounted on."""
+    return objects_by_name(graph)[switch_host(graph, switch.variable)]
 
 
 _NAME_IN_ERROR = re.compile(r"name '([^']+)'")
@@ -292,8 +301,12 @@ def _scene_plans(graph: TaskGraph) -> tuple[list[SceneObject], list[ObjectPlan],
     plans = []
     for obj, pos in zip(objects, positions, strict=True):
         try:
+            # A switch's button is fixed to its host but moves on a joint: it has a mass.
             plan = plan_object(obj.name, obj.kind, obj.size, obj.color, obj.mass,
-                               obj.fixed, hollow=hollows.get(obj.variable, "ell"), pos=pos)
+                               obj.fixed and obj.kind != "switch",
+                               hollow=hollows.get(obj.variable, "ell"), pos=pos)
+            if obj.kind == "switch":
+                plan = replace(plan, mocap=False)
         except AssetError as exc:
             raise CompileError(obj.variable, exc.message, exc.fix) from None
         plans.append(furniture_plan(plan, obj, graph) if obj.kind in FURNITURE_KINDS else plan)
@@ -385,13 +398,21 @@ def build_spec(graph: TaskGraph, robot: str | None = "floating",
     spec = new_spec(graph.name, timestep, GRAVITY, IMPRATIO)
     add_table(spec)
     classes = default_classes(spec)
-    # A drawer's body goes inside its cabinet's, so cabinets come first.
+    # A drawer's (door's, switch's) body goes inside its cabinet's (microwave's,
+    # host's): hosts first.
     by_name: dict[str, BodyHandles] = {}
-    for obj, plan in sorted(zip(objects, plans, strict=True), key=lambda p: p[0].kind == "drawer"):
+    for obj, plan in sorted(zip(objects, plans, strict=True),
+                            key=lambda p: p[0].kind in JOINTED_KINDS):
         if obj.kind == "drawer":
             cab = drawer_cabinet(graph, obj)
             by_name[obj.name] = add_drawer(spec, plan, obj, graph, by_name[cab.name], cab,
                                            classes[0])
+        elif obj.kind == "switch":
+            host = switch_host_object(graph, obj)
+            by_name[obj.name] = add_switch(plan, by_name[host.name], host, classes[0])
+        elif obj.kind == "door":
+            mw = drawer_cabinet(graph, obj)
+            by_name[obj.name] = add_door(spec, plan, obj, by_name[mw.name], mw, classes[0])
         else:
             by_name[obj.name] = add_object(spec, plan, classes)
     handles = [by_name[o.name] for o in objects]
@@ -442,14 +463,25 @@ def compile_graph(graph: TaskGraph, robot: str | None = "floating",
     bodies_of = {o.name: h for o, h in zip(objects, bodies, strict=True)}
     for index, obj in enumerate(objects):
         geoms = geom_ids[index]
-        if obj.kind == "drawer":  # on a slide joint inside its cabinet
+        if obj.kind in ("drawer", "door"):  # on a joint inside its cabinet (microwave)
             geom_object[list(geoms)] = index
             cab = drawer_cabinet(graph, obj)
+            joint = (slide_handle(model, obj, graph, bodies[index], cab, bodies_of[cab.name])
+                     if obj.kind == "drawer"
+                     else hinge_handle(model, bodies[index], cab, bodies_of[cab.name]))
             handles[obj.name] = ObjectHandle(
                 name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size,
                 body_id=body_ids[index], geom_ids=geoms, qpos_adr=None, qvel_adr=None,
-                mocap_id=None, slide=slide_handle(model, obj, graph, bodies[index], cab,
-                                                  bodies_of[cab.name]))
+                mocap_id=None, slide=joint)
+            continue
+        if obj.kind == "switch":  # a button on a slide joint inside its host
+            geom_object[list(geoms)] = index
+            host = switch_host_object(graph, obj)
+            handles[obj.name] = ObjectHandle(
+                name=obj.name, variable=obj.variable, kind=obj.kind, size=obj.size,
+                body_id=body_ids[index], geom_ids=geoms, qpos_adr=None, qvel_adr=None,
+                mocap_id=None, slide=switch_handle(model, obj, graph, bodies[index], host,
+                                                   bodies_of[host.name]))
             continue
         geom_object[list(geoms)] = index
         mocap, qpos_adr, dof_adr = mocap_ids[index], qpos_adrs[index], dof_adrs[index]
@@ -503,6 +535,29 @@ def set_object_pose(model: mujoco.MjModel, data: mujoco.MjData, handle: ObjectHa
     data.qpos[handle.qpos_adr + 3:handle.qpos_adr + 7] = pose.quat
     data.qvel[handle.qvel_adr:handle.qvel_adr + 6] = 0.0
 
+
+
+def set_object_poses(model: mujoco.MjModel, data: mujoco.MjData,
+                     handles: Mapping[str, ObjectHandle], poses: Mapping[str, Pose]) -> None:
+    """Put every object of ``handles`` at its pose in ``poses`` (by name), each stopped.
+
+    A drawer's or a door's pose is set along its joint from its cabinet's or
+    microwave's current pose, so every fixed and free object is set first and the
+    jointed ones after (one at a time, :func:`set_object_pose`, would read a stale
+    cabinet pose if the drawer came first). Call ``mujoco.mj_forward`` afterwards.
+
+    Args:
+        model: The compiled model.
+        data: Its data.
+        handles: The objects by name (``CompiledScene.objects``).
+        poses: World pose of each of them.
+
+    Raises:
+        CompileError: a handle does not belong to ``model``.
+        KeyError: an object has no pose in ``poses``.
+    """
+    for name, handle in sorted(handles.items(), key=lambda item: item[1].slide is not None):
+        set_object_pose(model, data, handle, poses[name])
 
 def get_object_pose(data: mujoco.MjData, handle: ObjectHandle) -> Pose:
     """Current pose of an object (from qpos or the mocap pose: no mj_forward needed).

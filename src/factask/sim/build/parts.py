@@ -32,6 +32,7 @@ import numpy as np
 
 from factask.geometry import quat_from_axis_angle, quat_from_yaw, quat_mul
 from factask.scene.cabinet import cabinet_boxes, drawer_boxes
+from factask.scene.microwave import door_boxes, microwave_boxes
 from factask.scene.objects import corner_arm_width
 from factask.vocabulary.errors import SubjectError
 from factask.vocabulary.kinds import (
@@ -395,6 +396,9 @@ def kind_parts(
     if kind in ("cabinet", "drawer"):  # alone: one bay (compile builds a cabinet's own)
         boxes = cabinet_boxes(size, 1) if kind == "cabinet" else drawer_boxes(size, 1, 0)
         return [_box(*b) for b in boxes]
+    if kind in ("microwave", "door"):
+        return [_box(*b) for b in (microwave_boxes(size) if kind == "microwave"
+                                   else door_boxes(size))]
     # block, box, zone, line, stand, kit: one box of the full extents.
     return [_box("body", (-x, -y, -z), (x, y, z))]
 

@@ -13,14 +13,15 @@ and why.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
 from factask.geometry import Pose
 from factask.graph.taskgraph import TaskGraph
 from factask.relations.base import Reserve
-from factask.scene.cabinet import drawer_pose, drawer_seat, front_reserve
+from factask.relations.drawer import pose_at
+from factask.scene.cabinet import drawer_shown_area, front_reserve
 from factask.scene.collision import (
     CLEARANCE,
     MAX_TRIES_PER_OBJECT,
@@ -36,22 +37,26 @@ from factask.scene.collision import (
     on_table,
     random_yaws,
 )
+from factask.scene.microwave import swing_reserve
 from factask.scene.objects import (
     GEOMETRY_EPS,
     SceneObject,
+    floor_thickness,
     objects_by_name,
     placement_area,
     rest_surface_z,
     resting_pose,
     yaw_rotation_2d,
 )
+from factask.scene.switch import switch_host, switch_pose
 from factask.sim.layout.pile import is_pile, layout_area, place_pile
 from factask.sim.layout.rope import is_rope, place_rope
-from factask.vocabulary.kinds import drawer_size
+from factask.vocabulary.kinds import DRAWER_GAP, drawer_size
 from factask.vocabulary.variables import (
     AtFixedPose,
     InCabinet,
     InRegion,
+    MountedOn,
     StartInside,
     StartOn,
     drawers_of,
@@ -154,13 +159,17 @@ def _layout_reserves(graph: TaskGraph) -> dict[str, list[Reserve]]:
     for f in graph.factors:
         for r in f.goal.layout_reserves(variables):
             out.setdefault(r.anchor, []).append(r)
-    # A cabinet keeps the table in front of it clear: its drawers slide out there.
+    # A cabinet (a microwave) keeps the table in front of it clear: its drawers slide
+    # (its door swings) out there.
     objs = objects_by_name(graph)
     for v in graph.variables:
         drawers = drawers_of(graph.variables, v.name) if v.kind == "cabinet" else []
         if drawers:
             depth = drawer_size(v.extents, len(drawers))[0]
             x, y, size = front_reserve(objs[v.instances[0]], depth)
+            out.setdefault(v.name, []).append(Reserve(v.name, x, y, size))
+        if v.kind == "microwave":  # its door swings out there
+            x, y, size = swing_reserve(objs[v.instances[0]])
             out.setdefault(v.name, []).append(Reserve(v.name, x, y, size))
     return out
 
@@ -282,11 +291,16 @@ def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
         hosts = graph.variable(host_var).instances
         by_host: dict[str, list[tuple[str, bool]]] = {}
         for v in group:
-            if isinstance(v.initial, InCabinet):  # its place in its cabinet is a fact
-                seat = drawer_seat(graph, v.name)
-                cabinet = objs[seat.cabinet]
-                pose = drawer_pose(cabinet, poses[seat.cabinet], seat, objs[v.name],
-                                   v.initial.opening)
+            if isinstance(v.initial, MountedOn):  # its place on its host is a fact
+                host = switch_host(graph, v.name)
+                pose = switch_pose(objs[host], poses[host], 1.0 if v.initial.on else 0.0)
+                poses[v.name] = pose
+                occ.put(v.name, objs[v.name], pose)
+                continue
+            if isinstance(v.initial, InCabinet):  # its place in its host is a fact
+                host = v.initial.cabinet
+                pose = pose_at(graph, objs[v.name], objs[host], poses[host],
+                               v.initial.opening)
                 poses[v.name] = pose
                 occ.put(v.name, objs[v.name], pose)
                 continue
@@ -298,7 +312,34 @@ def _place_dependents(graph: TaskGraph, objs: Mapping[str, SceneObject],
                 host = hosts[int(rng.integers(len(hosts)))]
                 by_host.setdefault(host, []).append((inst, inside))
         for host, members in by_host.items():
-            _place_on_host(objs, rng, tries, occ, poses, host, members)
+            _place_on_host(objs, rng, tries, occ, poses, host, members,
+                           _drawer_cabinet(graph, host_var, objs, poses, members))
+
+
+def _drawer_cabinet(graph: TaskGraph, host_var: str, objs: Mapping[str, SceneObject],
+                    poses: Mapping[str, Pose], members: list[tuple[str, bool]]) -> list[str]:
+    """The cabinet around drawer ``host_var`` (``[]`` if it is no drawer): what is
+    inside a drawer meets its cabinet only above the drawer's rim, where the bay's
+    ceiling is (a drawer stands a gap below it), so the cabinet's box is not an
+    obstacle to it, even with the drawer shut. (Where in the drawer it may start is
+    :func:`~factask.scene.cabinet.drawer_shown_area`.)
+
+    Raises:
+        _Placement: a member stands taller than the drawer's rim (it would hit the
+            bay's ceiling when the drawer closes): not retried.
+    """
+    start = graph.variable(host_var).initial
+    if not isinstance(start, InCabinet):
+        return []
+    drawer = objs[host_var]
+    rim = float(poses[host_var].pos[2]) + drawer.half[2] + DRAWER_GAP
+    floor = float(poses[host_var].pos[2]) - drawer.half[2] + floor_thickness(drawer)
+    for inst, _ in members:
+        if floor + objs[inst].height > rim + GEOMETRY_EPS:
+            raise _Placement(inst, f"it is {objs[inst].height * 100:.1f} cm tall, taller "
+                             f"than drawer {host_var!r} ({(rim - floor) * 100:.1f} cm to its "
+                             "bay's ceiling): it would not close", retry=False)
+    return [start.cabinet]
 
 
 def _physical_overlaps(objs: Mapping[str, SceneObject], obj: SceneObject,
@@ -349,16 +390,20 @@ def _host_aligned_yaws(rng: np.random.Generator, k: int, host_yaw: float) -> np.
 
 def _place_on_host(objs: Mapping[str, SceneObject], rng: np.random.Generator, tries: int,
                    occ: Occupancy, poses: dict[str, Pose], host: str,
-                   members: list[tuple[str, bool]]) -> None:
+                   members: list[tuple[str, bool]], around: Iterable[str] = ()) -> None:
+    """Put ``members`` (instance, inside?) on or in ``host``, side by side, else
+    stacked; ``around``: bodies that enclose the host and are no obstacle to what
+    is in it (a drawer's cabinet)."""
     hobj, hpose = objs[host], poses[host]
-    area = placement_area(hobj, hpose)
+    # In a drawer, only where the open drawer shows it: the robot reaches it there.
+    area = drawer_shown_area(hobj, hpose) if around else placement_area(hobj, hpose)
     surface = rest_surface_z(hobj, hpose)
     placed: list[str] = []
     for inst, _ in members:
         obj = objs[inst]
         pose = first_free(occ, obj, area_candidates(obj, area, surface, rng, tries,
                                                     _host_aligned_yaws(rng, tries, hpose.yaw)),
-                          ignore=[host], within=area)
+                          ignore=[host, *around], within=area)
         if pose is None:
             break
         poses[inst] = pose

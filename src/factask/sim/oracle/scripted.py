@@ -37,20 +37,25 @@ import numpy as np
 
 from factask.geometry import Pose, tilt_deg, wrap_angle
 from factask.graph.taskgraph import TaskGraph
-from factask.relations.drawer import DrawerRelation
+from factask.relations.drawer import ArticulatedRelation
 from factask.relations.pile_in_zone import PileInZone
 from factask.relations.rope import RopeAlong
 from factask.relations.solving import SolvedFactor
 from factask.relations.status import MAX_TILT_DEG, FactorStatus
+from factask.relations.switch import SwitchRelation
 from factask.scene.cabinet import drawer_seat, handle_point
 from factask.scene.collision import beneath, occupying, parking_spot, resting_on
+from factask.scene.microwave import door_handle_point, hinge_point
 from factask.scene.objects import SPHERE_KINDS, SceneObject
+from factask.scene.switch import button_top
 from factask.sim.layout.checks import TaskStatus
 from factask.sim.oracle.pick_points import pick_and_place_points
 from factask.sim.oracle.push import PushAction, plan_push
 from factask.sim.oracle.rope import MAX_FOLD_FIXES, plan_rope_carry
+from factask.sim.robots.door_swing import SwingAction
 from factask.sim.robots.low_carry import CarryAction
 from factask.sim.robots.slide_pull import SlideAction
+from factask.sim.robots.switch_press import PressAction
 from factask.vocabulary.kinds import yaw_symmetry_deg
 
 #: Attempts at placing one object for one factor before the oracle gives up.
@@ -165,7 +170,8 @@ class Oracle:
                 for o in self.env.solved[f].objects if o not in fs.placed}
 
     # ------------------------------------------------------------------- act
-    def plan(self) -> OracleAction | PushAction | CarryAction | SlideAction | None:
+    def plan(self) -> (OracleAction | PushAction | CarryAction | SlideAction | SwingAction
+                       | PressAction | None):
         """The next action, or None when done or giving up (see :attr:`failure`)."""
         env = self.env
         status = env.status()
@@ -188,8 +194,10 @@ class Oracle:
                 return self._push(fname, goal, fstatus, poses)
             if isinstance(goal, RopeAlong):  # segments in order along the run
                 return self._rope_segment(fname, fstatus, poses)
-            if isinstance(goal, DrawerRelation):  # slid by the handle, never picked
+            if isinstance(goal, ArticulatedRelation):  # slid (swung) by the handle, never picked
                 return self._slide(fname, fstatus, poses)
+            if isinstance(goal, SwitchRelation):  # pressed (pulled) by the cup, never picked
+                return self._press(fname, fstatus, poses)
             for name in fstatus.placed:  # a success resets the object's retry budget
                 self.attempts.pop((fname, name), None)
             targets = self._targets(fname, fstatus)
@@ -282,9 +290,10 @@ class Oracle:
         return action
 
     def _slide(self, fname: str, fstatus: FactorStatus,
-               poses: dict[str, Pose]) -> SlideAction | None:
+               poses: dict[str, Pose]) -> SlideAction | SwingAction | None:
         """Slide the factor's first drawer not there yet to its slot: the cup holds
-        its handle and moves by the drawer's offset from its target."""
+        its handle and moves by the drawer's offset from its target; a door is swung
+        about its hinge until its handle is where the target puts it."""
         solved = self.env.solved[fname]
         name = next((n for n in solved.objects if n not in fstatus.placed), None)
         if name is None:
@@ -297,11 +306,42 @@ class Oracle:
             return None
         obj = self.env.objects[name]
         target = solved.target_pose(obj, solved.objects.index(name))
+        if obj.kind == "door":
+            host = solved.supports[solved.objects.index(name)]
+            grasp = door_handle_point(obj, poses[name])
+            to = door_handle_point(obj, target)
+            hinge = hinge_point(self.env.objects[host], poses[host])
+            yaw = poses[name].yaw
+            return SwingAction(np.array([*grasp, yaw]), np.array([*to, yaw]), hinge[:2],
+                               name, fname, f"swing {name} to its {solved.relation} place")
         grasp = handle_point(obj, poses[name], drawer_seat(self.env.graph, obj.variable))
         to = grasp + (target.pos - poses[name].pos)
         yaw = poses[name].yaw
         return SlideAction(np.array([*grasp, yaw]), np.array([*to, yaw]), name, fname,
                            f"slide {name} to its {solved.relation} place")
+
+    def _press(self, fname: str, fstatus: FactorStatus,
+               poses: dict[str, Pose]) -> PressAction | None:
+        """Press the factor's first switch not there yet to its slot: the cup comes
+        down on its button's top and moves it by the button's offset from its target
+        (down: a press; up: a pull)."""
+        solved = self.env.solved[fname]
+        name = next((n for n in solved.objects if n not in fstatus.placed), None)
+        if name is None:
+            self.failure = f"factor {fname!r}: every switch is there but not satisfied"
+            return None
+        self.attempts[(fname, name)] += 1
+        if self.attempts[(fname, name)] > MAX_ATTEMPTS_PER_OBJECT:
+            self.failure = (f"factor {fname!r}: could not press {name!r} after "
+                            f"{MAX_ATTEMPTS_PER_OBJECT} attempts ({fstatus.detail})")
+            return None
+        obj = self.env.objects[name]
+        target = solved.target_pose(obj, solved.objects.index(name))
+        top = button_top(obj, poses[name])
+        to = top + (target.pos - poses[name].pos)
+        yaw = poses[name].yaw
+        return PressAction(np.array([*top, yaw]), np.array([*to, yaw]), name, fname,
+                           f"press {name} to its {solved.relation} place")
 
     def act(self) -> dict[str, np.ndarray] | None:
         """The next action for ``env.step``, or None (done, or gave up)."""

@@ -441,8 +441,8 @@ class SuctionGripper:
                 and float(np.abs(qvel[self._angular_dofs]).max()) * turn_radius < speed)
 
     def touched_sliders(self) -> list[int]:
-        """Bodies moved by a slide joint of their own (drawers) whose geoms touch the
-        cup geom now, closest first."""
+        """Bodies moved by a slide or hinge joint of their own (drawers, doors) whose
+        geoms touch the cup geom now, closest first."""
         found: list[tuple[float, int]] = []
         m, d = self.model, self.data
         for k in range(d.ncon):
@@ -450,8 +450,8 @@ class SuctionGripper:
             if c.dist > TOUCH_DISTANCE or self.cup_geom not in (c.geom1, c.geom2):
                 continue
             body = int(m.geom_bodyid[c.geom2 if c.geom1 == self.cup_geom else c.geom1])
-            if m.body_jntnum[body] == 1 and int(m.jnt_type[m.body_jntadr[body]]) == int(
-                    mujoco.mjtJoint.mjJNT_SLIDE):
+            if m.body_jntnum[body] == 1 and int(m.jnt_type[m.body_jntadr[body]]) in (
+                    int(mujoco.mjtJoint.mjJNT_SLIDE), int(mujoco.mjtJoint.mjJNT_HINGE)):
                 found.append((float(c.dist), body))
         return list(dict.fromkeys(b for _, b in sorted(found)))
 
