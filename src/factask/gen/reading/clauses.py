@@ -47,6 +47,7 @@ from factask.gen.reading.goal_order import (
 from factask.gen.reading.grades import pick_graded
 from factask.gen.reading.mentions import MATCH_AFTER, MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
+from factask.gen.reading.part_order import sequence_parts
 from factask.gen.reading.parts import (
     LEVEL_WORDS,
     PART_KINDS,
@@ -55,9 +56,11 @@ from factask.gen.reading.parts import (
     acts_on_pronoun,
     actuation,
     bare_inside,
+    containers_of,
     part_referents,
+    parts_named_by,
     phrase_at,
-    sequence_parts,
+    said_as,
     still_parts,
 )
 from factask.gen.reading.read_goal import ReadGoal
@@ -123,7 +126,8 @@ _LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "ow
                    "smaller", "square", "round", "brown", "marked", "target", "specified",
                    "designated", "empty", "open", "flat", "tall", "short", "wooden",
                    "middle", "center", "centre", "different", "separate"}) | MATCH_AFTER \
-    | LEVEL_WORDS.keys() | {w for p in PART_KINDS.values() for w in p.states}
+    | LEVEL_WORDS.keys() | {w for p in PART_KINDS.values() if not p.states_after
+                           for w in p.states}
 #: Words that refer back to the objects moved last.
 PRONOUNS = frozenset({"them", "they", "it", "those", "these", "both"})
 #: Shape words: the arrangement they name.
@@ -375,11 +379,14 @@ def _read(proposal: str, found: tuple[Mention, ...]
             elif kind_of(w)[0] is not None:
                 refs = _referents(words, i, found)
             elif pending and last_part and bare_inside(words, i):
-                refs, bare = list(last_part), True  # "open the drawer and put the bowl inside"
+                # "open the drawer and put the bowl inside"; a microwave's door: into it
+                refs, bare = containers_of(last_part, found), True
             else:
                 continue
             if not refs:
                 continue
+            if named_parts := parts_named_by(refs, found):
+                last_part = named_parts  # "put the mug in the microwave and close it"
             prep = "in" if bare else _anchor_prep(words, i)
             if negated or idle or _among(words, i) or (
                     _source(words, i) and not any(m.movable for m in refs)):
@@ -392,8 +399,11 @@ def _read(proposal: str, found: tuple[Mention, ...]
                 if relation is not None:  # "open the top drawer", "and close it"
                     part_goals.append(ReadGoal(relation, tuple(m.name for m in refs), None,
                                                False, step))
-                    last = refs  # "open the drawer and put the block inside it"
+                    # "open the drawer (the microwave) and put the block inside it"
+                    last = said_as(refs, found)
                     continue
+                if described:  # "the microwave is open; put the bowl inside it"
+                    last = said_as(refs, found)
             movers = [m for m in pending if m not in refs]
             if described:
                 # The scene's objects: kept still unless a goal uses them; what the part
