@@ -4,13 +4,12 @@ sizes, the verbs and particles of each relation, its start words).
 
 Every reader of articulated furniture (:mod:`factask.gen.reading.parts`: mentions,
 clauses, accounting; :mod:`factask.gen.reading.describe`) reads this table, not a
-kind: a second articulated kind is one more entry in :data:`PART_KINDS`. A
-microwave's door, say: ``PartKind(part="door", host="microwave", start=<its start
-type>, host_field="microwave", most=1, names={1: ("",)}, host_sizes={1: None},
-part_size=<its size rule>, verbs={"open": {"open", "swing"}, "closed": {"close",
-"shut"}}, particles={"open": {"open"}, "closed": {"shut", "closed"}}, ...)``; a
-stove's switch ``verbs={"on": {"turn", "switch"}, ...}`` with the particles "on" /
-"off" and the relations its own.
+kind: an articulated kind is one entry in :data:`PART_KINDS` -- a cabinet's drawers
+(:data:`DRAWERS`: stacked by level, slid ``open`` / ``closed``), a microwave's door
+(:data:`DOORS`: a lone part the words name by its host, "open the microwave"; what
+goes "into the microwave" goes in behind it) and a stove's or lamp's switch
+(:data:`SWITCHES`: ``mounted_on`` its host, ``on`` or off, ``switched_on`` /
+``switched_off``: "turn on the stove", "press the lamp's switch").
 """
 
 from __future__ import annotations
@@ -157,7 +156,7 @@ SWITCHES = PartKind(
     part="switch", host="stove", also=("lamp",), start="mounted_on", host_field="host",
     most=1, names={1: ("",)}, host_sizes={1: None},
     part_size=lambda kind, _size, _count: switch_size(kind),
-    verbs={"switched_on": frozenset({"press", "presses", "activate", "ignite", "light"}),
+    verbs={"switched_on": frozenset({"press", "presses", "activate", "ignite"}),
            "switched_off": frozenset({"deactivate", "extinguish"})},
     particles={"switched_on": frozenset({"on"}), "switched_off": frozenset({"off"})},
     neutral=frozenset({"turn", "turns", "flip", "flips"}),

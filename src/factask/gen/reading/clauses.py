@@ -65,7 +65,7 @@ from factask.gen.reading.parts import (
 )
 from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.selectors import is_selector, selector_before, spell_out, unpicked
-from factask.gen.reading.words import count_of, kind_of, resolve_ones, words_of
+from factask.gen.reading.words import count_of, kind_of, passive_scene, resolve_ones, words_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
 
@@ -86,27 +86,6 @@ STILL_VERBS = frozenset({"leave", "keep", "ignore", "avoid", "skip", "remain", "
 #: Verbs that say how things are, not what to do: "the ball is in the left bowl".
 STATE_VERBS = frozenset({"is", "are", "sits", "sit", "lies", "lie", "starts", "start",
                          "holds", "hold", "rests", "contains", "standing", "was", "were"})
-#: Participles that, after "is" / "are", say how the scene is set, not what to do:
-#: "the pallets are placed in a row", "the blocks are scattered on the table".
-SCENE_PARTICIPLES = frozenset({"placed", "arranged", "scattered", "positioned", "located",
-                               "lined", "laid", "spread", "distributed", "situated",
-                               "stacked", "set", "put", "kept", "stored", "lying"})
-#: Words that make such a phrase a goal after all: "the blocks should be placed ...".
-_MODALS = frozenset({"should", "must", "need", "needs", "to", "will", "shall", "has", "have"})
-
-
-def _passive_scene(words: list[str]) -> bool:
-    """Whether a part describes the scene in the passive ("the pallets are placed in a
-    row"): a state verb right before a scene participle, no modal in the part."""
-    if _MODALS & set(words):
-        return False
-    return any(w in ("is", "are", "was", "were") and k + 1 < len(words)
-               and (words[k + 1] in SCENE_PARTICIPLES or (
-                   words[k + 1] in ("randomly", "already", "all", "initially")
-                   and k + 2 < len(words) and words[k + 2] in SCENE_PARTICIPLES))
-               for k, w in enumerate(words))
-
-
 #: Words that begin a part that comes first: "first put ...".
 _FIRST = frozenset({"first", "firstly", "start"})
 #: Prepositions that make the phrase after them an anchor, by the relation they ask.
@@ -361,7 +340,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
             and not acting
         # "The red block sits on top of the yellow cylinder": the scene, no goal.
         described = (bool(STATE_VERBS & verbs) and not (ACTION_VERBS | SHAPES.keys()) & verbs
-                     and not acting) or _passive_scene(words)
+                     and not acting) or passive_scene(words)
         described_subject = False
         negated = False
         for i, w in enumerate(words):

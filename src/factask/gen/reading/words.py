@@ -330,6 +330,41 @@ def count_of(word: str) -> int:
     return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
 
 
-__all__ = ["DECK_SIZE", "DECK_WORDS", "GRADE_WORDS", "KIND_WORDS", "MODIFIERS", "NUMBER_WORDS",
-           "OBJECT_LEAD", "PHRASES", "WORD", "count_of", "kind_of", "plural_of", "resolve_ones",
-           "words_of"]
+#: Participles that, after "is" / "are", say how the scene is set, not what to do:
+#: "the pallets are placed in a row", "the blocks are scattered on the table".
+SCENE_PARTICIPLES = frozenset({"placed", "arranged", "scattered", "positioned", "located",
+                               "lined", "laid", "spread", "distributed", "situated",
+                               "stacked", "set", "put", "kept", "stored", "lying"})
+#: Words that make such a phrase a goal after all: "the blocks should be placed ...".
+_MODALS = frozenset({"should", "must", "need", "needs", "to", "will", "shall", "has", "have"})
+
+
+def passive_scene(words: list[str]) -> bool:
+    """Whether a part describes the scene in the passive ("the pallets are placed in a
+    row"): a state verb right before a scene participle, no modal in the part."""
+    if _MODALS & set(words):
+        return False
+    return any(w in ("is", "are", "was", "were") and k + 1 < len(words)
+               and (words[k + 1] in SCENE_PARTICIPLES or (
+                   words[k + 1] in ("randomly", "already", "all", "initially")
+                   and k + 2 < len(words) and words[k + 2] in SCENE_PARTICIPLES))
+               for k, w in enumerate(words))
+
+
+__all__ = [
+    "DECK_SIZE",
+    "DECK_WORDS",
+    "GRADE_WORDS",
+    "KIND_WORDS",
+    "MODIFIERS",
+    "NUMBER_WORDS",
+    "OBJECT_LEAD",
+    "PHRASES",
+    "WORD",
+    "count_of",
+    "kind_of",
+    "passive_scene",
+    "plural_of",
+    "resolve_ones",
+    "words_of",
+]
