@@ -168,3 +168,14 @@ def test_the_metric_labels_a_switch_on_or_off_and_a_door_open_or_shut() -> None:
     on = get_task("turn-off-stove")
     off = get_task("turn-on-stove")
     assert not compare(on, off).equivalent
+
+
+def test_hosts_past_the_bound_on_mentions_are_left_out_with_their_parts() -> None:
+    from factask.gen.reading.group_counts import MAX_SPLIT_MENTIONS
+
+    found = mentions("BLOCK:STOVE:CABINET:ORANGE:BLUE:RED:GREEN:CABINET")
+    assert len(found) <= MAX_SPLIT_MENTIONS
+    names = {m.name for m in found}
+    hosts = {m.name for m in found if m.kind in ("stove", "cabinet")}
+    seated = {v for m in found for k, v in m.start if k in ("host", "cabinet")}
+    assert seated == hosts and seated <= names  # every host kept has its part, and only those

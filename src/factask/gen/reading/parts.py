@@ -198,7 +198,8 @@ def _positions(words: Sequence[str], hosts: list[Mention]) -> dict[str, int]:
     return out
 
 
-def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
+def seat_parts(words: Sequence[str], found: Sequence[Mention],
+               most: int | None = None) -> list[Mention]:
     """``found`` with its parts seated: each host with as many parts as the words ask,
     every part a mention of its own (one per level, named by it: ``top_drawer``) that
     starts in its host at its level, as open as the words say.
@@ -210,6 +211,8 @@ def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
     Args:
         words: The proposal's words (:func:`factask.gen.reading.words.words_of`).
         found: Its mentions.
+        most: The most mentions there may be (None: any number): the hosts named
+            last are left out, with their parts, until the rest fit.
 
     Returns:
         The mentions, each host followed by its parts.
@@ -219,6 +222,13 @@ def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
     out = list(found)
     for spec in PART_KINDS.values():
         out = _seat(words, out, spec)
+    while most is not None and len(out) > most:
+        host = next((m for m in reversed(out) if m.kind in HOST_KINDS), None)
+        if host is None:
+            break
+        gone = {host.name} | {m.name for m in out if (s := seated(m)) and s[0] == host.name}
+        out = [m if not {v for _, v in m.start} & gone else replace(m, start=())  # type: ignore[type-var]
+               for m in out if m.name not in gone]
     return out
 
 
