@@ -16,7 +16,7 @@ from factask.library.builders import assemble, register, start_on, use, var
 from factask.library.conventions import BOWL, ZONE
 from factask.vocabulary.kinds import kind_spec, shelf_level_size
 
-#: The shelf of these tasks: the kind's default (two levels 14.5 cm deep, 34 cm
+#: The shelf of these tasks: the kind's default (two levels 14.5 cm deep, 32 cm
 #: wide: a 12 cm bowl stands on either).
 SHELF = kind_spec("shelf").default_size
 #: Names of the levels by level, the lowest first, for a shelf of two.

@@ -158,11 +158,11 @@ _SPECS = [
              "towards its back panel at +x, each level's top open to the sky (a top-down "
              "robot reaches every one), side panels a lip above each level; things go on "
              "its levels (kind shelf_level), not on the shelf; size = outer extents",
-             (0.30, 0.36, 0.13), movable=False, asymmetric=True),
+             (0.30, 0.34, 0.13), movable=False, asymmetric=True),
     KindSpec("shelf_level", "one level of a shelf: a solid step whose top things stand on "
              "(starts 'in_cabinet' of its shelf with its level, 0 the lowest, at the shelf's "
              "-x side; its size follows from the shelf's: shelf_level_size)",
-             (0.145, 0.34, 0.05), movable=False, support=True),
+             (0.145, 0.32, 0.05), movable=False, support=True),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.
