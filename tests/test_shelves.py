@@ -230,3 +230,13 @@ def test_nothing_on_the_table_starts_inside_the_shelf() -> None:
             block = f"yellow_blocks__{k}"
             assert bottom_z(objs[block], poses[block]) == pytest.approx(0.0, abs=1e-9)
             assert occ.blockers(objs[block], poses[block]) == [], (seed, block)
+
+
+def test_on_the_shelf_itself_is_refused_naming_its_levels_kind() -> None:
+    data = {"name": "shelf-task", "description": "Put the block on the shelf.",
+            "variables": _vars(),
+            "factors": [{"name": "on_shelf", "goal": {"type": "on", "objects": ["block"],
+                                                      "support": "shelf"}}]}
+    with pytest.raises(GraphValidationError) as err:
+        parse_graph(data).ensure_valid()
+    assert any("shelf" in p.message for p in err.value.problems), err.value.problems
