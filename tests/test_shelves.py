@@ -240,3 +240,19 @@ def test_on_the_shelf_itself_is_refused_naming_its_levels_kind() -> None:
     with pytest.raises(GraphValidationError) as err:
         parse_graph(data).ensure_valid()
     assert any("shelf" in p.message for p in err.value.problems), err.value.problems
+
+
+def test_a_three_level_shelf_the_arm_moves_a_block_from_the_lowest_to_the_top() -> None:
+    levels = [{"name": f"level{k}", "kind": "shelf_level", "color": "brown",
+               "size": list(shelf_level_size(SHELF, 3, k)),
+               "initial": {"type": "in_cabinet", "cabinet": "shelf", "level": k}}
+              for k in range(3)]
+    graph = parse_graph({
+        "name": "three-level-shelf", "description": "Move the block up to the top level.",
+        "variables": [{"name": "shelf", "kind": "shelf", "size": list(SHELF)}, *levels,
+                      {"name": "block", "kind": "block",
+                       "initial": {"type": "on", "support": "level0"}}],
+        "factors": [{"name": "up", "goal": {"type": "on", "objects": ["block"],
+                                            "support": "level2"}}]}).ensure_valid()
+    result = run_episode(graph, 0, robot="arm")
+    assert result.success and result.steps == 1, (result.failure, result.details)
