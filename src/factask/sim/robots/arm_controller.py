@@ -13,8 +13,15 @@ import math
 import mujoco
 import numpy as np
 
-from factask.geometry import Pose, wrap_angle
-from factask.sim.robots.arm import HOME_QPOS, JOINT_NAMES, JOINT_RANGES, KP, KV
+from factask.geometry import Pose, quat_conj, quat_from_axis_angle, quat_mul, wrap_angle, yaw_of
+from factask.sim.robots.arm import (
+    HOME_QPOS,
+    JOINT_NAMES,
+    JOINT_RANGES,
+    KP,
+    KV,
+    TOOL_EXTENSION,
+)
 from factask.sim.robots.ik import TopDownIK, top_down_pose
 from factask.sim.robots.motion import (
     Profile,
@@ -33,7 +40,7 @@ from factask.sim.robots.primitive import (
     SuctionRobot,
 )
 from factask.sim.robots.registry import DEFAULT_ARM, DHArm
-from factask.sim.robots.suction import find_id
+from factask.sim.robots.suction import TOOL_LENGTH, find_id
 
 #: State part one control row of :meth:`ArmSuctionRobot._play` writes.
 _CTRL_STATE = int(mujoco.mjtState.mjSTATE_CTRL)
@@ -61,6 +68,13 @@ VIA_DEPTH = 4
 RECOVER_TIME = 0.5
 #: Distance (rad) the arm's last wrist joint keeps from its range limits.
 WRIST_MARGIN = 0.6
+#: How far (rad) the tool leans from straight down when the wrist's last link would
+#: hit a solid beside the tip (:meth:`ArmSuctionRobot.lean_clear_of`): the link is a
+#: 4 cm cylinder around the tool axis from 12 cm above the tip, a drawer handle's
+#: middle is 1.75 cm in front of its cabinet's face; 13 degrees just clear it.
+LEAN_ANGLE = math.radians(25.0)
+#: Gap (m) the wrist's links are to keep from solids beside the tool.
+LEAN_MARGIN = 0.01
 
 
 class ArmSuctionRobot(SuctionRobot):
@@ -112,11 +126,11 @@ class ArmSuctionRobot(SuctionRobot):
                yaw: float) -> np.ndarray:
         """Joint angles of tip (pos, yaw) near ``q0`` (the solution at pos0, yaw0), the
         last wrist turned to the unwrapped yaw; raises PrimitiveAbort if unreachable."""
-        q, err = self.ik.solve_near(q0, pos, yaw)
+        q, err = self.ik.solve_near(q0, pos, yaw, lean=self.tool_lean)
         if err > REACH_TOL:
             # Far or awkward targets: mink along a straight path, from q0.
             self.ik.set_q(q0)
-            q, err, _ = self.ik.solve(top_down_pose(pos, yaw))
+            q, err, _ = self.ik.solve(top_down_pose(pos, yaw, self.tool_lean))
         if err > REACH_TOL:
             raise PrimitiveAbort(
                 f"pose out of reach: IK stays {err * 1000:.0f} mm from "
@@ -228,7 +242,7 @@ class ArmSuctionRobot(SuctionRobot):
         self._cmd_q = q
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
+        self._cmd_yaw += wrap_angle(self._tool_yaw(ee) - self._cmd_yaw)  # unwrapped branch
 
     def _settle(self) -> None:
         total, done = math.ceil(SETTLE_MAX_TIME / self.dt), 0
@@ -247,7 +261,7 @@ class ArmSuctionRobot(SuctionRobot):
         self._cmd_q = self.data.qpos[self.qpos_adr].copy()
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)
+        self._cmd_yaw += wrap_angle(self._tool_yaw(ee) - self._cmd_yaw)
         up = self._cmd_pos.copy()
         up[2] = max(up[2], self.gripper.obstacle_top() + CLEARANCE, MIN_TRAVEL_HEIGHT)
         with contextlib.suppress(PrimitiveAbort):  # an unreachable lift: go home from here
@@ -261,6 +275,49 @@ class ArmSuctionRobot(SuctionRobot):
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
         self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)
+
+    def _tool_yaw(self, ee: Pose) -> float:
+        """Yaw of the tip pose ``ee`` with the current lean taken off."""
+        if self.tool_lean is None:
+            return ee.yaw
+        return yaw_of(quat_mul(quat_conj(self.tool_lean), ee.quat))
+
+    def lean_clear_of(self, tip: np.ndarray) -> np.ndarray | None:
+        """Lean the tool away from solids the wrist would hit with the tool straight
+        down at ``tip``.
+
+        The wrist's last link is a cylinder of the arm's last radius around the tool
+        axis, from the flange (:data:`TOOL_LENGTH` + :data:`TOOL_EXTENSION` above the
+        tip) up to the last wrist joint; the solids whose world boxes come within that
+        radius (+ :data:`LEAN_MARGIN`) of the axis at those heights are in the way (a
+        tall cabinet's front face over the handle of its bottom drawer). The tool then
+        leans by :data:`LEAN_ANGLE`, its upper end away from them (the tip stays where
+        it is): the link swings out of the furniture while the cup still meets the
+        handle's top, its low rim first.
+
+        Returns:
+            The world rotation (w, x, y, z) of the lean, or None when nothing is in
+            the way (or it lies right above the tip, where no lean helps).
+        """
+        tip = np.asarray(tip, dtype=float)
+        centre, half = self.gripper.object_boxes()
+        low = tip[2] + TOOL_LENGTH + TOOL_EXTENSION
+        high = low + self.arm.d[5] + self.arm.radii[4]
+        radius = self.arm.radii[5] + LEAN_MARGIN
+        nearest = np.clip(tip[:2], centre[:, :2] - half[:, :2], centre[:, :2] + half[:, :2])
+        away = tip[:2] - nearest
+        dist = np.linalg.norm(away, axis=1)
+        hit = ((dist <= radius) & (dist > 1e-6) & (centre[:, 2] + half[:, 2] > low)
+               & (centre[:, 2] - half[:, 2] < high))
+        if not hit.any():
+            return None
+        direction = (away[hit] / dist[hit, None]).sum(axis=0)
+        norm = float(np.linalg.norm(direction))
+        if norm < 1e-6:
+            return None
+        n = direction / norm
+        # Turning +z toward n: about z x n.
+        return quat_from_axis_angle((-float(n[1]), float(n[0]), 0.0), LEAN_ANGLE)
 
     def _yaw_plan(self, pick: Pose, place: Pose) -> tuple[float, float]:
         # The last wrist joint turns by (shoulder pan change) - (tool yaw change)
