@@ -300,18 +300,25 @@ class ArmSuctionRobot(SuctionRobot):
             the way (or it lies right above the tip, where no lean helps).
         """
         tip = np.asarray(tip, dtype=float)
-        centre, half = self.gripper.object_boxes()
+        g, d = self.gripper, self.data
+        if len(g.object_geoms) == 0:
+            return None
         low = tip[2] + TOOL_LENGTH + TOOL_EXTENSION
         high = low + self.arm.d[5] + self.arm.radii[4]
         radius = self.arm.radii[5] + LEAN_MARGIN
-        nearest = np.clip(tip[:2], centre[:, :2] - half[:, :2], centre[:, :2] + half[:, :2])
-        away = tip[:2] - nearest
-        dist = np.linalg.norm(away, axis=1)
-        hit = ((dist <= radius) & (dist > 1e-6) & (centre[:, 2] + half[:, 2] > low)
-               & (centre[:, 2] - half[:, 2] < high))
+        # Points up the link's axis against each solid's own (oriented) box: a turned
+        # cabinet's world-aligned box would cover the handle in front of it.
+        axis = np.array([[tip[0], tip[1], z] for z in np.linspace(low, high, 6)])
+        rot = d.geom_xmat[g.object_geoms].reshape(-1, 3, 3)
+        rel = np.einsum("nji,knj->kni", rot, axis[:, None, :] - d.geom_xpos[g.object_geoms])
+        near = np.clip(rel, g._aabb_c - g._aabb_h, g._aabb_c + g._aabb_h)
+        away = np.einsum("nij,knj->kni", rot, rel - near)  # world: solid -> axis
+        dist = np.linalg.norm(away, axis=2)
+        hit = (dist <= radius) & (np.linalg.norm(away[..., :2], axis=2) > 1e-6)
         if not hit.any():
             return None
-        direction = (away[hit] / dist[hit, None]).sum(axis=0)
+        flat = away[hit][:, :2]
+        direction = (flat / np.linalg.norm(flat, axis=1, keepdims=True)).sum(axis=0)
         norm = float(np.linalg.norm(direction))
         if norm < 1e-6:
             return None
