@@ -245,21 +245,25 @@ def test_arm_opens_the_bottom_drawer_of_three_clear_of_the_cabinet(seed: int) ->
 def test_the_arm_leans_only_over_a_handle_under_its_cabinet() -> None:
     env = FactaskEnv(_open_bottom_of_three(), robot="arm")
     env.reset(seed=0)
-    grasp = Oracle(env, seed=0).plan().grasp[:3]  # type: ignore[union-attr]
-    lean = env.robot.lean_clear_of(grasp)
+    action = Oracle(env, seed=0).plan()
+    grasp, yaw = action.grasp[:3], float(action.grasp[3])  # type: ignore[union-attr]
+    lean = env.robot.lean_clear_of(grasp, yaw)
     assert lean is not None
     from factask.geometry import rotate
+    from factask.sim.robots.ik import tool_quat
 
-    axis = rotate(lean, np.array([0.0, 0.0, 1.0]))  # the tool's upper end leans ...
+    axis = rotate(tool_quat(yaw, lean), np.array([0.0, 0.0, 1.0]))  # the tool's upper end leans ...
     outward = grasp[:2] - env.object_poses()["cabinet"].pos[:2]
-    assert axis[:2] @ outward > 0.3 * np.linalg.norm(outward)  # ... away from the cabinet
-    assert env.robot.lean_clear_of(grasp + np.array([0.0, 0.0, 0.2])) is None  # above it
+    assert axis[2] < 0.97  # ... at least 14 degrees ...
+    assert axis[:2] @ outward > 0.7 * np.linalg.norm(axis[:2]) * np.linalg.norm(outward)  # ... out
+    assert env.robot.lean_clear_of(grasp + np.array([0.0, 0.0, 0.2]), yaw) is None  # above it
     env.close()
     top = FactaskEnv(get_task("open-top-drawer"), robot="arm")
     top.reset(seed=0)
-    assert top.robot.lean_clear_of(Oracle(top, seed=0).plan().grasp[:3]) is None  # type: ignore[union-attr]
+    above = Oracle(top, seed=0).plan()
+    assert top.robot.lean_clear_of(above.grasp[:3], above.grasp[3]) is None  # type: ignore[union-attr]
     top.close()
     floating = FactaskEnv(_open_bottom_of_three())
     floating.reset(seed=0)
-    assert floating.robot.lean_clear_of(grasp) is None
+    assert floating.robot.lean_clear_of(grasp, yaw) is None
     floating.close()

@@ -20,7 +20,6 @@ from factask.sim.robots.arm import (
     JOINT_RANGES,
     KP,
     KV,
-    TOOL_EXTENSION,
 )
 from factask.sim.robots.ik import TopDownIK, top_down_pose
 from factask.sim.robots.motion import (
@@ -40,7 +39,7 @@ from factask.sim.robots.primitive import (
     SuctionRobot,
 )
 from factask.sim.robots.registry import DEFAULT_ARM, DHArm
-from factask.sim.robots.suction import TOOL_LENGTH, find_id
+from factask.sim.robots.suction import find_id
 
 #: State part one control row of :meth:`ArmSuctionRobot._play` writes.
 _CTRL_STATE = int(mujoco.mjtState.mjSTATE_CTRL)
@@ -68,12 +67,18 @@ VIA_DEPTH = 4
 RECOVER_TIME = 0.5
 #: Distance (rad) the arm's last wrist joint keeps from its range limits.
 WRIST_MARGIN = 0.6
-#: How far (rad) the tool leans from straight down when the wrist's last link would
-#: hit a solid beside the tip (:meth:`ArmSuctionRobot.lean_clear_of`): the link is a
-#: 4 cm cylinder around the tool axis from 12 cm above the tip, a drawer handle's
-#: middle is 1.75 cm in front of its cabinet's face; 13 degrees just clear it.
-LEAN_ANGLE = math.radians(25.0)
-#: Gap (m) the wrist's links are to keep from solids beside the tool.
+#: How far (rad) the tool may lean from straight down when the arm's links would hit
+#: a solid beside the tip (:meth:`ArmSuctionRobot.lean_clear_of`), the least that
+#: clears first: the wrist's last link is a 4 cm cylinder round the tool axis from 12
+#: cm above the tip, a drawer handle's middle is 1.75 cm in front of its cabinet's
+#: face (13 degrees just clear it); the wrist, 24 cm above the tip, moves 8-15 cm.
+LEAN_ANGLES = tuple(math.radians(a) for a in (20.0, 25.0, 30.0, 40.0))
+#: Points tested along each of the arm's links (:meth:`ArmSuctionRobot.lean_clear_of`).
+LINK_SAMPLES = 7
+#: The links tested: the upper arm, forearm and wrist (the base column cannot move).
+LEANING_LINKS = ("link2_geom", "link3_geom", "link4_geom", "link5_geom", "link6_geom")
+#: Gap (m) within which a solid beside the arm's links, the tool straight down, makes
+#: it lean (a lean is taken when its links touch nothing).
 LEAN_MARGIN = 0.01
 
 
@@ -111,6 +116,12 @@ class ArmSuctionRobot(SuctionRobot):
         self._amax = np.asarray(arm.max_accel, dtype=float)
         self._lead = np.asarray(KV) / np.asarray(KP)
         self._cmd_q = np.asarray(HOME_QPOS, dtype=float)
+        m = self.ik.model
+        self._link_geoms = np.array([find_id(m, mujoco.mjtObj.mjOBJ_GEOM, n)
+                                     for n in LEANING_LINKS])
+        # Offsets along each link's axis (its geom's z) of the points tested.
+        self._link_spans = (np.linspace(-1.0, 1.0, LINK_SAMPLES)[None, :]
+                            * m.geom_size[self._link_geoms, 1:2])
 
     def _reset_robot(self) -> None:
         home = np.asarray(HOME_QPOS, dtype=float)
@@ -280,51 +291,74 @@ class ArmSuctionRobot(SuctionRobot):
         """Yaw of the tip pose ``ee`` with the current lean taken off."""
         if self.tool_lean is None:
             return ee.yaw
-        return yaw_of(quat_mul(quat_conj(self.tool_lean), ee.quat))
+        return yaw_of(quat_mul(ee.quat, quat_conj(self.tool_lean)))
 
-    def lean_clear_of(self, tip: np.ndarray) -> np.ndarray | None:
-        """Lean the tool away from solids the wrist would hit with the tool straight
-        down at ``tip``.
+    def lean_clear_of(self, tip: np.ndarray, yaw: float) -> np.ndarray | None:
+        """Lean the tool away from solids the arm's links would hit with the tool
+        straight down at ``tip``.
 
-        The wrist's last link is a cylinder of the arm's last radius around the tool
-        axis, from the flange (:data:`TOOL_LENGTH` + :data:`TOOL_EXTENSION` above the
-        tip) up to the last wrist joint; the solids whose world boxes come within that
-        radius (+ :data:`LEAN_MARGIN`) of the axis at those heights are in the way (a
-        tall cabinet's front face over the handle of its bottom drawer). The tool then
-        leans by :data:`LEAN_ANGLE`, its upper end away from them (the tip stays where
-        it is): the link swings out of the furniture while the cup still meets the
-        handle's top, its low rim first.
+        The arm's pose there (IK near the commanded joints) puts its links, each a
+        capsule (the last a cylinder round the tool axis from 12 cm above the tip),
+        against every solid's own box: the wrist, 24 cm above the tip, and the forearm
+        reach over anything beside a low tip taller than about 19 cm (a tall cabinet
+        over the handle of its bottom drawer, a fridge beside a block on the table).
+        Those within :data:`LEAN_MARGIN` push the tool's upper end away from them,
+        by the first of :data:`LEAN_ANGLES` with which none touches them (the tip
+        stays where it is, the cup meets the surface its low rim first).
 
         Returns:
-            The world rotation (w, x, y, z) of the lean, or None when nothing is in
-            the way (or it lies right above the tip, where no lean helps).
+            The lean, a rotation in the frame of the tool turned by ``yaw``
+            (:func:`factask.sim.robots.ik.tool_quat`), or None when straight down is
+            clear, the pose is out of reach, or no lean clears it.
         """
         tip = np.asarray(tip, dtype=float)
-        g, d = self.gripper, self.data
-        if len(g.object_geoms) == 0:
+        if len(self.gripper.object_geoms) == 0:
             return None
-        low = tip[2] + TOOL_LENGTH + TOOL_EXTENSION
-        high = low + self.arm.d[5] + self.arm.radii[4]
-        radius = self.arm.radii[5] + LEAN_MARGIN
-        # Points up the link's axis against each solid's own (oriented) box: a turned
-        # cabinet's world-aligned box would cover the handle in front of it.
-        axis = np.array([[tip[0], tip[1], z] for z in np.linspace(low, high, 6)])
-        rot = d.geom_xmat[g.object_geoms].reshape(-1, 3, 3)
-        rel = np.einsum("nji,knj->kni", rot, axis[:, None, :] - d.geom_xpos[g.object_geoms])
-        near = np.clip(rel, g._aabb_c - g._aabb_h, g._aabb_c + g._aabb_h)
-        away = np.einsum("nij,knj->kni", rot, rel - near)  # world: solid -> axis
-        dist = np.linalg.norm(away, axis=2)
-        hit = (dist <= radius) & (np.linalg.norm(away[..., :2], axis=2) > 1e-6)
-        if not hit.any():
+        away = self._link_hits(tip, yaw, None)
+        if away is None or not len(away):
             return None
-        flat = away[hit][:, :2]
-        direction = (flat / np.linalg.norm(flat, axis=1, keepdims=True)).sum(axis=0)
+        direction = (away / np.linalg.norm(away, axis=1, keepdims=True)).sum(axis=0)
         norm = float(np.linalg.norm(direction))
         if norm < 1e-6:
             return None
         n = direction / norm
-        # Turning +z toward n: about z x n.
-        return quat_from_axis_angle((-float(n[1]), float(n[0]), 0.0), LEAN_ANGLE)
+        # The axis (z x n) in the yawed tool's frame: turning +z about it leans toward n.
+        c, s = math.cos(yaw), math.sin(yaw)
+        axis = (c * -float(n[1]) + s * float(n[0]), -s * -float(n[1]) + c * float(n[0]), 0.0)
+        for angle in LEAN_ANGLES:
+            lean = quat_from_axis_angle(axis, angle)
+            left = self._link_hits(tip, yaw, lean, margin=0.0)
+            if left is not None and not len(left):
+                return lean
+        return None
+
+    def _link_hits(self, tip: np.ndarray, yaw: float, lean: np.ndarray | None,
+                   margin: float = LEAN_MARGIN) -> np.ndarray | None:
+        """Horizontal vectors (k, 2) from the solids to the points of the arm's links
+        that come within ``margin`` of them with the tip at (tip, yaw, lean); None when
+        IK does not reach it."""
+        kept, self.tool_lean = self.tool_lean, lean
+        try:
+            q = self._solve(self._cmd_q, self._cmd_pos, self._cmd_yaw, tip, yaw)
+        except PrimitiveAbort:
+            return None
+        finally:
+            self.tool_lean = kept
+        self.ik.fk(q)
+        ik = self.ik._data
+        ids = self._link_geoms
+        points = (ik.geom_xpos[ids, None, :] + self._link_spans[:, :, None]
+                  * ik.geom_xmat[ids].reshape(-1, 3, 3)[:, None, :, 2]).reshape(-1, 3)
+        radius = np.repeat(self.ik.model.geom_size[ids, 0], LINK_SAMPLES) + margin
+        g, d = self.gripper, self.data
+        rot = d.geom_xmat[g.object_geoms].reshape(-1, 3, 3)
+        rel = np.einsum("nji,knj->kni", rot, points[:, None, :] - d.geom_xpos[g.object_geoms])
+        near = np.clip(rel, g.local_box_centre - g.local_box_half,
+                       g.local_box_centre + g.local_box_half)
+        away = np.einsum("nij,knj->kni", rot, rel - near)  # world: solid -> link point
+        hit = np.linalg.norm(away, axis=2) <= radius[:, None]
+        flat = away[hit][:, :2]
+        return flat[np.linalg.norm(flat, axis=1) > 1e-6]
 
     def _yaw_plan(self, pick: Pose, place: Pose) -> tuple[float, float]:
         # The last wrist joint turns by (shoulder pan change) - (tool yaw change)

@@ -47,15 +47,16 @@ DLS_ROT_TOL = 1e-3
 
 def top_down_pose(pos: Sequence[float], yaw: float, lean: np.ndarray | None = None) -> Pose:
     """Tip pose with the tool straight down and yaw ``yaw`` (tip frame z is up), then
-    turned by the world rotation ``lean`` (a quaternion; None: straight down)."""
+    leaned by ``lean`` (:func:`tool_quat`; None: straight down)."""
     return Pose(np.asarray(pos, dtype=float), tool_quat(yaw, lean))
 
 
 def tool_quat(yaw: float, lean: np.ndarray | None = None) -> np.ndarray:
-    """Orientation (w, x, y, z) of the tip frame: straight down at ``yaw``, then turned
-    by the world rotation ``lean`` (None: none)."""
+    """Orientation (w, x, y, z) of the tip frame: straight down at ``yaw``, then leaned by
+    ``lean``, a rotation in that yawed frame (None: none). The lean turns with the yaw,
+    so an object held by a leaning tool turns about the vertical only, staying level."""
     down = quat_from_yaw(yaw)
-    return down if lean is None else quat_mul(lean, down)
+    return down if lean is None else quat_mul(down, lean)
 
 
 class TopDownIK:
@@ -197,8 +198,7 @@ class TopDownIK:
             pos: Tip target position.
             yaw: Tip target yaw (tool straight down).
             iterations: Newton steps at most.
-            lean: World rotation (quaternion) applied to the straight-down tool
-                (:func:`tool_quat`); None: straight down.
+            lean: The tool's lean (:func:`tool_quat`); None: straight down.
 
         Returns:
             (joint angles, position error m); :meth:`solve` (mink) is the fallback

@@ -150,8 +150,8 @@ class SuctionRobot(ABC):
         self._callback_every = DEFAULT_CALLBACK_EVERY
         self._health = HealthWatch(data)
         self._aborted = False
-        #: World rotation (w, x, y, z) the tool is turned by from straight down during
-        #: the current primitive (None: straight down); see :meth:`lean_clear_of`.
+        #: How the tool leans from straight down during the current primitive, a
+        #: rotation in its yawed frame (None: straight down); see :meth:`lean_clear_of`.
         self.tool_lean: np.ndarray | None = None
 
     #: How far (m) the tip may end a transfer below its command: a transfer stops
@@ -192,11 +192,11 @@ class SuctionRobot(ABC):
     def _settle(self) -> None:  # noqa: B027 - optional hook, a mocap needs no settling
         """Step until the tip tracks its command (arm); nothing to do for a mocap."""
 
-    def lean_clear_of(self, tip: np.ndarray) -> np.ndarray | None:
-        """How to lean the tool, with its tip at ``tip``, so that the robot's links
-        clear the solids beside it (a handle on a tall cabinet's face): a world
-        rotation for :attr:`tool_lean`, or None when straight down is clear. The
-        floating cup has no links: always None."""
+    def lean_clear_of(self, tip: np.ndarray, yaw: float) -> np.ndarray | None:
+        """How to lean the tool, its tip at ``tip`` turned by ``yaw``, so that the
+        robot's links clear the solids beside it (a handle on a tall cabinet's face):
+        a rotation for :attr:`tool_lean` (:func:`factask.sim.robots.ik.tool_quat`), or
+        None when straight down is clear. The floating cup has no links: always None."""
         return None
 
     # ----- public API -----
@@ -312,6 +312,9 @@ class SuctionRobot(ABC):
         if self.gripper.held is not None:
             self.gripper.release()
         up = np.array([0.0, 0.0, 1.0])
+        # Lean out of tall furniture beside the pick, and keep the lean to the place so
+        # the held object stays level.
+        self.tool_lean = self.lean_clear_of(pick.pos, pick_yaw)
         # Transfer to just above the pick, then a guarded descent to the first contact.
         self._transfer(self._pick_approach(pick.pos), pick_yaw)
         if self._descend(pick.pos - PICK_OVERSHOOT * up, pick_yaw, held=False):
