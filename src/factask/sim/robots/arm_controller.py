@@ -312,7 +312,7 @@ class ArmSuctionRobot(SuctionRobot):
             clear, the pose is out of reach, or no lean clears it.
         """
         tip = np.asarray(tip, dtype=float)
-        if len(self.gripper.object_geoms) == 0:
+        if not self.gripper.furniture.any():
             return None
         away = self._link_hits(tip, yaw, None)
         if away is None or not len(away):
@@ -334,9 +334,10 @@ class ArmSuctionRobot(SuctionRobot):
 
     def _link_hits(self, tip: np.ndarray, yaw: float, lean: np.ndarray | None,
                    margin: float = LEAN_MARGIN) -> np.ndarray | None:
-        """Horizontal vectors (k, 2) from the solids to the points of the arm's links
-        that come within ``margin`` of them with the tip at (tip, yaw, lean); None when
-        IK does not reach it."""
+        """Horizontal vectors (k, 2) from the furniture (fixed solids, drawers: loose
+        objects are pushed aside, as before) to the points of the arm's links that come
+        within ``margin`` of it with the tip at (tip, yaw, lean); None when IK does not
+        reach it."""
         kept, self.tool_lean = self.tool_lean, lean
         try:
             q = self._solve(self._cmd_q, self._cmd_pos, self._cmd_yaw, tip, yaw)
@@ -351,10 +352,11 @@ class ArmSuctionRobot(SuctionRobot):
                   * ik.geom_xmat[ids].reshape(-1, 3, 3)[:, None, :, 2]).reshape(-1, 3)
         radius = np.repeat(self.ik.model.geom_size[ids, 0], LINK_SAMPLES) + margin
         g, d = self.gripper, self.data
-        rot = d.geom_xmat[g.object_geoms].reshape(-1, 3, 3)
-        rel = np.einsum("nji,knj->kni", rot, points[:, None, :] - d.geom_xpos[g.object_geoms])
-        near = np.clip(rel, g.local_box_centre - g.local_box_half,
-                       g.local_box_centre + g.local_box_half)
+        solids = g.object_geoms[g.furniture]
+        centre, half = g.local_box_centre[g.furniture], g.local_box_half[g.furniture]
+        rot = d.geom_xmat[solids].reshape(-1, 3, 3)
+        rel = np.einsum("nji,knj->kni", rot, points[:, None, :] - d.geom_xpos[solids])
+        near = np.clip(rel, centre - half, centre + half)
         away = np.einsum("nij,knj->kni", rot, rel - near)  # world: solid -> link point
         hit = np.linalg.norm(away, axis=2) <= radius[:, None]
         flat = away[hit][:, :2]
