@@ -14,6 +14,7 @@ from typer.testing import CliRunner
 
 import factask.sim  # noqa: F401  (headless GL backend before MuJoCo's GL loads)
 from factask.cli import app
+from factask.datasets.actions import ACTION_NAMES, ACTION_WIDTH
 from factask.datasets.control_frames import (
     FLOATING_COMMAND_NAMES,
     ControlStream,
@@ -58,7 +59,7 @@ def test_a_format_only_reader_loads_the_dataset(dataset: Path) -> None:
                 "language_goal", "observation.images.front", "observation.images.left",
                 "observation.images.right"):
         assert key in feats, key
-    assert feats["action"]["shape"] == [8]
+    assert feats["action"]["shape"] == [ACTION_WIDTH] and feats["action"]["names"] == ACTION_NAMES
     assert set(ds["tasks"]) == {0, 1}
     frames = ds["frames"]
     # Only successful demonstrations: each episode ends done with total reward >= 0.99.
@@ -145,7 +146,7 @@ def test_control_frames_carry_the_low_level_command(control_dataset: Path) -> No
     assert info["fps"] == default_control_fps() == 50
     feats = info["features"]
     assert feats["action"]["names"] == FLOATING_COMMAND_NAMES
-    assert feats["action.primitive"]["shape"] == [8] and "decision_index" in feats
+    assert feats["action.primitive"]["names"] == ACTION_NAMES and "decision_index" in feats
     states = read_states(control_dataset / ds["episodes"][0]["factask/states_path"])
     n = len(states.control_step)
     assert info["total_frames"] == n > 10 * states.steps

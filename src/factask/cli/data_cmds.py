@@ -52,9 +52,10 @@ def collect(
                                    "of timestamps and videos (default: 1 for decision "
                                    "frames, the command rate (50) for control frames)."),
     frames: str = typer.Option("decision", "--frames", help="'decision': a frame per "
-                               "pick-and-place, action = its pick and place; 'control': a "
-                               "frame per low-level command sample (50 Hz), action = the "
-                               "command, with the decision's pick and place beside it."),
+                               "action primitive, action = its 12 numbers (two poses x y z "
+                               "yaw, lift, hinge x y, primitive code); 'control': a frame "
+                               "per low-level command sample (50 Hz), action = the "
+                               "command, with the decision's 12 numbers beside it."),
     keep_failed: bool = typer.Option(False, "--keep-failed", help="Keep failed episodes."),
     workers: int = typer.Option(0, "--workers", "-w", min=0, max=256,
                                 help="Worker processes (0: the machine's cores)."),
@@ -134,9 +135,9 @@ def replay(
     path = dataset / "states" / f"episode_{episode:06d}.npz"
     try:
         states = read_states(path)
+        differences = compare_states(states, resimulate(states))
     except FactaskError as exc:
         raise _fail(str(exc)) from None
-    differences = compare_states(states, resimulate(states))
     written = None
     if video is not None:
         from factask.datasets.control_frames import default_control_fps

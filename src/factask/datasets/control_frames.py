@@ -13,8 +13,9 @@ per control period, ``action`` the command for the next period). Frame k holds:
   the floating cup's commanded tip pose (it is a mocap body: the command is applied
   exactly, so the command equals the tip's pose one period later) or an arm's joint
   position targets (``data.ctrl``), then suction on;
-* ``action.primitive``: the pick and place (x, y, z, yaw) of the decision it belongs
-  to, and ``decision_index`` which decision that is;
+* ``action.primitive``: the decision it belongs to, encoded as a decision frame's
+  ``action`` (:mod:`factask.datasets.actions`: the two poses, lift, hinge, the
+  primitive's code), and ``decision_index`` which decision that is;
 * ``next.total_reward`` / ``next.factor_rewards``: the task's status as the env checks
   it, once per decision: the status before the decision on its samples, the status
   after it on the decision's last sample; ``next.reward`` is the change of
@@ -30,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from factask.datasets.actions import ACTION_WIDTH
 from factask.vocabulary.errors import FactaskError
 
 #: The frame modes of a collection: one frame per decision, or per control sample.
@@ -120,7 +122,7 @@ def control_columns(stream: ControlStream, rows: DecisionRows, actions: Sequence
     Args:
         stream: The sampled stream (with ``objects``).
         rows: One entry per decision.
-        actions: Each decision's pick and place (8,).
+        actions: Each decision, encoded (:func:`~factask.datasets.actions.encode_action`).
         nu: The robot's actuators (the command is ``ctrl``); 0: the floating cup.
         env_width: 7 x the task's objects.
         n_factors: Factors of the task.
@@ -146,7 +148,8 @@ def control_columns(stream: ControlStream, rows: DecisionRows, actions: Sequence
     done = np.zeros(n, bool)
     if n:
         done[-1] = rows.done[-1]
-    primitive = np.asarray(actions, np.float64).reshape(-1, 8)[dec] if n else np.zeros((0, 8))
+    primitive = (np.asarray(actions, np.float64).reshape(-1, ACTION_WIDTH)[dec] if n
+                 else np.zeros((0, ACTION_WIDTH)))
     return {
         "state": tip.astype(np.float32),
         "environment_state": np.asarray(stream.objects, np.float32).reshape(n, env_width),

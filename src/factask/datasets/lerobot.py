@@ -11,7 +11,8 @@ target, :mod:`factask.datasets.lerobot_files`)::
     videos/observation.images.<camera>/chunk-CCC/file-FFF.mp4   many episodes per file
 
 Per frame: ``observation.state`` (suction tip pose, suction), ``observation.environment_state``
-(object poses, zero-padded to the largest task), ``action`` (pick and place, x y z yaw),
+(object poses, zero-padded to the largest task), ``action`` (the decision encoded:
+:mod:`factask.datasets.actions`),
 ``next.reward`` (the reward change), ``next.total_reward``, ``next.factor_rewards``
 (per-factor progress, zero-padded), ``next.done``, ``next.success``, ``language_goal``
 (the current factor's goal), and LeRobot's ``timestamp``, ``frame_index``,
@@ -21,8 +22,8 @@ of its file.
 
 With control frames (:mod:`factask.datasets.control_frames`) a frame is one sample of
 the low-level command stream: ``action`` is the low-level command, and two more
-features carry the decision each frame belongs to: ``action.primitive`` (its pick and
-place) and ``decision_index``.
+features carry the decision each frame belongs to: ``action.primitive`` (encoded as
+above) and ``decision_index``.
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from factask.datasets.actions import ACTION_ENCODING, ACTION_NAMES
 from factask.datasets.layout import (
     CHUNKS_SIZE,
     CODEBASE_VERSION,
@@ -47,7 +49,7 @@ from factask.datasets.layout import (
     VIDEO_PATH,
 )
 from factask.datasets.lerobot_files import RollingParquet, RollingVideo, RunningStats
-from factask.datasets.recording import ACTION_NAMES, STATE_NAMES, EpisodeRecord
+from factask.datasets.recording import STATE_NAMES, EpisodeRecord
 from factask.vocabulary.errors import FactaskError
 from factask.vocabulary.tolerances import SUCCESS_REWARD
 
@@ -80,8 +82,9 @@ class LeRobotWriter:
         robot_type: Recorded in info.json.
         data_mb: Size target of a data file (MB).
         video_mb: Size target of a video file (MB).
-        action_names: Names of ``action`` (default: the pick and place); control frames
-            name the low-level command here.
+        action_names: Names of ``action`` (default: the decision encoded,
+            :data:`~factask.datasets.actions.ACTION_NAMES`); control frames name the
+            low-level command here.
         control: Frames are control samples: adds ``action.primitive`` and
             ``decision_index``.
 
@@ -144,6 +147,10 @@ class LeRobotWriter:
             if ep.primitive is None or ep.decision is None:
                 raise DatasetWriteError(f"episode of {ep.task!r} (seed {ep.seed}) was not "
                                         "recorded with control frames")
+            if ep.primitive.shape[1:] != (len(ACTION_NAMES),):
+                raise DatasetWriteError(f"episode of {ep.task!r}: action.primitive width "
+                                        f"{ep.primitive.shape[1:]} for {len(ACTION_NAMES)} "
+                                        "names (recorded by an older factask?)")
             extra = {"action.primitive": ep.primitive.astype(np.float32),
                      "decision_index": ep.decision.astype(np.int64)}
         return extra | {
@@ -266,7 +273,8 @@ class LeRobotWriter:
 
         Args:
             splits: LeRobot's ``splits`` ("train": "0:N", episode ranges).
-            extra: More keys for info.json (factask's own: seeds, cameras).
+            extra: More keys for info.json's ``factask`` (factask's own: options,
+                cameras; ``action_encoding`` is always there).
 
         Returns:
             The info.json content.
@@ -290,8 +298,8 @@ class LeRobotWriter:
             "data_path": DATA_PATH, "video_path": VIDEO_PATH if self.cameras else None,
             "features": feats,
         }
-        if extra:
-            info["factask"] = extra
+        # The action layout's version (factask.datasets.actions): 2 is every primitive.
+        info["factask"] = {"action_encoding": ACTION_ENCODING} | (extra or {})
         (self.root / "meta" / "info.json").write_text(json.dumps(info, indent=4))
         return info
 

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from factask.datasets.actions import ACTION_NAMES, ACTION_WIDTH, encode_action
 from factask.datasets.control_frames import (
     ControlStream,
     DecisionRows,
@@ -31,9 +32,8 @@ from factask.vocabulary.tolerances import SUCCESS_REWARD
 
 #: Names of ``observation.state``: the suction tip's pose and whether it holds.
 STATE_NAMES = ["ee_x", "ee_y", "ee_z", "ee_qw", "ee_qx", "ee_qy", "ee_qz", "suction"]
-#: Names of ``action``: the primitive's pick and place (x, y, z, yaw).
-ACTION_NAMES = ["pick_x", "pick_y", "pick_z", "pick_yaw",
-                "place_x", "place_y", "place_z", "place_yaw"]
+__all__ = ["ACTION_NAMES", "STATE_NAMES", "EpisodeRecord", "PolicyFactory", "oracle_policy",
+           "record_episode", "record_episodes"]
 
 #: A policy for recording: (env, seed) -> a callable giving the next action or None.
 PolicyFactory = Callable[[FactaskEnv, int], Callable[[], dict[str, np.ndarray] | None]]
@@ -60,7 +60,7 @@ class EpisodeRecord:
     states: EpisodeStates
     failure: str | None = None
     factor_names: list[str] = field(default_factory=list)
-    #: Control frames only: each frame's decision pick and place (n, 8), its index (n,).
+    #: Control frames only: each frame's decision, encoded (n, ACTION_WIDTH), its index (n,).
     primitive: np.ndarray | None = None
     decision: np.ndarray | None = None
 
@@ -154,8 +154,7 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         goal = _current_goal(env, info)
         for cam in images if not control else ():
             images[cam].append(rig.rgb(env.data, cam))  # type: ignore[union-attr]
-        vec = np.concatenate([np.asarray(action["pick"], float),
-                              np.asarray(action["place"], float)])
+        vec = encode_action(action)  # every primitive (factask.datasets.actions)
         rows["state"].append(np.concatenate([obs["ee_pose"], obs["suction"]]))
         rows["env"].append(obs["object_poses"].reshape(-1))
         decisions.total_before.append(float(info.get("total_reward", 0.0)))
@@ -189,7 +188,8 @@ def record_episode(env: FactaskEnv, seed: int, rig: CameraRig | None = None,
         task=env.graph.name, instruction=env.graph.description or env.graph.name, seed=seed,
         success=final >= SUCCESS_REWARD, final_reward=final,
         state=arr("state", len(STATE_NAMES)), environment_state=arr("env", n_env),
-        action=arr("action", 8), reward=arr("reward", None), total_reward=arr("total", None),
+        action=arr("action", ACTION_WIDTH), reward=arr("reward", None),
+        total_reward=arr("total", None),
         factor_rewards=arr("factors", len(names)), done=arr("done", None, bool),
         goal=list(rows["goal"]),
         images={k: (np.stack(v) if v else np.zeros((0, *shapes[k]), np.uint8))
@@ -214,7 +214,7 @@ def _episode_states(env: FactaskEnv, seed: int, snaps: list[tuple[np.ndarray, ..
         mjcf=env.scene.xml, graph=env.graph.to_json(indent=None), robot=env.robot_kind,
         seed=seed, qpos=np.stack([s[0] for s in snaps]), qvel=np.stack([s[1] for s in snaps]),
         mocap_pos=np.stack([s[2] for s in snaps]), mocap_quat=np.stack([s[3] for s in snaps]),
-        actions=np.asarray(actions, dtype=np.float64).reshape(len(actions), 8),
+        actions=np.asarray(actions, dtype=np.float64).reshape(len(actions), ACTION_WIDTH),
         control_step=np.asarray(stream.step, np.int32),
         control_time=np.asarray(stream.time, np.float64),
         control=np.asarray(stream.ctrl, np.float64).reshape(n, m.nu),

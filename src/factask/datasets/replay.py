@@ -14,13 +14,18 @@ from collections.abc import Sequence
 import mujoco
 import numpy as np
 
+from factask.datasets.actions import decode_action
 from factask.datasets.states import EpisodeStates, snapshot
 from factask.graph.taskgraph import parse_graph
 from factask.sim.render.cameras import CameraRig, CameraSpec
 
 
 def resimulate(states: EpisodeStates) -> EpisodeStates:
-    """The states of the episode run again from its graph, robot, seed and actions."""
+    """The states of the episode run again from its graph, robot, seed and actions.
+
+    Raises:
+        ActionEncodingError: an action that encodes no primitive (a corrupt file).
+    """
     from factask.sim.env import FactaskEnv
 
     graph = parse_graph(states.graph)
@@ -29,7 +34,7 @@ def resimulate(states: EpisodeStates) -> EpisodeStates:
         env.reset(seed=states.seed)
         snaps = [snapshot(env.data)]
         for a in states.actions:
-            env.step({"pick": a[:4], "place": a[4:]})
+            env.step(decode_action(a))  # any primitive (factask.datasets.actions)
             snaps.append(snapshot(env.data))
     finally:
         env.close()

@@ -22,6 +22,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from factask.datasets.actions import ACTION_ENCODING
 from factask.datasets.control_frames import (
     check_frame_mode,
     command_names,
@@ -157,12 +158,13 @@ def run_shard(shard: Shard, config: CollectConfig, shard_dir: str) -> str:
 
 def _check_plan(shard_dir: Path, config: CollectConfig) -> None:
     plan = shard_dir / "plan.json"
-    mine = json.dumps(asdict(config), sort_keys=True)
+    # The action layout too: shards of an older factask hold actions of another width.
+    mine = json.dumps(asdict(config) | {"action_encoding": ACTION_ENCODING}, sort_keys=True)
     if plan.exists():
         if plan.read_text() != mine:
             raise CollectError(f"{shard_dir.parent} holds an unfinished collection with other "
-                               "options (fix: repeat its options to resume, or give a new "
-                               "output folder)")
+                               "options or of another factask version (fix: repeat its "
+                               "options to resume, or give a new output folder)")
         return
     shard_dir.mkdir(parents=True, exist_ok=True)
     plan.write_text(mine)

@@ -6,7 +6,9 @@ One ``.npz`` per episode (``states/episode_XXXXXX.npz`` beside the dataset) with
 * ``graph``: the task graph's JSON, ``robot``, ``seed`` (re-simulate with factask);
 * ``qpos``, ``qvel`` (T + 1, nq / nv) float64, ``mocap_pos`` (T + 1, nmocap, 3),
   ``mocap_quat`` (T + 1, nmocap, 4): the state before each action and at the end;
-* ``actions`` (T, 8) float64: each action's pick (x, y, z, yaw) then place;
+* ``actions`` (T, 12) float64: each action encoded (:mod:`factask.datasets.actions`:
+  the two poses, lift, hinge x y, the primitive's code); a file of layout 1 held
+  (T, 8) picks and places, read as pick-and-places;
 * the low-level stream, sampled while actions run (every few physics steps):
   ``control_step`` (n,) the action it belongs to, ``control_time`` (n,) simulated
   seconds, ``control`` (n, nu) the actuator commands (``data.ctrl``; the arm's joint
@@ -27,10 +29,14 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from factask.datasets.actions import upgrade_actions
 from factask.vocabulary.errors import FactaskError
 
-#: Version of the states file layout.
-STATES_VERSION = 1
+#: Version of the states file layout (2: every primitive's actions, 12 wide; 1: picks
+#: and places, 8 wide, still read).
+STATES_VERSION = 2
+#: Older layouts :func:`read_states` reads.
+_READABLE = (1, STATES_VERSION)
 #: Per-sample states, written only with control frames (files without them read empty).
 _CONTROL_STATES = ("control_qpos", "control_mocap_pos", "control_mocap_quat")
 
@@ -122,13 +128,14 @@ def read_states(path: Path) -> EpisodeStates:
     try:
         with np.load(path, allow_pickle=False) as z:
             version = int(z["version"])
-            if version != STATES_VERSION:
+            if version not in _READABLE:
                 raise StatesFileError(f"{path}: states layout {version}, this factask reads "
-                                      f"{STATES_VERSION} (fix: collect the dataset again)")
+                                      f"{_READABLE} (fix: collect the dataset again)")
+            actions = z["actions"] if version > 1 else upgrade_actions(z["actions"])
             return EpisodeStates(
                 mjcf=str(z["mjcf"]), graph=str(z["graph"]), robot=str(z["robot"]),
                 seed=int(z["seed"]), qpos=z["qpos"], qvel=z["qvel"],
-                mocap_pos=z["mocap_pos"], mocap_quat=z["mocap_quat"], actions=z["actions"],
+                mocap_pos=z["mocap_pos"], mocap_quat=z["mocap_quat"], actions=actions,
                 control_step=z["control_step"], control_time=z["control_time"],
                 control=z["control"], control_tip=z["control_tip"],
                 **{k: z[k] for k in _CONTROL_STATES if k in z.files})

@@ -36,6 +36,10 @@ each object is labelled too with its size among the objects of its kind and colo
 in the small bowl, or has two balls of one size, is another task. Without such words
 sizes are details.
 
+**Drawers by their place.** A drawer (a variable that starts ``in_cabinet``) is
+labelled too with its level among its cabinet's drawers and how it starts (shut,
+partly open, open): opening the top drawer is not opening the bottom one.
+
 The graphs are **equivalent** when their canonical forms are isomorphic (networkx's
 ``DiGraphMatcher`` with node and edge matches) under a mapping that keeps every order
 of the reference (A before B, explicit or implied by anchors, transitively) — order is
@@ -61,6 +65,7 @@ from networkx.algorithms.isomorphism import DiGraphMatcher
 from factask.gen.reading.words import GRADE_WORDS
 from factask.graph.taskgraph import TaskGraph, parse_graph
 from factask.vocabulary.palette import colour_of_word
+from factask.vocabulary.variables import InCabinet
 
 #: Relations that hold object by object: a goal over several objects is one per object.
 PER_OBJECT_RELATIONS = frozenset(["in_zone", "inside", "on"])
@@ -171,12 +176,28 @@ def _instances(graph: TaskGraph, stated: frozenset[str] | None = None, graded: b
             colour = ""  # the words leave it open
         colour_of[v.name] = colour
     grades = _grades(graph, colour_of) if graded else {}
+    seats = _seats(graph)
     for v in graph.variables:
-        label = (v.kind, colour_of[v.name], bool(v.is_fixed), grades.get(v.name, ""))
+        grade = ", ".join(x for x in (grades.get(v.name, ""), seats.get(v.name, "")) if x)
+        label = (v.kind, colour_of[v.name], bool(v.is_fixed), grade)
         of[v.name] = list(v.instances)
         for inst in v.instances:
             labels[inst] = label
     return labels, of
+
+
+def _seats(graph: TaskGraph) -> dict[str, str]:
+    """Drawer -> its place in its cabinet and how it starts ("level 3 of 3, open"): the
+    top drawer is not the bottom one, nor an open drawer a shut one."""
+    out: dict[str, str] = {}
+    counts = Counter(v.initial.cabinet for v in graph.variables
+                     if isinstance(v.initial, InCabinet))
+    for v in graph.variables:
+        if isinstance(v.initial, InCabinet):
+            o = v.initial.opening
+            state = "shut" if o == 0 else "open" if o >= 1 else "partly open"
+            out[v.name] = f"level {v.initial.level + 1} of {counts[v.initial.cabinet]}, {state}"
+    return out
 
 
 def _parameters(goal: Any) -> tuple[tuple[tuple[str, Any], ...], tuple[tuple[str, Any], ...]]:

@@ -63,7 +63,60 @@ RENDER_CAMERA = "front"
 
 
 class ActionError(FactaskError):
-    """An action that is not a finite (pick, place) pair of (x, y, z, yaw)."""
+    """An action that is not one primitive's keys (:data:`ACTION_KINDS`) of finite numbers."""
+
+
+@dataclass(frozen=True)
+class ActionKind:
+    """One action primitive ``step`` takes: the keys that select it and what they hold.
+
+    Attributes:
+        name: The primitive ("pick_place", "low_carry", "push", "slide", "swing", "press").
+        code: Its stable number (the ``primitive`` column of recorded datasets,
+            :mod:`factask.datasets.actions`; never renumber, append new kinds).
+        poses: The two (x, y, z, yaw) keys, in order (the "pick" and the "place").
+        extras: The other keys and how many numbers each holds (``lift``: metres;
+            ``hinge``: x, y).
+    """
+
+    name: str
+    code: int
+    poses: tuple[str, str]
+    extras: tuple[tuple[str, int], ...] = ()
+
+    @property
+    def keys(self) -> frozenset[str]:
+        """Every key the action must hold."""
+        return frozenset(self.poses) | {k for k, _ in self.extras}
+
+
+#: The action primitives, in the order ``step`` tries them (the first whose keys all
+#: are in the action runs; a plain pick-and-place last).
+ACTION_KINDS: tuple[ActionKind, ...] = (
+    ActionKind("push", 2, ("start", "end")),
+    ActionKind("swing", 4, ("grasp", "swing_to"), (("hinge", 2),)),
+    ActionKind("slide", 3, ("grasp", "slide_to")),
+    ActionKind("press", 5, ("press", "press_to")),
+    ActionKind("low_carry", 1, ("pick", "place"), (("lift", 1),)),
+    ActionKind("pick_place", 0, ("pick", "place")),
+)
+
+
+def action_kind(action: Any) -> ActionKind:
+    """The primitive an action dict selects (:data:`ACTION_KINDS`).
+
+    Raises:
+        ActionError: not a dict, or no primitive's keys are all in it.
+    """
+    if isinstance(action, dict):
+        for kind in ACTION_KINDS:
+            if kind.keys <= set(action):
+                return kind
+    shapes = " or ".join("{" + ", ".join(repr(k) for k in (*kind.poses, *dict(kind.extras)))
+                         + "}" for kind in ACTION_KINDS)
+    got = sorted(map(str, action)) if isinstance(action, dict) else type(action).__name__
+    raise ActionError(f"action must be a dict with the keys of one primitive ({shapes}), "
+                      f"got {got}: {action!r}")
 
 
 class ResetNeededError(FactaskError, RuntimeError):
@@ -325,22 +378,12 @@ class FactaskEnv(gym.Env):
         """
         if self._status is None:
             raise ResetNeededError("call reset() before step()")
-        pushing = isinstance(action, dict) and {"start", "end"} <= set(action)
-        sliding = isinstance(action, dict) and {"grasp", "slide_to"} <= set(action)
-        swinging = isinstance(action, dict) and {"grasp", "swing_to", "hinge"} <= set(action)
-        pressing = isinstance(action, dict) and {"press", "press_to"} <= set(action)
-        if not (pushing or sliding or swinging or pressing) and (
-                not isinstance(action, dict) or not {"pick", "place"} <= set(action)):
-            raise ActionError(f"action must be a dict with 'pick' and 'place' (or 'start' and "
-                              f"'end' of a push, 'grasp' and 'slide_to' of a drawer's "
-                              f"slide, 'grasp', 'swing_to' and 'hinge' of a door's swing, "
-                              f"or 'press' and 'press_to' of a switch), got {action!r}")
-        first, second = (("start", "end") if pushing else ("grasp", "slide_to") if sliding
-                         else ("grasp", "swing_to") if swinging
-                         else ("press", "press_to") if pressing else ("pick", "place"))
+        kind = action_kind(action)
+        first, second = kind.poses
+        pushing, sliding, pressing = (kind.name == k for k in ("push", "slide", "press"))
         pick = _pose4(action[first], first)
         place = _pose4(action[second], second)
-        hinge = _xy(action["hinge"], "hinge") if swinging else None
+        hinge = _xy(action["hinge"], "hinge") if kind.name == "swing" else None
         if self.failure is not None:
             return self._obs(), 0.0, True, False, self._info(self._status)
         # The reward is what *this action* changed: measure the baseline now, so
@@ -359,7 +402,7 @@ class FactaskEnv(gym.Env):
         elif pressing:  # a switch's button (factask.sim.robots.switch_press)
             result = press_switch(self.robot, pick, place, on_step=self.frame_callback,
                                   max_steps=max_steps)
-        elif "lift" in action:  # a low carry (a rope's segment: factask.sim.robots.low_carry)
+        elif kind.name == "low_carry":  # a rope's segment (factask.sim.robots.low_carry)
             lift = float(np.asarray(action["lift"], dtype=float).reshape(-1)[0])
             if not np.isfinite(lift) or not 0.0 < lift <= WORKSPACE_Z[1]:
                 raise ActionError(f"lift must be in (0, {WORKSPACE_Z[1]}] m, got {lift}")

@@ -195,8 +195,9 @@ def relation_schema(relation: str, variables: Mapping[str, str] | None = None,
     defs = full.get("$defs", {})
     omit = OMITTED_RELATION_FIELDS | OMITTED_PER_RELATION.get(relation, frozenset())
     props: dict[str, Schema] = {}
+    own = cls.moves_kinds or frozenset()  # a drawer slides, fixed in its cabinet
     movers = None if variables is None else [
-        n for n, k in variables.items() if kind_spec(k).movable or n in moved]
+        n for n, k in variables.items() if kind_spec(k).movable or n in moved or k in own]
     if movers is not None and not movers:
         return None
     ordered = ["type", *[f for f in full["properties"] if f != "type"]]

@@ -23,6 +23,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from factask.gen.reading.mentions import ALSO_KINDS
+from factask.gen.reading.part_accounting import judge_part_word
 from factask.gen.reading.selectors import ORDINAL_RANKS
 from factask.gen.reading.words import count_of, kind_of, words_of
 from factask.graph.taskgraph import TaskGraph
@@ -224,6 +225,9 @@ def _judge(words: list[str], k: int, facts: _Facts) -> tuple[str, bool, str] | N
     """(category, read, why) of ``words[k]``, or None when it is not judged."""
     w = words[k]
     nxt = words[k + 1] if k + 1 < len(words) else ""
+    part = judge_part_word(words, k, facts.graph)  # "the top drawer", "push it in"
+    if part is not None:
+        return part
     c = colour_of_word(w)
     if c is not None:
         return ("colour", c in facts.colours,

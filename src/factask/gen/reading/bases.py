@@ -20,6 +20,7 @@ from collections.abc import Sequence
 import networkx as nx
 
 from factask.gen.reading.mentions import COLOUR_LIST_LEAD, Mention
+from factask.gen.reading.parts import PART_KINDS, PHRASE_WORDS, part_referents
 from factask.gen.reading.words import MODIFIERS, NUMBER_WORDS, kind_of, words_of
 from factask.vocabulary.palette import COLOR_NAMES
 
@@ -43,6 +44,10 @@ def _occurrences(words: list[str], found: Sequence[Mention]) -> list[tuple[int, 
     for i, word in enumerate(words):
         kind = kind_of(word)[0]
         if kind is None:
+            continue
+        if kind in PART_KINDS:  # "the middle drawer": by its level
+            parts = part_referents(words, i, found)
+            out.extend([(i, parts[0].name)] if len(parts) == 1 else [])
             continue
         colour = words[i - 1] if i and words[i - 1] in COLOR_NAMES else None
         same = [m for m in found if kind in (m.kind, *m.also)]
@@ -71,7 +76,9 @@ def base_order(found: Sequence[Mention], proposal: str) -> list[str]:
     order.add_nodes_from(names)
     for i, base in seen:
         j = i - 1
-        while j >= 0 and words[j] in LEAD_WORDS and words[j] not in PLACE_WORDS:
+        # "into the half-open middle drawer": a part's level and start words lead too
+        lead = LEAD_WORDS | PHRASE_WORDS if kind_of(words[i])[0] in PART_KINDS else LEAD_WORDS
+        while j >= 0 and words[j] in lead and words[j] not in PLACE_WORDS:
             j -= 1
         if j < 0 or words[j] not in PLACE_WORDS:
             continue

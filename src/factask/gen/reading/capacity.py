@@ -61,6 +61,7 @@ from pydantic import ValidationError
 
 from factask.gen.reading.cover import names_of, without_names
 from factask.gen.reading.mentions import Mention
+from factask.gen.reading.parts import with_hosts
 from factask.graph.factors import SubtaskFactor
 from factask.graph.order import in_listed_order
 from factask.graph.taskgraph import TaskGraph
@@ -180,7 +181,8 @@ def _canonical_problem(goals: Sequence[dict[str, Any]], found: Sequence[Mention]
         return to.get(value, value) if isinstance(value, str) else value
 
     canon = tuple(_key({k: rename(v) for k, v in g.items()}) for g in goals)
-    mentions = tuple(replace(m, name=to[m.name], color=None) for m in found)
+    mentions = tuple(replace(m, name=to[m.name], color=None,  # a drawer's cabinet renamed too
+                             start=tuple((k, rename(v)) for k, v in m.start)) for m in found)
     reason = _problem(canon, mentions)
     if reason is None:
         return None
@@ -195,8 +197,8 @@ def _key(goal: dict[str, Any]) -> tuple[tuple[str, Any], ...]:
 def _problem(keys: tuple[tuple[tuple[str, Any], ...], ...],
              found: tuple[Mention, ...]) -> str | None:
     goals = [{k: list(v) if isinstance(v, tuple) else v for k, v in key} for key in keys]
-    used = {n for goal in goals for v in goal.values()
-            for n in (v if isinstance(v, list) else [v]) if isinstance(n, str)}
+    used = with_hosts({n for goal in goals for v in goal.values()  # a drawer's cabinet too
+                       for n in (v if isinstance(v, list) else [v]) if isinstance(n, str)}, found)
     variables = [m.as_variable() for m in found if m.name in used]
     try:
         factors = in_listed_order([SubtaskFactor.model_validate(

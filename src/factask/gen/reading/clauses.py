@@ -47,6 +47,19 @@ from factask.gen.reading.goal_order import (
 from factask.gen.reading.grades import pick_graded
 from factask.gen.reading.mentions import MATCH_AFTER, MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
+from factask.gen.reading.parts import (
+    LEVEL_WORDS,
+    PART_KINDS,
+    Phrase,
+    acted,
+    acts_on_pronoun,
+    actuation,
+    bare_inside,
+    part_referents,
+    phrase_at,
+    sequence_parts,
+    still_parts,
+)
 from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.selectors import is_selector, selector_before, spell_out, unpicked
 from factask.gen.reading.words import count_of, kind_of, resolve_ones, words_of
@@ -109,7 +122,8 @@ _LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "ow
                    "color", "colour", "large", "small", "big", "little", "tiny", "larger",
                    "smaller", "square", "round", "brown", "marked", "target", "specified",
                    "designated", "empty", "open", "flat", "tall", "short", "wooden",
-                   "middle", "center", "centre", "different", "separate"}) | MATCH_AFTER
+                   "middle", "center", "centre", "different", "separate"}) | MATCH_AFTER \
+    | LEVEL_WORDS.keys() | {w for p in PART_KINDS.values() for w in p.states}
 #: Words that refer back to the objects moved last.
 PRONOUNS = frozenset({"them", "they", "it", "those", "these", "both"})
 #: Shape words: the arrangement they name.
@@ -161,7 +175,8 @@ def parts_of(proposal: str) -> list[tuple[str, int]]:
     for match in [*_SPLIT.finditer(text), None]:
         end = match.start() if match else len(text)
         piece = text[pos:end]
-        if sequenced and out and not (ACTION_VERBS | SHAPES.keys()) & set(words_of(piece)):
+        if sequenced and out and not (ACTION_VERBS | SHAPES.keys()) & set(words_of(piece)) \
+                and not acted(words_of(piece)):
             # "..., followed by a green cylinder, then a red one": a list goes on, no step
             out[-1] = (f"{out[-1][0]}, {piece}", out[-1][1])
         elif piece.strip():
@@ -178,6 +193,8 @@ def _referents(words: list[str], i: int, found: Sequence[Mention]) -> list[Menti
     """The mentions the kind word ``words[i]`` names: those of its kind (or a kind it
     may also mean) with the colours just before it, or every one of its kind."""
     kind = kind_of(words[i])[0]
+    if kind in PART_KINDS:
+        return part_referents(words, i, found)  # "the top drawer": by its level
     colours: list[str] = []
     j = i - 1
     while j >= 0 and (words[j] in COLOR_NAMES or (words[j] in ("and", "or", "then")
@@ -321,6 +338,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
     goals: list[ReadGoal] = []
     still: set[str] = set()
     last: list[Mention] = []
+    last_part: list[Mention] = []  # the drawer named last: "... and close it"
     sequenced = False
     last_kind: str | None = None
     for text, step in parts_of(spell_out(proposal, found)):
@@ -334,10 +352,12 @@ def _read(proposal: str, found: tuple[Mention, ...]
         anchored_any = False
         # A part that keeps objects still and moves nothing: "the red and yellow boxes
         # around it are not part of the task", "the other cylinder should stay bare".
-        idle = bool((NEGATIONS | STILL_VERBS) & verbs) and not ACTION_VERBS & verbs
+        acting = acted(words, found)  # "open the drawer": an action on a part
+        idle = bool((NEGATIONS | STILL_VERBS) & verbs) and not ACTION_VERBS & verbs \
+            and not acting
         # "The red block sits on top of the yellow cylinder": the scene, no goal.
-        described = (bool(STATE_VERBS & verbs) and not (ACTION_VERBS | SHAPES.keys()) & verbs) \
-            or _passive_scene(words)
+        described = (bool(STATE_VERBS & verbs) and not (ACTION_VERBS | SHAPES.keys()) & verbs
+                     and not acting) or _passive_scene(words)
         described_subject = False
         negated = False
         for i, w in enumerate(words):
@@ -347,20 +367,33 @@ def _read(proposal: str, found: tuple[Mention, ...]
             if negated and (w in _POSITIVE or (w in ACTION_VERBS and words[i - 1] not in
                                                NEGATIONS | {"do", "to", "t"})):
                 negated = False
+            bare = False
             if w in PRONOUNS and not (w == "both" and i + 1 < len(words)
                                       and words[i + 1] in COLOR_NAMES):  # "both red"
-                refs = list(last)  # "... and put them on the pallet", "on top of it"
+                # "... and put them on the pallet", "on top of it"; "and close it": the part
+                refs = list(last_part if last_part and acts_on_pronoun(words, i) else last)
             elif kind_of(w)[0] is not None:
                 refs = _referents(words, i, found)
+            elif pending and last_part and bare_inside(words, i):
+                refs, bare = list(last_part), True  # "open the drawer and put the bowl inside"
             else:
                 continue
             if not refs:
                 continue
-            prep = _anchor_prep(words, i)
+            prep = "in" if bare else _anchor_prep(words, i)
             if negated or idle or _among(words, i) or (
                     _source(words, i) and not any(m.movable for m in refs)):
                 still.update(m.name for m in refs)
                 continue
+            if all(m.kind in PART_KINDS for m in refs):
+                last_part = refs
+                p = phrase_at(words, i) if kind_of(w)[0] in PART_KINDS else Phrase(i, i)
+                relation = None if described else actuation(words, p.first, p.last)
+                if relation is not None:  # "open the top drawer", "and close it"
+                    part_goals.append(ReadGoal(relation, tuple(m.name for m in refs), None,
+                                               False, step))
+                    last = refs  # "open the drawer and put the block inside it"
+                    continue
             movers = [m for m in pending if m not in refs]
             if described:
                 # The scene's objects: kept still unless a goal uses them; what the part
@@ -418,6 +451,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
         return None
     if sequenced and len({g.step for g in goals}) == 1 and len(goals) > 1:
         goals = [replace(g, step=k) for k, g in enumerate(goals)]  # "first A, B": as read
+    goals = sequence_parts(goals, found)  # "put the block in the drawer and close it"
     goals = in_colour_sequence(goals, proposal, found)
     goals = stacked_in_order(goals, proposal, found)
     goals = [g2 for g in goals for g2 in layered(g, proposal, found)]
@@ -426,6 +460,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
     used = {n for g in goals for n in (*g.objects, g.anchor) if n}
     still -= used  # moved or an anchor elsewhere: not still
     still |= unpicked(found, used)  # "the second bowl": the others stay as they are
+    still |= still_parts(found) - used  # a cabinet, its drawers no goal names
     if any(m.name not in used | still for m in found):
         return None
     return tuple(goals), frozenset(still)

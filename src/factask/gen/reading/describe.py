@@ -10,6 +10,7 @@ words whose meaning is known.
 
 from __future__ import annotations
 
+from factask.gen.reading.parts import HOST_KINDS, LEVEL_WORDS, PART_KINDS
 from factask.gen.reading.words import NUMBER_WORDS, plural_of
 from factask.graph.taskgraph import TaskGraph
 from factask.vocabulary.kinds import kind_spec
@@ -38,11 +39,80 @@ def noun(v: StateVariable, definite: bool = True) -> str:
     return f"the {words}" if definite else words
 
 
-def _goal_words(graph: TaskGraph, name: str) -> str:
+class _Furniture:
+    """How the description names articulated parts and their hosts
+    (:mod:`factask.gen.reading.parts`): "the half-open top drawer of the brown cabinet",
+    then "the top drawer"; a host's number of parts where its level words do not imply
+    it ("the brown cabinet with three drawers")."""
+
+    def __init__(self, graph: TaskGraph) -> None:
+        self.graph = graph
+        self.said: set[str] = set()
+        self.seats: dict[str, tuple[str, int, float]] = {}  # part -> host, level, opening
+        for v in graph.variables:
+            spec = PART_KINDS.get(v.kind)
+            start = v.initial.model_dump() if spec and v.initial is not None else {}
+            if spec and start.get("type") == spec.start:
+                self.seats[v.name] = (start[spec.host_field], int(start["level"]),
+                                      float(start.get("opening", 0.0)))
+        self.counts: dict[str, int] = {}
+        for host, _, _ in self.seats.values():
+            self.counts[host] = self.counts.get(host, 0) + 1
+        # What the words name of each host's parts: its parts in goals or holding movers.
+        named = {n for f in graph.factors for n in f.goal.variable_names()}
+        named |= {getattr(v.initial, "container", None) for v in graph.variables}
+        self.implied = dict.fromkeys(self.counts, 1)
+        for part, (host, _, _) in self.seats.items():
+            if part in named:
+                word = self._level(part)
+                self.implied[host] = max(self.implied[host],
+                                         LEVEL_WORDS[word][2] if word in LEVEL_WORDS else 1)
+
+    def _level(self, part: str) -> str:
+        host, level, _ = self.seats[part]
+        spec = PART_KINDS[self.graph.variable(part).kind]
+        return spec.level_name(level, self.counts[host]) if self.counts[host] in spec.names \
+            else ""
+
+    def noun(self, name: str) -> str:
+        """The variable ``name`` as the words name it."""
+        v = self.graph.variable(name)
+        if name in self.seats:
+            host, _, opening = self.seats[name]
+            state = "" if name in self.said or opening == 0 else \
+                "open " if opening >= 1 else "half-open "
+            level = self._level(name)
+            words = f"the {state}{level + ' ' if level else ''}{v.kind}"
+            hosts = [u for u in self.graph.variables if u.kind == v.kind and u.name in self.seats]
+            several = len({self.seats[u.name][0] for u in hosts}) > 1
+            if host not in self.said or several:
+                words = f"{words} of {self.noun(host)}"
+            self.said.add(name)
+            return words
+        if v.kind in HOST_KINDS and name in self.counts:
+            words = noun(v)
+            n = self.counts[name]
+            if name not in self.said and n > self.implied[name]:
+                words = f"{words} with {_NUMBERS.get(n, str(n))} " \
+                        f"{plural_of(HOST_KINDS[v.kind].part)}"
+            self.said.add(name)
+            return words
+        return noun(v)
+
+
+def _goal_words(graph: TaskGraph, name: str, told: _Furniture | None = None) -> str:
     f = graph.factor(name)
     goal = f.goal
-    movers = " and ".join(noun(graph.variable(o)) for o in goal.objects)
-    anchors = {field: [noun(graph.variable(n)) for n in goal.anchor_names(field)]
+    told = told or _Furniture(graph)
+    inside = [(o, c) for o in goal.objects
+              if (c := getattr(graph.variable(o).initial, "container", None)) in told.seats
+              and c not in goal.variable_names()]
+    taken = ""
+    if inside and goal.type in ("in_zone", "inside", "on") and len(goal.objects) == 1:
+        # "take the red block out of the open top drawer ... and put it into the zone"
+        taken = f"take {told.noun(inside[0][0])} out of {told.noun(inside[0][1])} and "
+    movers = "it" if taken else " and ".join(told.noun(o) for o in goal.objects)
+    anchors = {field: [told.noun(n) for n in goal.anchor_names(field)]
                for field in type(goal).anchor_fields}
 
     def anchor(field: str) -> str:
@@ -53,9 +123,12 @@ def _goal_words(graph: TaskGraph, name: str) -> str:
     in_order = ", in that order" if getattr(goal, "ordered", False) and \
         len(goal.objects) > 1 else ""
     if t in ("in_zone", "inside"):
-        return f"put {movers} into {anchor('zone' if t == 'in_zone' else 'container')}"
+        return f"{taken}put {movers} into {anchor('zone' if t == 'in_zone' else 'container')}"
     if t == "on":
-        return f"put {movers} onto {anchor('support')}"
+        return f"{taken}put {movers} onto {anchor('support')}"
+    verb = next((p.said[t] for p in PART_KINDS.values() if t in p.said), None)
+    if verb is not None:  # "open the top drawer", "close the open middle drawer"
+        return f"{verb} {movers}"
     if t == "stack":
         base = f" onto {anchor('base')}" if anchors.get("base") else ""
         bottom = ", from the bottom up" if in_order else ""
@@ -99,17 +172,31 @@ def describe(graph: TaskGraph) -> str:
     order = graph.factor_order()
     before = graph.dependency_graph()
     parts: list[str] = []
+    told = _Furniture(graph)
     for k, name in enumerate(order):
-        words = _goal_words(graph, name)
+        words = _goal_words(graph, name, told)
         if k:
             joined = any(before.has_edge(p, name) for p in order[:k])
             words = (", then " if joined else ", and ") + words
         parts.append(words)
     named = {n for f in graph.factors for n in f.goal.variable_names()}
-    others = _together([v for v in graph.variables if v.name not in named])
+    # A part is said with its host; a host the goals' words name is said.
+    others = _together([v for v in graph.variables if v.name not in named
+                        and v.name not in told.seats and v.name not in told.said])
+    others = [(told.noun(v.name) if v.kind in HOST_KINDS and v.name in told.counts
+               else p, n) for (p, n), v in zip(others, _firsts(graph, named, told), strict=True)]
     where = "where it is" if len(others) == 1 and others[0][1] == 1 else "where they are"
     still = f"; leave {' and '.join(p for p, _ in others)} {where}" if others else ""
     return "".join(parts) + still
+
+
+def _firsts(graph: TaskGraph, named: set[str], told: _Furniture) -> list[StateVariable]:
+    """The first variable of each group :func:`_together` makes of the same variables."""
+    alike: dict[tuple[str, str | None, bool], StateVariable] = {}
+    for v in graph.variables:
+        if v.name not in named and v.name not in told.seats and v.name not in told.said:
+            alike.setdefault((v.kind, v.color, v.is_fixed), v)
+    return list(alike.values())
 
 
 def _together(variables: list[StateVariable]) -> list[tuple[str, int]]:

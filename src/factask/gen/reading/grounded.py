@@ -40,6 +40,7 @@ from pydantic import ValidationError
 
 from factask.gen.answers import step_schemas as ss
 from factask.gen.answers.examples import library_task_examples, render_examples
+from factask.gen.reading.articulated import HOST_KINDS
 from factask.gen.reading.bases import base_order
 from factask.gen.reading.capacity import prune
 from factask.gen.reading.clauses import read_goals
@@ -50,9 +51,11 @@ from factask.gen.reading.cover import (
     paired_in_order,
 )
 from factask.gen.reading.mentions import Mention, colour_matched, mentions, unnamed_colour
+from factask.gen.reading.parts import still_parts
 from factask.gen.reading.relation_schemas import (
     COORDINATE_RELATIONS,
     OBJECT_KINDS,
+    SPECIAL_KINDS,
     narrow_all_modes,
     relation_over,
 )
@@ -110,14 +113,18 @@ def mention_variable(mention: Mention, kinds: dict[str, str]) -> Schema:
     """
     color: Schema = {"const": mention.color} if mention.color else \
         {"type": "string", "enum": list(COLOR_NAMES)}
+    # A drawer's start and size, and its cabinet's size, follow from the words
+    # (factask.gen.reading.parts): constants.
+    seated = bool(mention.start) or mention.kind in HOST_KINDS
     return ss.obj({
         "name": {"const": mention.name},
         "description": ss.text(GROUNDED_TEXT),
         "kind": {"const": mention.kind},
-        "size": {"type": "null"},
+        "size": {"const": list(mention.size)} if seated and mention.size else {"type": "null"},
         "color": color,
         "count": {"const": mention.count},
-        "initial": _placement(mention.name, kinds, _moved([mention])),
+        "initial": ss.obj({k: {"const": v} for k, v in mention.start}) if mention.start
+        else _placement(mention.name, kinds, _moved([mention])),
         **({"fixed": {"const": False}} if mention.moved else {}),
     })
 
@@ -140,6 +147,13 @@ def movable(found: Sequence[Mention]) -> list[Mention]:
     return [m for m in found if m.movable]
 
 
+def _goal_room(found: Sequence[Mention]) -> int:
+    """Most goals over the named objects: one per movable object and per drawer (a
+    drawer may be opened, then shut)."""
+    return len(movable(found)) + 2 * sum(1 for m in found if m.kind in SPECIAL_KINDS
+                                         and not m.movable)
+
+
 def _moved(found: Sequence[Mention]) -> frozenset[str]:
     """The named objects of a kind fixed by default that the words move."""
     return frozenset(m.name for m in found if m.moved)
@@ -150,7 +164,8 @@ def applies(found: Sequence[Mention]) -> bool:
     and some goal relation can be written over the named objects alone ("put the
     block in the hole" names one block and nothing a relation can anchor on)."""
     kinds = {m.name: m.kind for m in found}
-    return bool(movable(found)) and _goal(kinds, None, {m.name: m.count for m in found},
+    acted = any(m.kind in SPECIAL_KINDS for m in found)  # a drawer to open or close
+    return bool(movable(found) or acted) and _goal(kinds, None, {m.name: m.count for m in found},
                                           _moved(found)) is not None
 
 
@@ -191,7 +206,7 @@ def graph_schema(task_name: str, found: Sequence[Mention]) -> Schema:
         The graph's schema: at most one factor per movable named object.
     """
     kinds = {m.name: m.kind for m in found}
-    most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
+    most = max(1, min(_goal_room(found), ss.STEP_MAX_FACTORS))
     factor = ss.factor_schema(None, kinds)
     factor["properties"]["description"] = ss.text(GROUNDED_TEXT)
     factor["properties"]["initial_setup"] = ss.text(GROUNDED_TEXT)
@@ -320,6 +335,7 @@ def goal_problems(goals: Sequence[dict[str, Any]], found: Sequence[Mention],
         One line per problem (empty: none).
     """
     counts = {m.name: m.count for m in found}
+    still = {*still, *still_parts(found)}  # a cabinet and drawers no goal names: furniture
     used: set[str] = set()
     out: list[str] = []
     for i, goal in enumerate(goals):
@@ -443,7 +459,7 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
                 break
     starts = kinds
     if factors is None:
-        most = max(1, min(len(movable(found)), ss.STEP_MAX_FACTORS))
+        most = max(1, min(_goal_room(found), ss.STEP_MAX_FACTORS))
         plain = ss.array(ss.obj({"goal": goal}), 1, most)
         factors = prune(plain, found, order) or plain  # goals whose layout fits only
     else:
@@ -455,9 +471,9 @@ def compact_graph_schema(found: Sequence[Mention], proposal: str = "",
     items, before = [], {m.name: m.kind for m in found if not m.movable and m.name in starts}
     for m in found:
         if m.movable:
-            items.append(ss.obj({"name": {"const": m.name},
-                                 "initial": _placement(m.name, {**before, m.name: m.kind},
-                                                       moved)}))
+            start = ss.obj({k: {"const": v} for k, v in m.start}) if m.start else \
+                _placement(m.name, {**before, m.name: m.kind}, moved)  # "out of the drawer"
+            items.append(ss.obj({"name": {"const": m.name}, "initial": start}))
             before[m.name] = m.kind
     narrow_all_modes(factors, kinds)
     return ss.obj({
@@ -556,7 +572,7 @@ def compact_examples(query: str, k: int, exclude: str | None = None) -> str:
 
 def plan_bound(variables: Sequence[StateVariable]) -> int:
     """Most subtasks of a plan over ``variables``: one per movable variable (1..8)."""
-    n = sum(1 for v in variables if not v.is_fixed)
+    n = sum(1 for v in variables if not v.is_fixed or v.kind in SPECIAL_KINDS)
     return max(1, min(n, ss.STEP_MAX_SUBTASKS))
 
 

@@ -150,6 +150,8 @@ class Mention:
         grade: Its size among alike objects the words tell apart by size ("small",
             "large", "tall", "short", "long": :mod:`factask.gen.reading.grades`);
             None: not graded.
+        start: Its start as the words fix it, (field, value) pairs (a drawer's level:
+            :mod:`factask.gen.reading.parts`).
     """
 
     name: str
@@ -168,6 +170,7 @@ class Mention:
     axis: str | None = None
     place: tuple[float, float] | None = None
     grade: str | None = None
+    start: tuple[tuple[str, Any], ...] = ()
 
     def describe(self) -> str:
         """``red_blocks: kind block, colour red, count 3`` (``, moved`` for a bowl or
@@ -186,6 +189,7 @@ class Mention:
             parts.append(f"{' / '.join(self.selectors) or 'member'} of {self.group}")
         if self.place:
             parts.append(f"at x {self.place[0]:g} m, y {self.place[1]:g} m")
+        parts += [f"starts {dict(self.start)}"] if self.start else []
         return f"{self.name}: {', '.join(parts)}"
 
     def as_variable(self, initial: dict[str, Any] | None = None,
@@ -197,7 +201,7 @@ class Mention:
                                "kind": self.kind,
                                "size": list(self.size) if self.size else None,
                                "color": self.color or unnamed, "count": self.count,
-                               "initial": initial or self._placed()}
+                               "initial": dict(self.start) or initial or self._placed()}
         if self.moved:
             out["fixed"] = False
         if self.pinned:
@@ -272,7 +276,9 @@ def mentions(proposal: str) -> list[Mention]:
     out = grade_members(desc, out, MAX_SPLIT_MENTIONS)  # "the small ball ... the large ball"
     out = sequence_members(desc, out, MAX_SPLIT_MENTIONS)  # "in alternating colours"
     out = select_members(desc, out, MAX_SPLIT_MENTIONS)  # "the second zone": its members
-    return distribute(desc, out, MAX_SPLIT_MENTIONS)  # "in each zone": a share each
+    out = distribute(desc, out, MAX_SPLIT_MENTIONS)  # "in each zone": a share each
+    from factask.gen.reading.parts import seat_parts  # parts reads Mention: no cycle
+    return seat_parts(words, out)  # "the top drawer of the cabinet": a drawer of three
 
 
 def colour_matched(text: str) -> bool:
@@ -472,8 +478,7 @@ def _stated_count(words: list[str], j: int) -> int:
     return count_of(words[j]) if _EXISTENTIAL & set(words[max(0, j - 6):j]) else 0
 
 
-def _named(stem: str, names: Collection[str]) -> bool:
-    """Whether an object of this stem (``red_block``) is named already, one or many."""
+def _named(stem: str, names: Collection[str]) -> bool:  # named already, one or many
     return stem in names or plural_of(stem) in names
 
 

@@ -60,8 +60,10 @@ def relation_over(relation: str, kinds: dict[str, str],
     move, a row or circle is left out and a stack needs its base.
     """
     wanted = OBJECT_KINDS.get(relation)
-    movers = [n for n, k in kinds.items() if (kind_spec(k).movable or n in moved)
-              and (k in wanted if wanted else k not in SPECIAL_KINDS)]
+    # A relation that moves only its own kinds moves them fixed or not (a drawer slides
+    # in its cabinet); any other moves what is free.
+    movers = [n for n, k in kinds.items() if ((k in wanted) if wanted else (
+        (kind_spec(k).movable or n in moved) and k not in SPECIAL_KINDS))]
     schema = ss.relation_schema(relation, kinds, moved) if movers else None
     if schema is None:
         return None

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import re
 
+from factask.gen.reading.articulated import LEVEL_WORDS, PART_KINDS
 from factask.vocabulary.kinds import ASSET_KINDS
 from factask.vocabulary.palette import COLOR_NAMES
 
@@ -91,6 +92,13 @@ PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
      r"\1 pile"),
 )
 
+
+#: "the top and bottom drawers", "the top and the middle drawer": one phrase per level
+#: (:mod:`factask.gen.reading.articulated`), as the part readers read them.
+_LEVELS = "|".join(LEVEL_WORDS)
+_PARTS = "|".join(PART_KINDS)
+PHRASES = (*PHRASES, (re.compile(rf"\b({_LEVELS})\s+(and|or)\s+(?:the\s+)?({_LEVELS})\s+"
+                                 rf"({_PARTS})s?\b"), r"\1 \4 \2 the \3 \4"))
 
 #: Words that may stand between a count and its kind word without changing what is
 #: counted: "four differently colored blocks", "three small matching cubes".
