@@ -29,10 +29,9 @@ RESET_FAILS = {
     "push_the_plate_to_the_front_of_the_stove": "no free spot",
 }
 #: Files the arm completes in fewer than 3 of 4 episodes (docs/libero.md) → why.
-ARM_BELOW_BAR = {
-    "pick_up_the_black_bowl_next_to_the_cookie_box_and_place_it_on_the_plate":
-        "the bowl does not settle on the plate within the oracle's attempts (2 of 4)",
-}
+#: (None now: the bowl next to the cookie box, 2 of 4 while the arm's wrist came down
+#: on the cabinet beside it, is 4 of 4 since the arm leans out of furniture.)
+ARM_BELOW_BAR: dict[str, str] = {}
 FILES = {p.stem: p for p in shipped_bddl_files()}
 
 

@@ -75,8 +75,10 @@ IMPORTED = sorted(set(OWN) - set(REFUSED))
 #: Own files the arm completes in fewer than 3 of 4 episodes → why.
 ARM_BELOW_BAR = {
     "kitchen_put_the_bowl_in_the_bottom_drawer_of_the_white_cabinet":
-        "the arm's slide does not pull the white cabinet's bottom drawer out (0 of 4; "
-        "not investigated further); the floating cup completes the file",
+        "the arm now opens the bottom drawer (it leans its tool out of the cabinet's "
+        "face) and picks the bowl beside the cabinet, but the bowl, lowered into the "
+        "drawer, catches on the handles of the drawers above (the floating cup's bowl "
+        "scrapes past them) and tips over (2 of 6 episodes: 0 of 6 before the lean)",
 }
 
 
