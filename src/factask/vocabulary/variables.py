@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Annotated, Literal, Protocol
+from typing import Annotated, ClassVar, Literal, Protocol
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
@@ -79,12 +79,17 @@ class StartOn(_OnHost):
     type: Literal["on"] = "on"
     support: Name
 
+    #: The field naming the variable this start depends on (renaming rewrites it).
+    reference_field: ClassVar[str] = "support"
+
 
 class StartInside(_OnHost):
     """Start inside a receptacle variable (a container or bowl)."""
 
     type: Literal["inside"] = "inside"
     container: Name
+
+    reference_field: ClassVar[str] = "container"
 
 
 class InCabinet(BaseModel):
@@ -102,6 +107,8 @@ class InCabinet(BaseModel):
     level: int = Field(0, ge=0, le=MAX_DRAWERS - 1)
     opening: Annotated[float, Field(ge=0, le=1, allow_inf_nan=False)] = 0.0
 
+    reference_field: ClassVar[str] = "cabinet"
+
 
 class MountedOn(BaseModel):
     """Start as the switch of the switchable fixture variable ``host`` (a stove, a
@@ -112,6 +119,13 @@ class MountedOn(BaseModel):
     type: Literal["mounted_on"] = "mounted_on"
     host: Name
     on: bool = False
+
+    reference_field: ClassVar[str] = "host"
+
+
+#: Every start placement's field that names another variable (renaming rewrites them).
+START_REFERENCE_FIELDS: tuple[str, ...] = tuple(
+    c.reference_field for c in (StartOn, StartInside, InCabinet, MountedOn))
 
 
 class AtFixedPose(BaseModel):
@@ -219,15 +233,8 @@ class StateVariable(BaseModel):
 
     def references(self) -> list[str]:
         """Other variables this variable's initial placement depends on."""
-        if isinstance(self.initial, StartOn):
-            return [self.initial.support]
-        if isinstance(self.initial, StartInside):
-            return [self.initial.container]
-        if isinstance(self.initial, InCabinet):
-            return [self.initial.cabinet]
-        if isinstance(self.initial, MountedOn):
-            return [self.initial.host]
-        return []
+        field = getattr(self.initial, "reference_field", None)
+        return [getattr(self.initial, field)] if field else []
 
 
 class VariableSet(Protocol):
