@@ -34,10 +34,11 @@ from factask.vocabulary.errors import InvalidValueError
 KINDS = sorted(RELATION_TYPES)
 #: Library tasks that add what the relation examples lack: supports in a group
 #: (a bar on two pillars), round bowls, milestones, many factors, a door and a drawer
-#: shut over what was put in them.
+#: shut over what was put in them, a shelf's levels (put on, started on).
 LIBRARY = ("build-house", "put-block-in-bowl", "towers-of-hanoi", "stack-block-pyramid",
            "align-box-corner", "put-bowl-in-microwave-and-close-it",
-           "put-bowl-in-open-drawer-and-close-it")
+           "put-bowl-in-open-drawer-and-close-it", "put-blocks-on-two-shelf-levels",
+           "take-block-off-shelf-into-zone")
 
 
 def _example_graph(kind: str) -> TaskGraph:

@@ -480,3 +480,20 @@ def test_a_contact_overflow_is_a_physics_failure_and_bowls_fit_the_default() -> 
     assert failure is not None and "contacts" in failure
     tight.reset(seed=0)  # a reset of every world starts the count again
     assert tight.physics_failures() == [None]
+
+
+def test_a_shelf_is_fixed_geometry_the_batch_runs_its_tasks_as_the_single_env() -> None:
+    # A shelf and its levels are fixed bodies (no joint): the batch takes them, and
+    # the lockstep oracle puts the blocks on both levels where the CPU oracle does.
+    task = "put-blocks-on-two-shelf-levels"
+    seeds = [0, 3]
+    env = make_batch(task, len(seeds), device="cpu")
+    try:
+        env.reset(seed=seeds)
+        result = run_oracle(env)
+        for w, seed in enumerate(seeds):
+            cpu = run_episode(get_task(task), seed=seed)
+            assert bool(result.success[w]) == cpu.success, (seed, result.failure[w])
+        assert result.success.all(), result.failure
+    finally:
+        env.close()

@@ -196,3 +196,74 @@ def test_arm_opens_a_drawer_and_puts_a_block_inside() -> None:
 @pytest.mark.parametrize("task", MORE_DRAWER_TASKS)
 def test_arm_does_the_other_drawer_tasks(task: str) -> None:
     assert run_episode(get_task(task), seed=4, robot="arm").success, task
+
+
+def _open_bottom_of_three() -> TaskGraph:
+    """Open the bottom drawer of a three-drawer cabinet: its handle, 7 cm up, lies under
+    17 cm more of cabinet."""
+    from factask.library.builders import assemble, use
+    from factask.library.catalog_articulated import THREE_DRAWERS
+
+    box, drawers = cabinet(THREE_DRAWERS)
+    return assemble("open-bottom-of-three", "Open the bottom drawer of the cabinet.",
+                    use("open_drawer", drawer=drawers["bottom"]),
+                    extra=[box, drawers["middle"], drawers["top"]])
+
+
+def _link_hits(env: FactaskEnv) -> set[tuple[str, str]]:
+    """(link geom, furniture body) pairs of the arm's links (the cup aside) touching the
+    cabinet or its drawers now."""
+    import mujoco
+
+    m, d = env.model, env.data
+    furniture = {env.scene.objects[n].body_id for n in env.objects}
+    hits = set()
+    for c in d.contact[:d.ncon]:
+        for mine, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
+            name = mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, mine) or ""
+            body = int(m.body_rootid[m.geom_bodyid[other]])
+            if name.startswith("link") and (body in furniture
+                                            or int(m.geom_bodyid[other]) in furniture):
+                hits.add((name, mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, body) or ""))
+    return hits
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_arm_opens_the_bottom_drawer_of_three_clear_of_the_cabinet(seed: int) -> None:
+    # Straight down on the handle, the wrist's last link (a 4 cm cylinder round the
+    # tool, 12 cm above the tip) came down on the cabinet's top: "no drawer handle
+    # under the cup" every time. The arm now leans its tool out of the face.
+    env = FactaskEnv(_open_bottom_of_three(), robot="arm")
+    hits: set[tuple[str, str]] = set()
+    env.frame_callback = lambda: hits.update(_link_hits(env))
+    result = run_episode(env.graph, seed=seed, robot="arm", env=env)
+    assert result.success, result.failure
+    assert not hits
+    env.close()
+
+
+def test_the_arm_leans_only_over_a_handle_under_its_cabinet() -> None:
+    env = FactaskEnv(_open_bottom_of_three(), robot="arm")
+    env.reset(seed=0)
+    action = Oracle(env, seed=0).plan()
+    grasp, yaw = action.grasp[:3], float(action.grasp[3])  # type: ignore[union-attr]
+    lean = env.robot.lean_clear_of(grasp, yaw)
+    assert lean is not None
+    from factask.geometry import rotate
+    from factask.sim.robots.ik import tool_quat
+
+    axis = rotate(tool_quat(yaw, lean), np.array([0.0, 0.0, 1.0]))  # the tool's upper end leans ...
+    outward = grasp[:2] - env.object_poses()["cabinet"].pos[:2]
+    assert axis[2] < 0.97  # ... at least 14 degrees ...
+    assert axis[:2] @ outward > 0.7 * np.linalg.norm(axis[:2]) * np.linalg.norm(outward)  # ... out
+    assert env.robot.lean_clear_of(grasp + np.array([0.0, 0.0, 0.2]), yaw) is None  # above it
+    env.close()
+    top = FactaskEnv(get_task("open-top-drawer"), robot="arm")
+    top.reset(seed=0)
+    above = Oracle(top, seed=0).plan()
+    assert top.robot.lean_clear_of(above.grasp[:3], above.grasp[3]) is None  # type: ignore[union-attr]
+    top.close()
+    floating = FactaskEnv(_open_bottom_of_three())
+    floating.reset(seed=0)
+    assert floating.robot.lean_clear_of(grasp, yaw) is None
+    floating.close()

@@ -37,6 +37,7 @@ EXPECTED: dict[str, tuple[str, ...]] = {
     "15_drawers.py": ("15_drawers.json", "15_drawer_shut.png", "15_drawer_open.png"),
     "16_switches.py": ("16_switches.json", "16_switch_off.png", "16_switch_on.png"),
     "17_doors.py": ("17_doors.json", "17_door_shut.png", "17_door_open.png"),
+    "18_shelves.py": ("18_shelves.json", "18_shelf_start.png", "18_shelf_done.png"),
 }
 #: Examples that compile MuJoCo Warp's kernels: with the batched env's tests in one
 #: xdist group, so one worker compiles them (once per machine, then cached).

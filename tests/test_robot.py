@@ -361,3 +361,27 @@ def test_arm_places_a_block_beside_a_tall_fixed_pillar():
     arm_bodies = {i for i in range(model.nbody) if i not in (0, pil, model.body("block0").id)}
     assert not touched & arm_bodies
     assert np.linalg.norm(block_pose(model, data).pos[:2] - target) < 0.005
+
+
+def _on_a_tall_fixture(size: tuple[float, float, float]):
+    """A 4 cm block on the table, to go on top of a fixed box ``size`` tall (a short
+    fridge, a slide cabinet: LIBERO's tall fixtures)."""
+    from factask.library.builders import assemble, use, var
+    from factask.library.conventions import BLOCK as LIBRARY_BLOCK
+
+    tall = var("tall", "box", "white", size, fixed=True)
+    block = var("red_block", "block", "red", LIBRARY_BLOCK)
+    return assemble("block-on-tall-box", "Put the red block on the tall box.",
+                    use("place_on_top", objects=block, support=tall))
+
+
+@pytest.mark.parametrize(("size", "seed"), [((0.26, 0.26, 0.30), 1), ((0.26, 0.26, 0.30), 2),
+                                            ((0.20, 0.26, 0.24), 2)])
+def test_arm_picks_beside_a_tall_fixture_and_puts_it_on_top(size, seed) -> None:
+    # Straight down on a block beside a 24-30 cm fixture, the arm's wrist (24 cm above
+    # the tip) and forearm came down on the fixture: "nothing to grasp at pick pose".
+    # The arm now leans its tool out of it, and keeps the lean to the place.
+    from factask.sim.episode import run_episode
+
+    result = run_episode(_on_a_tall_fixture(size), seed, robot="arm")
+    assert result.success, result.failure

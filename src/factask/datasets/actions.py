@@ -68,7 +68,7 @@ def _slot(key: str) -> slice:
         if k == key:
             return slice(start, start + len(cols))
         start += len(cols)
-    raise KeyError(key)  # unreachable: every extra key has columns
+    raise ActionEncodingError(f"no action columns for {key!r}")  # every extra key has some
 
 
 def encode_action(action: Mapping[str, Any]) -> np.ndarray:

@@ -25,12 +25,12 @@ from factask.relations import ANCHOR_FIELDS
 from factask.vocabulary.errors import CompositionError, GraphValidationError, Problem
 from factask.vocabulary.kinds import AssetKind
 from factask.vocabulary.names import Name, TaskName
-from factask.vocabulary.variables import StateVariable
+from factask.vocabulary.variables import START_REFERENCE_FIELDS, StateVariable
 
 #: Fields of relations (their anchors) and of start placements that hold a
 #: variable name (or, for a list anchor such as ``row``'s ``on``, a list of names):
 #: ``cabinet`` is a drawer's ``in_cabinet`` start.
-_NAME_FIELDS = tuple(dict.fromkeys((*ANCHOR_FIELDS, "support", "container", "cabinet")))
+_NAME_FIELDS = tuple(dict.fromkeys((*ANCHOR_FIELDS, *START_REFERENCE_FIELDS)))
 
 
 def _rename_value(value: Any, mapping: Mapping[str, str]) -> Any:

@@ -109,8 +109,8 @@ def open_top_drawer() -> TaskGraph:
 
 @register("open-bottom-drawer")
 def open_bottom_drawer() -> TaskGraph:
-    # Two drawers: the arm's wrist cannot get down to the handle of the bottom one of
-    # three (7 cm up, under 24 cm of cabinet) without hitting the cabinet's top.
+    # Two drawers, as first written: the bottom one of three (7 cm up, under 24 cm of
+    # cabinet) the arm reaches only leaning its tool (tests/test_drawers.py has it).
     box, drawers = cabinet(TWO_DRAWERS)
     return assemble(
         "open-bottom-drawer",

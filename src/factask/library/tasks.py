@@ -29,6 +29,7 @@ from factask.library import (  # noqa: F401
     catalog_gensim_sorting,
     catalog_gensim_stacking,
     catalog_placing,
+    catalog_shelves,
     catalog_stacking,
     catalog_structures,
     catalog_switches,

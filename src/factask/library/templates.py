@@ -52,7 +52,7 @@ BASES = ["pallet", "stand", "kit", "zone", "container", "block", "box", "cylinde
          "ell"]
 # Kinds objects may rest on (``on`` support: support or receptacle; a cabinet's top).
 SUPPORTS = ["block", "box", "cylinder", "pallet", "stand", "kit", "container", "bowl",
-            "cabinet", "stove"]
+            "cabinet", "stove", "shelf_level"]
 
 #: Centre distance of a bridge's two pillars (m): with 4 cm pillars the gap is
 #: 4 cm, so a deck at least 12 cm long spans it with 2 cm resting on each pillar.

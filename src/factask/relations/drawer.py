@@ -26,6 +26,7 @@ from factask.relations.status import CheckScene, Verdict
 from factask.scene.cabinet import drawer_opening, drawer_pose, drawer_seat
 from factask.scene.microwave import door_opening, door_pose
 from factask.scene.objects import SceneObject, placement_area
+from factask.scene.shelf import LEVEL_KIND, level_pose, level_seat
 from factask.vocabulary.errors import InvalidValueError
 from factask.vocabulary.kinds import drawer_size, kind_spec
 from factask.vocabulary.variables import InCabinet, VariableSet, drawers_of
@@ -64,15 +65,18 @@ def host_of(graph: VariableSet, part: str) -> str:
 def pose_at(graph: VariableSet, obj: SceneObject, host: SceneObject, host_pose: Pose,
             opening: float) -> Pose:
     """The pose of drawer or door ``obj`` opened by ``opening`` in ``host`` as it
-    stands (the one dispatch on the part's kind for poses).
+    stands, or of shelf level ``obj`` in its shelf (which never opens) -- the one
+    dispatch on a furniture part's kind for poses.
 
     Args:
-        graph: The task graph (a drawer's seat).
-        obj: The drawer or door.
-        host: Its cabinet or microwave.
+        graph: The task graph (a drawer's seat, a level's).
+        obj: The drawer, door or shelf level.
+        host: Its cabinet, microwave or shelf.
         host_pose: The host's pose.
-        opening: 0 shut .. 1 all the way open.
+        opening: 0 shut .. 1 all the way open (a level ignores it).
     """
+    if obj.kind == LEVEL_KIND:
+        return level_pose(host, host_pose, level_seat(graph, obj.variable))
     if obj.kind == DOOR_KIND:
         return door_pose(host, host_pose, obj, opening)
     return drawer_pose(host, host_pose, drawer_seat(graph, obj.variable), obj, opening)

@@ -42,7 +42,9 @@ from factask.scene.objects import (
     top_z,
     yaw_rotation_2d,
 )
+from factask.scene.shelf import SHELF_KIND, shelf_inner_area
 from factask.vocabulary.errors import FactaskError
+from factask.vocabulary.kinds import MAX_SHELF_LEVELS, shelf_level_top
 from factask.vocabulary.world import TABLE_X, TABLE_Y, WORKSPACE_X, WORKSPACE_Y
 
 #: Gap kept between footprints (metres): objects never start or land touching.
@@ -175,6 +177,14 @@ class Occupancy:
 
     def _pair_collides(self, obj: SceneObject, pose: Pose, other: _Body,
                        solid_fixtures: bool = False) -> bool:
+        # A shelf's box is mostly its levels, which are bodies of their own: what
+        # lies wholly over them (inside its panels, no lower than a level's top can
+        # be) meets them, never the shelf. Lower, it meets the shelf: the levels are
+        # placed after what starts on the table, so the shelf stands in for them.
+        if other.obj.kind == SHELF_KIND:
+            return not _over_levels(other, _body(obj, pose, self.clearance))
+        if obj.kind == SHELF_KIND:
+            return not _over_levels(_body(obj, pose, self.clearance), other)
         if obj.is_round and other.obj.is_round:  # disks: exact, boxes are too coarse
             gap = float(np.linalg.norm(pose.pos[:2] - other.pose.pos[:2]))
             if gap >= footprint_radius(obj) + footprint_radius(other.obj) + self.clearance:
@@ -218,6 +228,14 @@ class Occupancy:
             if not bool(alone.free_mask(obj, [pose])[0]):
                 out.append(name)
         return out
+
+
+def _over_levels(shelf: _Body, other: _Body) -> bool:
+    """Whether ``other`` lies wholly inside ``shelf``'s panels, no lower than its
+    lowest level's top can be (with the most levels a shelf has)."""
+    lowest = shelf.z0 + shelf_level_top(shelf.obj.size, MAX_SHELF_LEVELS, 0)
+    return other.z0 >= lowest - Z_CONTACT_EPS and bool(
+        shelf_inner_area(shelf.obj, shelf.pose).contains(other.raw).all())
 
 
 def _distance_to_box(point: np.ndarray, box: SceneObject, pose: Pose) -> float:

@@ -48,6 +48,8 @@ AssetKind = Literal[
     "switch",
     "microwave",
     "door",
+    "shelf",
+    "shelf_level",
 ]
 
 KIND_NAMES: tuple[str, ...] = get_args(AssetKind)
@@ -152,6 +154,15 @@ _SPECS = [
              "-y edge (starts 'in_cabinet' of its microwave; its size follows from the "
              "microwave's); a handle tab sticks out of its -x face at the top of its +y "
              "end", (0.045, 0.22, 0.12), movable=False, asymmetric=True),
+    KindSpec("shelf", "stepped shelf fixed to the table: its levels rise from its -x side "
+             "towards its back panel at +x, each level's top open to the sky (a top-down "
+             "robot reaches every one), side panels a lip above each level; things go on "
+             "its levels (kind shelf_level), not on the shelf; size = outer extents",
+             (0.30, 0.34, 0.13), movable=False, asymmetric=True),
+    KindSpec("shelf_level", "one level of a shelf: a solid step whose top things stand on "
+             "(starts 'in_cabinet' of its shelf with its level, 0 the lowest, at the shelf's "
+             "-x side; its size follows from the shelf's: shelf_level_size)",
+             (0.145, 0.32, 0.05), movable=False, support=True),
 ]
 
 #: Kind name -> :class:`KindSpec`. Read-only.
@@ -183,6 +194,14 @@ DRAWER_TRAVEL_FRACTION = 0.8
 JOINTED_KINDS = frozenset({"drawer", "door", "switch"})
 #: Drawers one cabinet holds at most.
 MAX_DRAWERS = 3
+#: Levels one shelf has at most (its levels start ``in_cabinet`` of it, whose level
+#: field allows as many as a cabinet's drawers).
+MAX_SHELF_LEVELS = MAX_DRAWERS
+#: How far (m) a shelf's back panel stands above its top level, and each side
+#: panel above its own level: a lip that keeps what stands there from sliding off
+#: sideways, low enough for a top-down cup and an arm's wrist to pass over it.
+SHELF_RISE = 0.03
+SHELF_LIP = 0.015
 #: A microwave door's panel thickness (m); its handle is a drawer's (above).
 DOOR_THICKNESS = 0.01
 #: How far (rad) a door swings open about its hinge: its joint's range.
@@ -315,6 +334,49 @@ def handle_top(size: tuple[float, float, float], bays: int,
     its -x end, flush with its rim, the cabinet's handles side by side along y."""
     pitch = (size[1] - 2 * WALL_THICKNESS) / bays
     return (-size[0] / 2 + HANDLE_DEPTH / 2, (level - (bays - 1) / 2) * pitch, size[2] / 2)
+
+
+def shelf_level_top(shelf_size: tuple[float, float, float], levels: int,
+                    level: int) -> float:
+    """Height (m) of level ``level``'s top above the bottom of a shelf of
+    ``shelf_size`` with ``levels`` levels: the levels' tops share the shelf's height
+    less :data:`SHELF_RISE` in equal steps, level 0 (the lowest) at the first."""
+    return (level + 1) * (shelf_size[2] - SHELF_RISE) / levels
+
+
+def shelf_level_size(shelf_size: tuple[float, float, float], levels: int,
+                     level: int) -> tuple[float, float, float]:
+    """The size level ``level`` of a shelf of ``shelf_size`` with ``levels`` levels
+    has: an equal share of the shelf's depth less its back panel (x), its width less
+    two side panels (y), and from the table up to its top (z: a solid step).
+
+    Args:
+        shelf_size: The shelf's full extents, metres.
+        levels: How many levels the shelf has (1 .. :data:`MAX_SHELF_LEVELS`).
+        level: The level, 0 the lowest (at the shelf's -x side).
+
+    Returns:
+        Full extents (x, y, z), metres.
+    """
+    return ((shelf_size[0] - WALL_THICKNESS) / levels, shelf_size[1] - 2 * WALL_THICKNESS,
+            shelf_level_top(shelf_size, levels, level))
+
+
+def shelf_level_offset(shelf_size: tuple[float, float, float], levels: int,
+                       level: int) -> tuple[float, float, float]:
+    """Centre of level ``level`` in its shelf's frame: the ``level``-th step from the
+    shelf's -x face, standing on the shelf's bottom (the table).
+
+    Args:
+        shelf_size: The shelf's full extents, metres.
+        levels: How many levels the shelf has.
+        level: The level, 0 the lowest.
+
+    Returns:
+        The level's centre (x, y, z) in the shelf's frame, metres.
+    """
+    depth, _, height = shelf_level_size(shelf_size, levels, level)
+    return (-shelf_size[0] / 2 + (level + 0.5) * depth, 0.0, -shelf_size[2] / 2 + height / 2)
 
 
 def door_size(microwave_size: tuple[float, float, float]) -> tuple[float, float, float]:
@@ -450,6 +512,10 @@ def shape_problem(kind: str, size: tuple[float, float, float]) -> tuple[str, str
         return (f"a door of size {tuple(size)} has no room for its panel and handle",
                 f"give the size its microwave gives it (door_size): x = "
                 f"{DOOR_THICKNESS + HANDLE_DEPTH:.3f}")
+    if kind == "shelf" and not (x > 0.1 and y > 0.06 and z > SHELF_RISE + 0.02):
+        return (f"a shelf of size {tuple(size)} has no room for a level",
+                f"make size x larger than 0.1, y larger than 0.06 and z larger than "
+                f"{SHELF_RISE + 0.02:.3f}")
     if kind == "holed_box":
         side, _ = side_hole(size)
         if side > min(y, z) - 2 * WALL_THICKNESS:

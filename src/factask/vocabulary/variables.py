@@ -3,19 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Annotated, Literal, Protocol
+from typing import Annotated, ClassVar, Literal, Protocol
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from factask.vocabulary.errors import InvalidValueError, Problem
 from factask.vocabulary.kinds import (
     MAX_DRAWERS,
+    MAX_SHELF_LEVELS,
     SWITCH_HOSTS,
     AssetKind,
     default_mass,
     door_size,
     drawer_size,
     kind_spec,
+    shelf_level_size,
     switch_size,
     yaw_symmetry_deg,
 )
@@ -77,6 +79,9 @@ class StartOn(_OnHost):
     type: Literal["on"] = "on"
     support: Name
 
+    #: The field naming the variable this start depends on (renaming rewrites it).
+    reference_field: ClassVar[str] = "support"
+
 
 class StartInside(_OnHost):
     """Start inside a receptacle variable (a container or bowl)."""
@@ -84,19 +89,25 @@ class StartInside(_OnHost):
     type: Literal["inside"] = "inside"
     container: Name
 
+    reference_field: ClassVar[str] = "container"
+
 
 class InCabinet(BaseModel):
     """Start as drawer ``level`` (0: the bottom one) of the cabinet variable
     ``cabinet``, pulled out by ``opening`` (a fraction of its travel: 0 closed, 1 all
     the way out); its cabinet has one bay per drawer in it. A door starts so on the
-    microwave variable ``cabinet`` (level 0, ``opening`` a fraction of its swing).
-    Only drawers and doors start so."""
+    microwave variable ``cabinet`` (level 0, ``opening`` a fraction of its swing),
+    and a shelf level as level ``level`` of the shelf variable ``cabinet`` (it never
+    opens: ``opening`` 0). Only drawers, doors and shelf levels start so: each is a
+    part of a piece of furniture, its place in it a fact."""
 
     model_config = ConfigDict(extra="forbid")
     type: Literal["in_cabinet"] = "in_cabinet"
     cabinet: Name
     level: int = Field(0, ge=0, le=MAX_DRAWERS - 1)
     opening: Annotated[float, Field(ge=0, le=1, allow_inf_nan=False)] = 0.0
+
+    reference_field: ClassVar[str] = "cabinet"
 
 
 class MountedOn(BaseModel):
@@ -108,6 +119,13 @@ class MountedOn(BaseModel):
     type: Literal["mounted_on"] = "mounted_on"
     host: Name
     on: bool = False
+
+    reference_field: ClassVar[str] = "host"
+
+
+#: Every start placement's field that names another variable (renaming rewrites them).
+START_REFERENCE_FIELDS: tuple[str, ...] = tuple(
+    c.reference_field for c in (StartOn, StartInside, InCabinet, MountedOn))
 
 
 class AtFixedPose(BaseModel):
@@ -215,15 +233,8 @@ class StateVariable(BaseModel):
 
     def references(self) -> list[str]:
         """Other variables this variable's initial placement depends on."""
-        if isinstance(self.initial, StartOn):
-            return [self.initial.support]
-        if isinstance(self.initial, StartInside):
-            return [self.initial.container]
-        if isinstance(self.initial, InCabinet):
-            return [self.initial.cabinet]
-        if isinstance(self.initial, MountedOn):
-            return [self.initial.host]
-        return []
+        field = getattr(self.initial, "reference_field", None)
+        return [getattr(self.initial, field)] if field else []
 
 
 class VariableSet(Protocol):
@@ -286,11 +297,11 @@ def cabinet_problems(variables: Sequence[StateVariable]) -> list[Problem]:
     Args:
         variables: A graph's variables.
     """
-    out: list[Problem] = _door_problems(variables)
+    out: list[Problem] = _door_problems(variables) + shelf_problems(variables)
     by_name = {v.name: v for v in variables}
     for v in variables:
         placed = isinstance(v.initial, InCabinet)
-        if v.kind in ("door", "microwave"):  # _door_problems
+        if v.kind in ("door", "microwave", "shelf", "shelf_level"):  # their own checks
             continue
         if v.kind == "drawer" and not placed:
             out.append(Problem(v.name, "initial", "a drawer starts in a cabinet",
@@ -443,5 +454,67 @@ def _door_problems(variables: Sequence[StateVariable]) -> list[Problem]:
             if any(abs(a - b) > 1e-6 for a, b in zip(v.extents, want, strict=True)):
                 out.append(Problem(v.name, "size", f"the door of {host.name!r} has size "
                                    f"{tuple(round(w, 6) for w in want)}, got {v.extents}",
+                                   f"give size {[round(w, 6) for w in want]}"))
+    return out
+
+
+def shelf_problems(variables: Sequence[StateVariable]) -> list[Problem]:
+    """What is wrong with the graph's shelves and their levels: a level starts
+    ``in_cabinet`` of a shelf variable, not opened, both stand for one fixed object,
+    a shelf's levels take levels 0..n-1 once each (at most
+    :data:`~factask.vocabulary.kinds.MAX_SHELF_LEVELS`), and a level's size is the
+    one its shelf gives it (:func:`~factask.vocabulary.kinds.shelf_level_size`).
+
+    Args:
+        variables: A graph's variables.
+
+    Returns:
+        The problems, each naming the field and its fix.
+    """
+    out: list[Problem] = []
+    by_name = {v.name: v for v in variables}
+    for v in variables:
+        if v.kind not in ("shelf", "shelf_level"):
+            continue
+        if v.count != 1:
+            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
+                               f"got count {v.count}", "give each its own variable"))
+        if not v.is_fixed:
+            out.append(Problem(v.name, "fixed", f"a {v.kind} stands fixed on the table; it "
+                               "cannot be free", "leave fixed out"))
+        if v.kind == "shelf":
+            continue
+        if not isinstance(v.initial, InCabinet):
+            out.append(Problem(v.name, "initial", "a shelf level starts in a shelf",
+                               'give initial {"type": "in_cabinet", "cabinet": <a shelf '
+                               'variable>, "level": 0}'))
+            continue
+        if v.initial.opening != 0:
+            out.append(Problem(v.name, "initial.opening", "a shelf level does not open, got "
+                               f"opening {v.initial.opening}", "leave opening out (0)"))
+        host = by_name.get(v.initial.cabinet)
+        if host is not None and host.kind != "shelf":
+            out.append(Problem(v.name, "initial.cabinet", f"{host.name!r} is a {host.kind}, "
+                               "not a shelf", "name a shelf variable"))
+    for shelf in (v for v in variables if v.kind == "shelf"):
+        levels = [lv for lv in drawers_of(variables, shelf.name) if lv.kind == "shelf_level"]
+        if not levels:
+            out.append(Problem(shelf.name, "kind", "a shelf has at least one level",
+                               'add a shelf_level variable with initial {"type": '
+                               f'"in_cabinet", "cabinet": "{shelf.name}", "level": 0}}'))
+            continue
+        taken = [lv.initial.level for lv in levels]  # type: ignore[union-attr]
+        if taken != list(range(len(levels))):
+            out.append(Problem(levels[-1].name, "initial.level", f"the levels of "
+                               f"{shelf.name!r} take levels {taken}",
+                               f"give its {len(levels)} levels levels 0.."
+                               f"{len(levels) - 1}, one each (at most {MAX_SHELF_LEVELS})"))
+            continue
+        for lv in levels:
+            want = shelf_level_size(shelf.extents, len(levels), lv.initial.level)  # type: ignore[union-attr]
+            if any(abs(a - b) > 1e-6 for a, b in zip(lv.extents, want, strict=True)):
+                out.append(Problem(lv.name, "size", f"level {lv.initial.level} of "  # type: ignore[union-attr]
+                                   f"{shelf.name!r} (of {len(levels)}) has size "
+                                   f"{tuple(round(w, 6) for w in want)}, got {lv.extents}",
                                    f"give size {[round(w, 6) for w in want]}"))
     return out

@@ -41,11 +41,13 @@ TYPES: dict[str, LiberoKind] = {
     "target_zone": LiberoKind("zone", (0.10, 0.10, 0.001), "gray", fixed=True,
                               note="LIBERO's flat target zone marker", category="zone"),
     # ---- articulated fixtures --------------------------------------------------------
-    "flat_stove": fixed_box((0.18, 0.18, 0.03), "silver",
-                            "flat stove: a fixed low box; its cook region is its top "
-                            "(no burner, no knob)",
-                            regions=(("cook_region", "top"), ("top_side", "top")),
-                            articulation="knob (Turnon / Turnoff: a switch)"),
+    "flat_stove": LiberoKind("stove", (0.23, 0.20, 0.03), "silver", fixed=True, fixture=True,
+                             note="flat stove: factask's stove, its cook region the top "
+                                  "behind the control strip; its knob is the stove's "
+                                  "push-button switch (Turnon / Turnoff: switched_on / "
+                                  "switched_off)",
+                             regions=(("cook_region", "top"), ("top_side", "top")),
+                             category="fixture"),
     "wooden_cabinet": cabinet((0.22, 0.24, 0.27), "brown",
                               "wooden cabinet: a cabinet of three drawers (its bottom, "
                               "middle and top regions) whose top side things can stand on"),
@@ -55,26 +57,41 @@ TYPES: dict[str, LiberoKind] = {
     "short_cabinet": cabinet((0.20, 0.22, 0.24), "tan",
                              "short cabinet: a low cabinet of three drawers (its bottom, "
                              "middle and top regions)"),
-    "microwave": fixed_box((0.20, 0.26, 0.21), "silver",
-                           "microwave: a fixed box (24 x 17 cm heating chamber behind a "
-                           "hinged door); its top side is a support",
-                           regions=(("top_side", "top"), ("heating_region", "door")),
-                           articulation="hinged door"),
+    "microwave": LiberoKind("microwave", (0.20, 0.24, 0.15), "silver", fixed=True,
+                            fixture=True,
+                            note="microwave: factask's microwave (open at its door side "
+                                 "and, for top-down cups, at the top; its heating region "
+                                 "is its inside) and its hinged door (Open / Close)",
+                            regions=(("heating_region", "inside"), ("top_side", "open_top")),
+                            category="fixture",
+                            plain=fixed_box((0.20, 0.26, 0.21), "silver",
+                                            "microwave (its door unused by the file): a "
+                                            "fixed box, its top side a support",
+                                            regions=(("top_side", "top"),))),
     "short_fridge": fixed_box((0.26, 0.26, 0.30), "white",
                               "short fridge: a fixed box; its shelves are behind a "
                               "hinged door",
                               regions=(("top_side", "top"), ("upper_region", "door"),
                                        ("middle_region", "door"), ("lower_region", "door")),
-                              articulation="hinged door"),
+                              articulation="hinged door (factask's door hangs only on "
+                                           "a microwave, one chamber; the fridge's three "
+                                           "shelves behind it are not modelled)"),
     "slide_cabinet": fixed_box((0.20, 0.26, 0.24), "tan",
                                "slide cabinet: a fixed box (its sliding door is not "
-                               "modelled)", articulation="sliding door"),
+                               "modelled)",
+                               articulation="sliding door (factask has drawers and "
+                                            "hinged doors, no sliding door)"),
     "window": fixed_box((0.04, 0.20, 0.20), "gray", "window: a fixed panel",
-                        regions=(), articulation="sliding sash"),
+                        regions=(), articulation="sliding sash (no factask kind slides "
+                                                 "a panel sideways)"),
     "faucet": fixed_box((0.06, 0.06, 0.15), "silver", "faucet: a fixed post",
-                        regions=(), articulation="handle (turned on and off)"),
+                        regions=(), articulation="handle turned on and off (factask's "
+                                                 "switches are push buttons on a stove "
+                                                 "or a lamp; no faucet kind)"),
     "basin_faucet": fixed_box((0.06, 0.10, 0.12), "silver", "basin faucet: a fixed post",
-                              regions=(), articulation="handle (turned on and off)"),
+                              regions=(), articulation="handle turned on and off (factask's "
+                                                 "switches are push buttons on a stove "
+                                                 "or a lamp; no faucet kind)"),
     # ---- furniture (TurboSquid) ----------------------------------------------------
     "wine_rack": fixed_box((0.12, 0.20, 0.09), "tan",
                            "wine rack: a fixed low box (no slots); 9 cm high, so that the "

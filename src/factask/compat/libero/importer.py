@@ -21,12 +21,12 @@ predicate or object and why):
   ``(On a <table>_<region>)`` → ``in_zone`` of a goal zone made for the region
   (:meth:`_Importer.goal_zone`). A stand-in fixed by default that a goal moves
   becomes movable; a goal that moves a fixture is refused.
-* Drawers: a cabinet type with drawer regions (:attr:`LiberoKind.drawers`) gets one
-  ``drawer`` variable per region (``<cabinet>_<level>_drawer``, ``in_cabinet``, pulled
-  out where ``:init`` says ``Open``); ``Open`` / ``Close`` of a drawer region are
-  ``open`` / ``closed``; ``In`` / ``On`` a drawer region is ``inside`` the drawer; a
-  put into a drawer that starts shut gets an ``open`` milestone first
-  (:meth:`_Importer.open_before_putting_inside`).
+* Articulated fixtures (:mod:`factask.compat.libero.articulated`): a cabinet's
+  drawers, a microwave's hinged door and a stove's switch are variables of their
+  own; ``Open`` / ``Close`` / ``Turnon`` / ``Turnoff`` are ``open`` / ``closed`` /
+  ``switched_on`` / ``switched_off`` of them; ``In`` a drawer region or a
+  microwave's ``heating_region`` is ``inside`` it, after an ``open`` milestone where
+  it starts shut. Other moving parts are refused.
 * The language line is the description; the task's name is the file's name.
 
 Coordinate map (one for every file). LIBERO's table frame has x forward away from
@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from factask.compat.libero.articulated import WHAT_FACTASK_MODELS, ArticulatedParts
 from factask.compat.libero.bddl import load_bddl
 from factask.compat.libero.kinds import (
     LiberoKind,
@@ -63,13 +64,7 @@ from factask.compat.libero.kinds import (
 )
 from factask.compat.libero.model import BddlProblem, Predicate, Region
 from factask.graph import TaskGraph, parse_graph
-from factask.vocabulary.kinds import (
-    HANDLE_DEPTH,
-    WALL_THICKNESS,
-    drawer_size,
-    drawer_travel,
-    kind_spec,
-)
+from factask.vocabulary.kinds import WALL_THICKNESS, kind_spec
 from factask.vocabulary.names import slugify, unique_name
 from factask.vocabulary.world import WORKSPACE_X, WORKSPACE_Y
 
@@ -94,24 +89,19 @@ START_SLACK = 0.10
 #: plus this (metres): factask's region check wants the whole footprint inside, LIBERO's
 #: the object's centre, so a 6 cm region gets a zone a 16 cm plate fits in.
 ZONE_MARGIN = 0.03
-#: Room (m) left between a cabinet's drawer pulled all the way out and the
-#: workspace's near edge.
-DRAWER_ROOM = 0.005
 #: Room (m) an object's footprint circle keeps inside a round receptacle's inner
 #: circle for it to count as fitting (the layout keeps objects off the walls).
 ROUND_FIT_MARGIN = 0.005
 #: Colour of the goal zones made from table regions.
 ZONE_COLOR = "gray"
-#: Predicates of articulated fixtures.
-ARTICULATION = frozenset({"open", "close", "turnon", "turnoff"})
-#: Those factask models: a drawer's ``Open`` / ``Close`` → ``open`` / ``closed``.
-DRAWER_GOALS = {"open": "open", "close": "closed"}
-_WHY_ARTICULATED = "switches and hinged doors are not in factask yet (drawers are)"
 #: Why a region of each refused role is refused.
 _WHY_ROLE = {"covered": "a shelf level under the board above it: a top-down suction cup "
                         "cannot reach it",
-             "door": "behind a door factask does not model yet",
-             "side": "a side face of it: no factask relation puts things against a side"}
+             "door": "behind a door factask does not model",
+             "side": "a side face of it: no factask relation puts things against a side",
+             "open_top": "the top of factask's microwave, which is open at the top (no "
+                         "roof, so that top-down cups put things in): nothing stands on "
+                         "it"}
 
 
 @dataclass(frozen=True)
@@ -152,13 +142,13 @@ def _clip(lo: float, hi: float, bounds: tuple[float, float]) -> tuple[float, flo
     return lo, hi
 
 
-class _Importer:
+class _Importer(ArticulatedParts):
     def __init__(self, problem: BddlProblem, name: str) -> None:
         self.p, self.task = problem, name
-        self.where = Path(problem.source).name
         self.types: dict[str, str] = {**problem.fixtures, **problem.objects}
         self.specs: dict[str, LiberoKind] = {n: libero_kind(t, n) for n, t in self.types.items()}
         self.warnings: list[str] = []
+        self.plain_where_unused()
         taken: set[str] = set()
         self.names = {n: unique_name(slugify(n, "_", 64, "obj"), taken)
                       for n, s in self.specs.items() if s.kind is not None}
@@ -168,15 +158,7 @@ class _Importer:
         self.taken_names = set(self.names.values())
         #: Objects whose stand-in is fixed but that a goal moves: made movable.
         self.moved: set[str] = set()
-        #: A cabinet's drawer region (full name) → (drawer variable, cabinet, level).
-        self.drawers: dict[str, tuple[str, str, int]] = {}
-        for libero, spec in self.specs.items():
-            for level, region in enumerate(spec.drawers):
-                word = region.removesuffix("_region")
-                var = unique_name(f"{self.names[libero]}_{word}_drawer", self.taken_names)
-                self.drawers[f"{libero}_{region}"] = (var, libero, level)
-        #: Drawer variable → how far it starts pulled out (``Open`` in ``:init``).
-        self.openings: dict[str, float] = {}
+        self.setup_parts()
         scene = scene_of(problem.name)
         if scene is None:
             self.warnings.append(f"problem {problem.name!r} is no LIBERO scene factask "
@@ -188,17 +170,6 @@ class _Importer:
     def is_fixture(self, name: str) -> bool:
         """A fixture: declared under ``:fixtures`` or of a fixture type."""
         return name in self.p.fixtures or (name in self.specs and self.specs[name].fixture)
-
-    def refuse_articulation(self, pred: Predicate) -> LiberoUnsupported:
-        """``Open``, ``Close``, ``Turnon``, ``Turnoff`` of what factask does not model:
-        the message names the fixture's moving part."""
-        arg = str(pred.args[0]) if pred.args else ""
-        region = self.p.regions_by_full_name.get(arg)
-        target = region.target if region is not None else arg
-        spec = self.specs.get(target)
-        what = (f"the {self.types[target]}'s {spec.articulation}"
-                if spec is not None and spec.articulation else f"{target!r}")
-        return self.refuse(pred, f"{pred.name}: {what} is not modelled; {_WHY_ARTICULATED}")
 
     def region_host(self, pred: Predicate, region: Region) -> tuple[str, str] | None:
         """What a fixture's or object's own region means, by its role
@@ -222,7 +193,7 @@ class _Importer:
             if not kind_spec(spec.kind or "").receptacle:
                 raise self.refuse(pred, f"{region.full_name} is inside the {type_name}, "
                                   f"whose stand-in (a {spec.kind}) holds nothing")
-            if region.name != "contain_region":
+            if region.name != "contain_region" and spec.kind != "microwave":
                 self.warnings.append(f"{region.full_name}: a compartment of the {type_name}; "
                                      f"factask's stand-in has one inside: inside {target}")
             return "inside", self.names[target]
@@ -240,11 +211,9 @@ class _Importer:
                      spec: LiberoKind) -> LiberoUnsupported:
         why = _WHY_ROLE[role]
         if role == "door" and spec.articulation:
-            why = f"behind the {type_name}'s {spec.articulation}; {_WHY_ARTICULATED}"
+            why = (f"behind the {type_name}'s {spec.articulation}, not modelled; "
+                   f"{WHAT_FACTASK_MODELS}")
         return self.refuse(pred, f"{region.full_name} is {why}")
-
-    def refuse(self, pred: Predicate | str, why: str) -> LiberoUnsupported:
-        return LiberoUnsupported(f"{self.where}: {pred}: {why}")
 
     # ---- what a name is -------------------------------------------------------------
     def is_table(self, name: str) -> bool:
@@ -274,13 +243,7 @@ class _Importer:
     # ---- init -----------------------------------------------------------------------
     def read_init(self) -> None:
         for pred in self.p.init:
-            if pred.name in DRAWER_GOALS and len(pred.args) == 1 \
-                    and str(pred.args[0]) in self.drawers:
-                drawer = self.drawers[str(pred.args[0])][0]
-                self.openings[drawer] = 1.0 if pred.name == "open" else 0.0
-                continue
-            if pred.name in ARTICULATION:
-                self.start_state_not_modelled(pred)
+            if self.read_part_init(pred):
                 continue
             if pred.name not in ("on", "in") or len(pred.args) != 2:
                 raise self.refuse(pred, "no factask start placement for this predicate")
@@ -293,25 +256,6 @@ class _Importer:
             if var not in self.initial:
                 self.warnings.append(f"{libero}: no start in :init; starts anywhere on "
                                      "the table")
-
-    def start_state_not_modelled(self, pred: Predicate) -> None:
-        """``(Open microwave_1)``, ``(Turnon flat_stove_1)`` in ``:init`` of a fixture
-        whose moving part factask does not model (:attr:`LiberoKind.articulation`):
-        the stand-in (a fixed box) has no such state; a goal that needs it is refused,
-        a start state alone only warns (the task may not touch that fixture).
-
-        Raises:
-            LiberoUnsupported: the fixture has no known moving part (a drawerless
-                object said to start open).
-        """
-        arg = str(pred.args[0]) if len(pred.args) == 1 else ""
-        region = self.p.regions_by_full_name.get(arg)
-        target = region.target if region is not None else arg
-        spec = self.specs.get(target)
-        if spec is None or not spec.articulation:
-            raise self.refuse_articulation(pred)
-        self.warnings.append(f"{pred}: the {self.types[target]}'s {spec.articulation} is "
-                             "not modelled; its stand-in ignores this start state")
 
     def start_of(self, pred: Predicate, obj: str, host: str) -> dict[str, Any]:
         fixture = self.is_fixture(obj)
@@ -354,15 +298,15 @@ class _Importer:
         if fixture:
             yaw = (math.degrees(sum(region.yaw_rotation[0]) / 2)
                    if region.yaw_rotation else 0.0)
-            if self.specs[obj].drawers:
-                # factask's cabinet opens towards its -x side: turned to face the robot
-                # whatever LIBERO's yaw (its cabinet model's front is its own +x).
+            if self.faces_robot(obj):
+                # factask's cabinet, microwave and stove have their moving part on
+                # their -x side: turned to face the robot whatever LIBERO's yaw (its
+                # cabinet model's front is its own +x).
                 yaw = 0.0
             turned = round(abs(math.sin(math.radians(yaw)))) == 1  # a quarter turn
             half_x, half_y = (size[1], size[0]) if turned else (size[0], size[1])
             x = min(max(cx, WORKSPACE_X[0] + half_x / 2), WORKSPACE_X[1] - half_x / 2)
-            if self.specs[obj].drawers:
-                x = self.room_for_drawers(obj, size, x)
+            x = self.room_in_front(obj, size, x)
             y = min(max(cy, WORKSPACE_Y[0] + half_y / 2), WORKSPACE_Y[1] - half_y / 2)
             return {"type": "pose", "x": round(x, 4), "y": round(y, 4),
                     "yaw_deg": round(yaw, 3)}
@@ -373,34 +317,15 @@ class _Importer:
                 "x": [round(v, 4) for v in _clip(cx - half_x, cx + half_x, WORKSPACE_X)],
                 "y": [round(v, 4) for v in _clip(cy - half_y, cy + half_y, WORKSPACE_Y)]}
 
-    def room_for_drawers(self, obj: str, size: tuple[float, float, float], x: float) -> float:
-        """A cabinet's x moved away from the robot, where needed, so that its drawers
-        pulled all the way out stay on the workspace (they slide towards -x)."""
-        drawers = self.specs[obj].drawers
-        reach = size[0] / 2 + HANDLE_DEPTH + drawer_travel(drawer_size(size, len(drawers)))
-        least = WORKSPACE_X[0] + reach + DRAWER_ROOM
-        if x >= least:
-            return x
-        self.warnings.append(f"{obj}: moved from x {x:.3f} to {least:.3f} m so that its "
-                             "drawers pulled out stay on the workspace")
-        return min(least, WORKSPACE_X[1] - size[0] / 2)
-
     # ---- goal -----------------------------------------------------------------------
     def read_goal(self) -> list[dict[str, Any]]:
         factors: list[dict[str, Any]] = []
         taken: set[str] = set()
         for pred in self.p.goal:
-            if pred.name in DRAWER_GOALS and len(pred.args) == 1 \
-                    and str(pred.args[0]) in self.drawers:
-                drawer = self.drawers[str(pred.args[0])][0]
-                relation = DRAWER_GOALS[pred.name]
-                name = unique_name(f"{'open' if relation == 'open' else 'close'}_{drawer}",
-                                   taken)
-                factors.append({"name": name, "description": f"LIBERO goal {pred}",
-                                "goal": {"type": relation, "objects": [drawer]}})
+            part = self.part_goal(pred, taken)
+            if part is not None:
+                factors.append(part)
                 continue
-            if pred.name in ARTICULATION:
-                raise self.refuse_articulation(pred)
             if pred.name not in ("on", "in") or len(pred.args) != 2:
                 raise self.refuse(pred, "no factask relation for this goal predicate")
             obj, host = (str(a) for a in pred.args)
@@ -437,34 +362,6 @@ class _Importer:
                           f"{self.host_kind(host)} stand-in) and cannot rest on it: an "
                           "object resting on a receptacle it does not fit in is not "
                           "modelled")
-
-    def open_before_putting_inside(self, factors: list[dict[str, Any]], taken: set[str]
-                                   ) -> None:
-        """A goal that puts something into a drawer that starts shut needs the drawer
-        opened first: LIBERO's goal names only the end (``In bowl top_region``), its
-        language the steps ("open the top drawer and put the bowl inside"). Such a
-        drawer gets an ``open`` milestone before the put (a ``Close`` goal of the same
-        drawer then comes after the put), unless a goal opens it already."""
-        drawers = {v for v, _, _ in self.drawers.values()}
-        for f in list(factors):
-            goal = f["goal"]
-            drawer = goal.get("container")
-            if goal["type"] != "inside" or drawer not in drawers:
-                continue
-            if self.openings.get(drawer, 0.0) > 0.0 or any(
-                    g["goal"]["type"] == "open" and drawer in g["goal"]["objects"]
-                    for g in factors):
-                continue
-            name = unique_name(f"open_{drawer}", taken)
-            factors.insert(factors.index(f), {
-                "name": name, "milestone": True,
-                "description": f"open {drawer} first (it starts shut)",
-                "goal": {"type": "open", "objects": [drawer]}})
-            self.warnings.append(f"{drawer}: starts shut and a goal puts something in it: "
-                                 f"an 'open' milestone ({name}) comes first")
-            for g in factors:
-                if g["goal"]["type"] == "closed" and drawer in g["goal"]["objects"]:
-                    g.setdefault("after", []).append(f["name"])
 
     def goal_of(self, pred: Predicate, var: str, host: str) -> dict[str, Any]:
         if host in self.drawers:  # In / On a cabinet's drawer region: inside the drawer
@@ -542,16 +439,7 @@ class _Importer:
             elif spec.fixed is not None:
                 data["fixed"] = spec.fixed
             out.append(data)
-        for var, libero, level in self.drawers.values():
-            spec = self.specs[libero]
-            assert spec.size is not None
-            out.append({
-                "name": var, "kind": "drawer", "color": spec.color,
-                "size": list(drawer_size(spec.size, len(spec.drawers))),
-                "initial": {"type": "in_cabinet", "cabinet": self.names[libero],
-                            "level": level, "opening": self.openings.get(var, 0.0)},
-                "description": f"drawer {level} (bottom 0) of {libero}: LIBERO region "
-                               f"{spec.drawers[level]}"})
+        out.extend(self.part_variables())
         out.extend({k: v for k, v in zone.items() if k != "libero"} for zone in self.zones)
         return out
 

@@ -17,11 +17,15 @@ one per category (:mod:`factask.compat.libero.spec`):
   mugs and the moka pot → an upright ``cylinder`` of their diameter and height;
 * fixtures: the scenes' tables and the floor are factask's table (no variable);
   cabinets (wooden, white, short) are a ``cabinet`` of three drawers on slide joints
-  whose top side things stand on; stoves, the microwave, the fridge, shelves, racks
-  are fixed ``box``es whose top side (a stove's cook region, a rack's top region) is
-  a support. What moves on them and factask does not model (a stove's knob, a
-  microwave's or fridge's hinged door) is :attr:`LiberoKind.articulation`: the
-  importer refuses ``Open``, ``Close``, ``Turnon``, ``Turnoff`` of it naming it.
+  whose top side things stand on; the flat stove is a ``stove`` with a push-button
+  switch, its cook region its top; the microwave is a ``microwave`` with a hinged
+  door, its heating region its inside (a plain fixed box where a file never names
+  its door: :attr:`LiberoKind.plain`); the fridge, shelves, racks are fixed
+  ``box``es whose top side is a support. What moves on them and factask does not
+  model (a fridge's hinged door, a slide cabinet's sliding door, a faucet's handle)
+  is :attr:`LiberoKind.articulation`: the importer refuses ``Open``, ``Close``,
+  ``Turnon``, ``Turnoff`` of it naming it
+  (:mod:`factask.compat.libero.articulated`).
 
 A type LIBERO does not register is typed by the category rule of its name
 (:func:`category_kind`: ``red_bowl``, ``soup_can``) where one fits; else it is an

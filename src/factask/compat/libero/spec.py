@@ -41,11 +41,15 @@ class UnknownLiberoRegion(LiberoUnsupported):
 #: ``inside`` the stand-in;
 #: ``covered``: a shelf level under the board above it: a top-down suction cup cannot
 #: reach it, refused;
-#: ``door``: behind a hinged or sliding door factask does not model yet, refused;
-#: ``side``: a side face (a storage box's left side): no factask relation, refused.
+#: ``door``: behind a hinged or sliding door factask does not model (a fridge's
+#: shelves), refused;
+#: ``side``: a side face (a storage box's left side): no factask relation, refused;
+#: ``open_top``: the top of a stand-in open at the top (factask's microwave has no
+#: roof, so that top-down cups can put things in): nothing stands on it, refused.
 #: A cabinet's drawer regions are listed in :attr:`LiberoKind.drawers` instead.
-RegionRole = Literal["top", "inside", "covered", "door", "side"]
-REGION_ROLES: tuple[RegionRole, ...] = ("top", "inside", "covered", "door", "side")
+RegionRole = Literal["top", "inside", "covered", "door", "side", "open_top"]
+REGION_ROLES: tuple[RegionRole, ...] = ("top", "inside", "covered", "door", "side",
+                                        "open_top")
 
 
 @dataclass(frozen=True)
@@ -64,9 +68,14 @@ class LiberoKind:
         regions: The type's own regions (LIBERO's asset sites) and their roles, as
             ``(region name, role)`` pairs; see :data:`RegionRole`.
         articulation: What moves on the real fixture that factask does not model
-            (``"hinged door"``, ``"knob"``), "" when nothing (or only its drawers):
+            and why (``"sliding door"``), "" when nothing or when factask models it
+            (a cabinet's drawers, a microwave's door, a stove's switch):
             ``Open``, ``Close``, ``Turnon``, ``Turnoff`` of it are refused naming this.
         category: The category rule it was made by (``"bowl"``, ``"can"``, ...).
+        plain: The stand-in used when a file touches none of the moving part this
+            one models (a microwave whose door, ``Open`` / ``Close`` and
+            ``heating_region`` the file never names: a fixed box whose top is a
+            support); None: this stand-in always.
     """
 
     kind: str | None
@@ -79,6 +88,7 @@ class LiberoKind:
     regions: tuple[tuple[str, RegionRole], ...] = ()
     articulation: str = ""
     category: str = ""
+    plain: LiberoKind | None = None
 
     def role_of(self, region: str) -> RegionRole | None:
         """The role of the type's own region ``region`` (``top_side``), or None when

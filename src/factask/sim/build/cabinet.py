@@ -21,13 +21,14 @@ from factask.geometry import Pose, rotation_matrix
 from factask.scene.cabinet import cabinet_boxes, drawer_boxes, drawer_seat
 from factask.scene.microwave import door_boxes, microwave_boxes
 from factask.scene.objects import SceneObject
+from factask.scene.shelf import shelf_boxes
 from factask.sim.build.mjspec import BodyHandles, add_plan_geoms
 from factask.sim.build.parts import GEOM_SEPARATOR, GeomPlan, ObjectPlan, fmt
 from factask.vocabulary.kinds import drawer_closed_offset, drawer_travel
 from factask.vocabulary.variables import VariableSet, drawers_of
 
 #: Kinds built here rather than from their stand-alone parts.
-FURNITURE_KINDS = ("cabinet", "drawer", "microwave", "door")
+FURNITURE_KINDS = ("cabinet", "drawer", "microwave", "door", "shelf")
 #: Damping (N s/m) of a drawer's slide: it stops within a few mm once let go.
 SLIDE_DAMPING = 20.0
 #: Dry friction (N) of a drawer's slide: it stays where it is left, though nudged.
@@ -91,7 +92,8 @@ def _geoms(plan: ObjectPlan, boxes: list, mass: float | None) -> tuple[GeomPlan,
 def furniture_plan(plan: ObjectPlan, obj: SceneObject, graph: VariableSet,
                    moving: bool = True) -> ObjectPlan:
     """The plan of a cabinet (with its number of bays), a drawer (its handle where
-    its level puts it), a microwave or a door, from the stand-alone plan of its kind.
+    its level puts it), a microwave, a door or a shelf (its panels beside its
+    levels; a level is a plain fixed box), from the stand-alone plan of its kind.
 
     Args:
         plan: The plan :func:`~factask.sim.build.parts.plan_object` made.
@@ -104,6 +106,9 @@ def furniture_plan(plan: ObjectPlan, obj: SceneObject, graph: VariableSet,
         return replace(plan, geoms=_geoms(plan, cabinet_boxes(obj.size, max(bays, 1)), None))
     if obj.kind == "microwave":
         return replace(plan, geoms=_geoms(plan, microwave_boxes(obj.size), None))
+    if obj.kind == "shelf":  # its panels beside its levels (each level a body of its own)
+        levels = len(drawers_of(graph.variables, obj.variable))
+        return replace(plan, geoms=_geoms(plan, shelf_boxes(obj.size, max(levels, 1)), None))
     if obj.kind == "door":
         boxes = door_boxes(obj.size)
     else:

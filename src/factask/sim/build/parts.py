@@ -34,6 +34,7 @@ from factask.geometry import quat_from_axis_angle, quat_from_yaw, quat_mul
 from factask.scene.cabinet import cabinet_boxes, drawer_boxes
 from factask.scene.microwave import door_boxes, microwave_boxes
 from factask.scene.objects import corner_arm_width
+from factask.scene.shelf import shelf_boxes
 from factask.vocabulary.errors import SubjectError
 from factask.vocabulary.kinds import (
     ELL_BAR_FRACTION,
@@ -399,6 +400,8 @@ def kind_parts(
     if kind in ("microwave", "door"):
         return [_box(*b) for b in (microwave_boxes(size) if kind == "microwave"
                                    else door_boxes(size))]
+    if kind == "shelf":  # alone: two levels (compile builds a shelf's own)
+        return [_box(*b) for b in shelf_boxes(size, 2)]
     # block, box, zone, line, stand, kit: one box of the full extents.
     return [_box("body", (-x, -y, -z), (x, y, z))]
 

@@ -329,7 +329,9 @@ def _drawer_cabinet(graph: TaskGraph, host_var: str, objs: Mapping[str, SceneObj
             bay's ceiling when the drawer closes): not retried.
     """
     start = graph.variable(host_var).initial
-    if not isinstance(start, InCabinet):
+    # A shelf level is open to the sky: the collision rule already lets what stands
+    # on it meet the shelf's levels, never its panels.
+    if not isinstance(start, InCabinet) or graph.variable(host_var).kind != "drawer":
         return []
     drawer = objs[host_var]
     rim = float(poses[host_var].pos[2]) + drawer.half[2] + DRAWER_GAP

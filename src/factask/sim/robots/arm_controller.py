@@ -13,8 +13,14 @@ import math
 import mujoco
 import numpy as np
 
-from factask.geometry import Pose, wrap_angle
-from factask.sim.robots.arm import HOME_QPOS, JOINT_NAMES, JOINT_RANGES, KP, KV
+from factask.geometry import Pose, quat_conj, quat_from_axis_angle, quat_mul, wrap_angle, yaw_of
+from factask.sim.robots.arm import (
+    HOME_QPOS,
+    JOINT_NAMES,
+    JOINT_RANGES,
+    KP,
+    KV,
+)
 from factask.sim.robots.ik import TopDownIK, top_down_pose
 from factask.sim.robots.motion import (
     Profile,
@@ -61,6 +67,19 @@ VIA_DEPTH = 4
 RECOVER_TIME = 0.5
 #: Distance (rad) the arm's last wrist joint keeps from its range limits.
 WRIST_MARGIN = 0.6
+#: How far (rad) the tool may lean from straight down when the arm's links would hit
+#: a solid beside the tip (:meth:`ArmSuctionRobot.lean_clear_of`), the least that
+#: clears first: the wrist's last link is a 4 cm cylinder round the tool axis from 12
+#: cm above the tip, a drawer handle's middle is 1.75 cm in front of its cabinet's
+#: face (13 degrees just clear it); the wrist, 24 cm above the tip, moves 8-15 cm.
+LEAN_ANGLES = tuple(math.radians(a) for a in (20.0, 25.0, 30.0, 40.0))
+#: Points tested along each of the arm's links (:meth:`ArmSuctionRobot.lean_clear_of`).
+LINK_SAMPLES = 7
+#: The links tested: the upper arm, forearm and wrist (the base column cannot move).
+LEANING_LINKS = ("link2_geom", "link3_geom", "link4_geom", "link5_geom", "link6_geom")
+#: Gap (m) within which a solid beside the arm's links, the tool straight down, makes
+#: it lean (a lean is taken when its links touch nothing).
+LEAN_MARGIN = 0.01
 
 
 class ArmSuctionRobot(SuctionRobot):
@@ -97,6 +116,12 @@ class ArmSuctionRobot(SuctionRobot):
         self._amax = np.asarray(arm.max_accel, dtype=float)
         self._lead = np.asarray(KV) / np.asarray(KP)
         self._cmd_q = np.asarray(HOME_QPOS, dtype=float)
+        m = self.ik.model
+        self._link_geoms = np.array([find_id(m, mujoco.mjtObj.mjOBJ_GEOM, n)
+                                     for n in LEANING_LINKS])
+        # Offsets along each link's axis (its geom's z) of the points tested.
+        self._link_spans = (np.linspace(-1.0, 1.0, LINK_SAMPLES)[None, :]
+                            * m.geom_size[self._link_geoms, 1:2])
 
     def _reset_robot(self) -> None:
         home = np.asarray(HOME_QPOS, dtype=float)
@@ -112,11 +137,11 @@ class ArmSuctionRobot(SuctionRobot):
                yaw: float) -> np.ndarray:
         """Joint angles of tip (pos, yaw) near ``q0`` (the solution at pos0, yaw0), the
         last wrist turned to the unwrapped yaw; raises PrimitiveAbort if unreachable."""
-        q, err = self.ik.solve_near(q0, pos, yaw)
+        q, err = self.ik.solve_near(q0, pos, yaw, lean=self.tool_lean)
         if err > REACH_TOL:
             # Far or awkward targets: mink along a straight path, from q0.
             self.ik.set_q(q0)
-            q, err, _ = self.ik.solve(top_down_pose(pos, yaw))
+            q, err, _ = self.ik.solve(top_down_pose(pos, yaw, self.tool_lean))
         if err > REACH_TOL:
             raise PrimitiveAbort(
                 f"pose out of reach: IK stays {err * 1000:.0f} mm from "
@@ -228,7 +253,7 @@ class ArmSuctionRobot(SuctionRobot):
         self._cmd_q = q
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)  # stay on the unwrapped branch
+        self._cmd_yaw += wrap_angle(self._tool_yaw(ee) - self._cmd_yaw)  # unwrapped branch
 
     def _settle(self) -> None:
         total, done = math.ceil(SETTLE_MAX_TIME / self.dt), 0
@@ -247,7 +272,7 @@ class ArmSuctionRobot(SuctionRobot):
         self._cmd_q = self.data.qpos[self.qpos_adr].copy()
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
-        self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)
+        self._cmd_yaw += wrap_angle(self._tool_yaw(ee) - self._cmd_yaw)
         up = self._cmd_pos.copy()
         up[2] = max(up[2], self.gripper.obstacle_top() + CLEARANCE, MIN_TRAVEL_HEIGHT)
         with contextlib.suppress(PrimitiveAbort):  # an unreachable lift: go home from here
@@ -261,6 +286,81 @@ class ArmSuctionRobot(SuctionRobot):
         ee = self.ee_pose()
         self._cmd_pos = ee.pos.copy()
         self._cmd_yaw += wrap_angle(ee.yaw - self._cmd_yaw)
+
+    def _tool_yaw(self, ee: Pose) -> float:
+        """Yaw of the tip pose ``ee`` with the current lean taken off."""
+        if self.tool_lean is None:
+            return ee.yaw
+        return yaw_of(quat_mul(ee.quat, quat_conj(self.tool_lean)))
+
+    def lean_clear_of(self, tip: np.ndarray, yaw: float) -> np.ndarray | None:
+        """Lean the tool away from solids the arm's links would hit with the tool
+        straight down at ``tip``.
+
+        The arm's pose there (IK near the commanded joints) puts its links, each a
+        capsule (the last a cylinder round the tool axis from 12 cm above the tip),
+        against every solid's own box: the wrist, 24 cm above the tip, and the forearm
+        reach over anything beside a low tip taller than about 19 cm (a tall cabinet
+        over the handle of its bottom drawer, a fridge beside a block on the table).
+        Those within :data:`LEAN_MARGIN` push the tool's upper end away from them,
+        by the first of :data:`LEAN_ANGLES` with which none touches them (the tip
+        stays where it is, the cup meets the surface its low rim first).
+
+        Returns:
+            The lean, a rotation in the frame of the tool turned by ``yaw``
+            (:func:`factask.sim.robots.ik.tool_quat`), or None when straight down is
+            clear, the pose is out of reach, or no lean clears it.
+        """
+        tip = np.asarray(tip, dtype=float)
+        if not self.gripper.furniture.any():
+            return None
+        away = self._link_hits(tip, yaw, None)
+        if away is None or not len(away):
+            return None
+        direction = (away / np.linalg.norm(away, axis=1, keepdims=True)).sum(axis=0)
+        norm = float(np.linalg.norm(direction))
+        if norm < 1e-6:
+            return None
+        n = direction / norm
+        # The axis (z x n) in the yawed tool's frame: turning +z about it leans toward n.
+        c, s = math.cos(yaw), math.sin(yaw)
+        axis = (c * -float(n[1]) + s * float(n[0]), -s * -float(n[1]) + c * float(n[0]), 0.0)
+        for angle in LEAN_ANGLES:
+            lean = quat_from_axis_angle(axis, angle)
+            left = self._link_hits(tip, yaw, lean, margin=0.0)
+            if left is not None and not len(left):
+                return lean
+        return None
+
+    def _link_hits(self, tip: np.ndarray, yaw: float, lean: np.ndarray | None,
+                   margin: float = LEAN_MARGIN) -> np.ndarray | None:
+        """Horizontal vectors (k, 2) from the furniture (fixed solids, drawers: loose
+        objects are pushed aside, as before) to the points of the arm's links that come
+        within ``margin`` of it with the tip at (tip, yaw, lean); None when IK does not
+        reach it."""
+        kept, self.tool_lean = self.tool_lean, lean
+        try:
+            q = self._solve(self._cmd_q, self._cmd_pos, self._cmd_yaw, tip, yaw)
+        except PrimitiveAbort:
+            return None
+        finally:
+            self.tool_lean = kept
+        self.ik.fk(q)
+        ik = self.ik._data
+        ids = self._link_geoms
+        points = (ik.geom_xpos[ids, None, :] + self._link_spans[:, :, None]
+                  * ik.geom_xmat[ids].reshape(-1, 3, 3)[:, None, :, 2]).reshape(-1, 3)
+        radius = np.repeat(self.ik.model.geom_size[ids, 0], LINK_SAMPLES) + margin
+        g, d = self.gripper, self.data
+        solids = g.object_geoms[g.furniture]
+        centre, half = g.local_box_centre[g.furniture], g.local_box_half[g.furniture]
+        rot = d.geom_xmat[solids].reshape(-1, 3, 3)
+        rel = np.einsum("nji,knj->kni", rot, points[:, None, :] - d.geom_xpos[solids])
+        near = np.clip(rel, centre - half, centre + half)
+        away = np.einsum("nij,knj->kni", rot, rel - near)  # world: solid -> link point
+        hit = np.linalg.norm(away, axis=2) <= radius[:, None]
+        flat = away[hit][:, :2]
+        return flat[np.linalg.norm(flat, axis=1) > 1e-6]
 
     def _yaw_plan(self, pick: Pose, place: Pose) -> tuple[float, float]:
         # The last wrist joint turns by (shoulder pan change) - (tool yaw change)

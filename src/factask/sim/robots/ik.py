@@ -15,7 +15,7 @@ import mink
 import mujoco
 import numpy as np
 
-from factask.geometry import Pose, quat_from_yaw, slerp
+from factask.geometry import Pose, quat_from_yaw, quat_mul, slerp
 from factask.sim.robots.arm import HOME_QPOS, build_arm
 from factask.sim.robots.registry import DEFAULT_ARM, DHArm
 from factask.sim.robots.suction import TIP_SITE
@@ -45,9 +45,18 @@ DLS_POS_TOL = 1e-4
 DLS_ROT_TOL = 1e-3
 
 
-def top_down_pose(pos: Sequence[float], yaw: float) -> Pose:
-    """Tip pose with the tool straight down and yaw ``yaw`` (tip frame z is up)."""
-    return Pose(np.asarray(pos, dtype=float), quat_from_yaw(yaw))
+def top_down_pose(pos: Sequence[float], yaw: float, lean: np.ndarray | None = None) -> Pose:
+    """Tip pose with the tool straight down and yaw ``yaw`` (tip frame z is up), then
+    leaned by ``lean`` (:func:`tool_quat`; None: straight down)."""
+    return Pose(np.asarray(pos, dtype=float), tool_quat(yaw, lean))
+
+
+def tool_quat(yaw: float, lean: np.ndarray | None = None) -> np.ndarray:
+    """Orientation (w, x, y, z) of the tip frame: straight down at ``yaw``, then leaned by
+    ``lean``, a rotation in that yawed frame (None: none). The lean turns with the yaw,
+    so an object held by a leaning tool turns about the vertical only, staying level."""
+    down = quat_from_yaw(yaw)
+    return down if lean is None else quat_mul(down, lean)
 
 
 class TopDownIK:
@@ -179,7 +188,8 @@ class TopDownIK:
         return d.site_xpos[self._site].copy()
 
     def solve_near(self, q0: np.ndarray, pos: np.ndarray, yaw: float,
-                   iterations: int = DLS_ITERATIONS) -> tuple[np.ndarray, float]:
+                   iterations: int = DLS_ITERATIONS,
+                   lean: np.ndarray | None = None) -> tuple[np.ndarray, float]:
         """Top-down IK from ``q0`` by damped least squares (Newton steps on the
         pose error); fast, for targets near the pose of ``q0``.
 
@@ -187,6 +197,8 @@ class TopDownIK:
             q0: Start joint angles (the current or the previous waypoint's).
             pos: Tip target position.
             yaw: Tip target yaw (tool straight down).
+            iterations: Newton steps at most.
+            lean: The tool's lean (:func:`tool_quat`); None: straight down.
 
         Returns:
             (joint angles, position error m); :meth:`solve` (mink) is the fallback
@@ -194,7 +206,7 @@ class TopDownIK:
         """
         m, d = self.model, self._data
         target = np.zeros(9)
-        mujoco.mju_quat2Mat(target, quat_from_yaw(yaw))
+        mujoco.mju_quat2Mat(target, tool_quat(yaw, lean))
         rt = target.reshape(3, 3)
         q = np.array(q0, dtype=float)
         goal = np.asarray(pos, dtype=float)

@@ -150,6 +150,9 @@ class SuctionRobot(ABC):
         self._callback_every = DEFAULT_CALLBACK_EVERY
         self._health = HealthWatch(data)
         self._aborted = False
+        #: How the tool leans from straight down during the current primitive, a
+        #: rotation in its yawed frame (None: straight down); see :meth:`lean_clear_of`.
+        self.tool_lean: np.ndarray | None = None
 
     #: How far (m) the tip may end a transfer below its command: a transfer stops
     #: this much higher than the clearance below would allow (none for a mocap).
@@ -188,6 +191,13 @@ class SuctionRobot(ABC):
 
     def _settle(self) -> None:  # noqa: B027 - optional hook, a mocap needs no settling
         """Step until the tip tracks its command (arm); nothing to do for a mocap."""
+
+    def lean_clear_of(self, tip: np.ndarray, yaw: float) -> np.ndarray | None:
+        """How to lean the tool, its tip at ``tip`` turned by ``yaw``, so that the
+        robot's links clear the solids beside it (a handle on a tall cabinet's face):
+        a rotation for :attr:`tool_lean` (:func:`factask.sim.robots.ik.tool_quat`), or
+        None when straight down is clear. The floating cup has no links: always None."""
+        return None
 
     # ----- public API -----
 
@@ -275,6 +285,7 @@ class SuctionRobot(ABC):
         self._callback_every = max(1, callback_every)
         self._health.rebase()
         grasped: int | None = None
+        self.tool_lean = None
         try:
             self._check_health()
             if self._aborted:
@@ -290,6 +301,7 @@ class SuctionRobot(ABC):
             return PrimitiveResult(False, abort.reason, self._steps, grasped)
         finally:
             self._on_step = None
+            self.tool_lean = None
         return PrimitiveResult(True, None, self._steps, grasped)
 
     # ----- the primitive -----
@@ -300,6 +312,9 @@ class SuctionRobot(ABC):
         if self.gripper.held is not None:
             self.gripper.release()
         up = np.array([0.0, 0.0, 1.0])
+        # Lean out of tall furniture beside the pick, and keep the lean to the place so
+        # the held object stays level.
+        self.tool_lean = self.lean_clear_of(pick.pos, pick_yaw)
         # Transfer to just above the pick, then a guarded descent to the first contact.
         self._transfer(self._pick_approach(pick.pos), pick_yaw)
         if self._descend(pick.pos - PICK_OVERSHOOT * up, pick_yaw, held=False):

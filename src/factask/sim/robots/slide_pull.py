@@ -92,6 +92,9 @@ def _run(robot: SuctionRobot, grasp: Pose, to: Pose) -> int:
         robot.gripper.release()
     up = np.array([0.0, 0.0, 1.0])
     yaw = robot._cmd_yaw
+    # A low drawer's handle sits under the rest of its cabinet: an arm leans its
+    # tool out so its wrist clears the cabinet's face (straight down elsewhere).
+    robot.tool_lean = robot.lean_clear_of(grasp.pos, yaw)
     robot._transfer(grasp.pos + APPROACH_HEIGHT * up, yaw)
     if robot._follow(robot._line(grasp.pos - PICK_OVERSHOOT * up, yaw, GUARDED_SPEED),
                      stop=robot.gripper.cup_in_contact):

@@ -181,6 +181,12 @@ class SuctionGripper:
         self.object_geoms = np.flatnonzero(collides & not_robot & (self.geom_root != 0))
         self._aabb_c = model.geom_aabb[self.object_geoms, :3].copy()
         self._aabb_h = model.geom_aabb[self.object_geoms, 3:].copy()
+        #: Each object geom's box in its own frame: centre and half extents (n, 3).
+        self.local_box_centre, self.local_box_half = self._aabb_c, self._aabb_h
+        #: Bool per object geom: part of furniture (fixed, or on a joint in a fixed host:
+        #: a drawer), not of a loose object.
+        self.furniture = np.array([not _is_free_root(model, int(model.body_rootid[b]))
+                                   for b in model.geom_bodyid[self.object_geoms]], dtype=bool)
         #: Colliding geoms that are not the robot's (objects and the static world): what
         #: a guarded move can touch (:meth:`clearance`).
         self.solid_geoms = np.flatnonzero(collides & not_robot)
