@@ -62,10 +62,6 @@ MISREAD: dict[str, tuple[str, ...]] = {
         "cylinder-alignment",),
     "a start the words do not say (the blue cylinder starts on the green stand)": (
         "move-kit-from-zone-to-cylinder",),
-    "the reading does not know shelves yet (issue 38, generation)": (
-        "put-block-on-upper-shelf-level", "put-bowl-on-lower-shelf-level",
-        "move-block-up-a-shelf-level", "put-blocks-on-two-shelf-levels",
-        "put-three-blocks-on-upper-shelf-level", "take-block-off-shelf-into-zone"),
 }
 _WHY = {task: why for why, tasks in MISREAD.items() for task in tasks}
 

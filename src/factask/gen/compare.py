@@ -191,18 +191,19 @@ def _seats(graph: TaskGraph) -> dict[str, str]:
     open", "level 1 of 1, on"), read from the part's start type in
     :data:`~factask.gen.reading.articulated.PART_KINDS`: the top drawer is not the
     bottom one, nor an open drawer a shut one, nor a switch on one off."""
-    seats: dict[str, tuple[str, int, float, bool]] = {}
+    seats: dict[str, tuple[str, int, float, bool, bool]] = {}
     for v in graph.variables:
         spec = PART_KINDS.get(v.kind)
         seat = spec.seat_of(v.initial.model_dump()) if spec and v.initial is not None else None
         if spec is not None and seat is not None:
-            seats[v.name] = (*seat, spec.binary)
-    counts = Counter(host for host, _, _, _ in seats.values())
+            seats[v.name] = (*seat, spec.binary, spec.state_field is None)
+    counts = Counter(host for host, _, _, _, _ in seats.values())
     out: dict[str, str] = {}
-    for name, (host, level, o, binary) in seats.items():
+    for name, (host, level, o, binary, still) in seats.items():
         state = ("on" if o else "off") if binary else \
             "shut" if o == 0 else "open" if o >= 1 else "partly open"
-        out[name] = f"level {level + 1} of {counts[host]}, {state}"
+        # a shelf's level is labelled by its level alone: it never opens
+        out[name] = f"level {level + 1} of {counts[host]}" + ("" if still else f", {state}")
     return out
 
 

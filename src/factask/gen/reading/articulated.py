@@ -19,7 +19,14 @@ from dataclasses import dataclass
 from typing import Any
 
 from factask.library.catalog_articulated import THREE_DRAWERS, TWO_DRAWERS
-from factask.vocabulary.kinds import MAX_DRAWERS, door_size, drawer_size, switch_size
+from factask.vocabulary.kinds import (
+    MAX_DRAWERS,
+    MAX_SHELF_LEVELS,
+    door_size,
+    drawer_size,
+    shelf_level_size,
+    switch_size,
+)
 
 Size = tuple[float, float, float]
 
@@ -37,7 +44,8 @@ class PartKind:
         names: Number of parts -> their level names, the bottom one first ("" for
             a lone part: "the drawer").
         host_sizes: Number of parts -> the host's size (None: its kind's default).
-        part_size: The size of a part, from its host's kind, size and number of parts.
+        part_size: The size of a part, from its host's kind, size, number of parts
+            and its level.
         verbs: Relation -> the verbs that say it ("open", "pull" / "close", "shut",
             "push").
         particles: Relation -> the words after a verb or the part that say it
@@ -65,6 +73,13 @@ class PartKind:
         states_after: Its start words stand only after it ("the stove is on", never
             "the on stove").
         color: The parts' own colour (a switch's button is red), or None: its host's.
+        holds: How a thing the words take "off" / "from" the part starts on it
+            (``on``: a shelf's level is a support), or None: as ``into`` says.
+        word: The token the words name a part by after
+            :mod:`factask.gen.reading.words` has read them (``shelflevel``: "the top
+            shelf", "the lower level of the shelf"), or None: its kind.
+        noun: The noun a description names a part by ("the upper level of the brown
+            shelf"), or None: its kind.
     """
 
     part: str
@@ -74,7 +89,7 @@ class PartKind:
     most: int
     names: dict[int, tuple[str, ...]]
     host_sizes: dict[int, Size | None]
-    part_size: Callable[[Size, int], Size]
+    part_size: Callable[[str, Size, int, int], Size]
     verbs: dict[str, frozenset[str]]
     particles: dict[str, frozenset[str]]
     neutral: frozenset[str]
@@ -83,7 +98,7 @@ class PartKind:
     said: dict[str, str]
     assumed: dict[str, float]
     also: tuple[str, ...] = ()
-    state_field: str = "opening"
+    state_field: str | None = "opening"
     level_field: str | None = "level"
     binary: bool = False
     by_host: bool = False
@@ -91,6 +106,14 @@ class PartKind:
     admits: tuple[str, str] | None = ("open", "closed")
     states_after: bool = False
     color: str | None = None
+    holds: str | None = None
+    word: str | None = None
+    noun: str | None = None
+
+    @property
+    def said_noun(self) -> str:
+        """The noun a description names a part by (``drawer``, ``level``)."""
+        return self.noun or self.part
 
     @property
     def hosts(self) -> tuple[str, ...]:
@@ -103,7 +126,8 @@ class PartKind:
         out: list[tuple[str, Any]] = [("type", self.start), (self.host_field, host)]
         if self.level_field:
             out.append((self.level_field, level))
-        out.append((self.state_field, state > 0 if self.binary else state))
+        if self.state_field:
+            out.append((self.state_field, state > 0 if self.binary else state))
         return tuple(out)
 
     def seat_of(self, start: dict[str, Any]) -> tuple[str, int, float] | None:
@@ -112,7 +136,8 @@ class PartKind:
         if start.get("type") != self.start or self.host_field not in start:
             return None
         level = int(start.get(self.level_field, 0)) if self.level_field else 0
-        return str(start[self.host_field]), level, float(start.get(self.state_field, 0.0))
+        state = float(start.get(self.state_field, 0.0)) if self.state_field else 0.0
+        return str(start[self.host_field]), level, state
 
     def level_name(self, level: int, count: int) -> str:
         """``top``, ``middle``, ``bottom`` ("" for a lone part)."""
@@ -124,7 +149,7 @@ DRAWERS = PartKind(
     most=MAX_DRAWERS,
     names={1: ("",), 2: ("bottom", "top"), 3: ("bottom", "middle", "top")},
     host_sizes={1: None, 2: TWO_DRAWERS, 3: THREE_DRAWERS},
-    part_size=lambda _kind, size, count: drawer_size(size, count),
+    part_size=lambda _kind, size, count, _level: drawer_size(size, count),
     verbs={"open": frozenset({"open", "opens", "pull", "pulls", "unshut"}),
            "closed": frozenset({"close", "closes", "shut", "shuts", "push", "pushes"})},
     particles={"open": frozenset({"out", "open", "up"}),
@@ -141,7 +166,7 @@ DRAWERS = PartKind(
 DOORS = PartKind(
     part="door", host="microwave", start="in_cabinet", host_field="cabinet", most=1,
     names={1: ("",)}, host_sizes={1: None},
-    part_size=lambda _kind, size, _count: door_size(size),
+    part_size=lambda _kind, size, _count, _level: door_size(size),
     verbs={"open": frozenset({"open", "opens", "unshut"}),
            "closed": frozenset({"close", "closes", "shut", "shuts"})},
     particles={"open": frozenset({"open"}), "closed": frozenset({"shut", "closed"})},
@@ -155,7 +180,7 @@ DOORS = PartKind(
 SWITCHES = PartKind(
     part="switch", host="stove", also=("lamp",), start="mounted_on", host_field="host",
     most=1, names={1: ("",)}, host_sizes={1: None},
-    part_size=lambda kind, _size, _count: switch_size(kind),
+    part_size=lambda kind, _size, _count, _level: switch_size(kind),
     verbs={"switched_on": frozenset({"press", "presses", "activate", "ignite"}),
            "switched_off": frozenset({"deactivate", "extinguish"})},
     particles={"switched_on": frozenset({"on"}), "switched_off": frozenset({"off"})},
@@ -164,8 +189,20 @@ SWITCHES = PartKind(
     order={}, said={"switched_on": "turn on", "switched_off": "turn off"},
     assumed={"switched_off": 1.0}, state_field="on", level_field=None, binary=True,
     by_host=True, into=None, admits=None, states_after=True, color="red")
+#: A stepped shelf's levels: fixed supports, named by level ("the top shelf", "the
+#: lower level of the shelf"); things go ``on`` a level and start on it ("take the
+#: block off the upper shelf"); nothing opens them.
+SHELF_LEVELS = PartKind(
+    part="shelf_level", host="shelf", start="in_cabinet", host_field="cabinet",
+    most=MAX_SHELF_LEVELS,
+    names={1: ("",), 2: ("lower", "upper"), 3: ("lower", "middle", "upper")},
+    host_sizes={1: None, 2: None, 3: None},
+    part_size=lambda _kind, size, count, level: shelf_level_size(size, count, level),
+    verbs={}, particles={}, neutral=frozenset(), states={}, order={}, said={}, assumed={},
+    state_field=None, into=None, admits=None, holds="on", word="shelflevel", noun="level")
 #: Part kind -> its table entry: the one place an articulated kind is described.
-PART_KINDS: dict[str, PartKind] = {p.part: p for p in (DRAWERS, DOORS, SWITCHES)}
+PART_KINDS: dict[str, PartKind] = {p.part: p for p in (DRAWERS, DOORS, SWITCHES,
+                                                       SHELF_LEVELS)}
 #: Host kind -> the entry of its parts.
 HOST_KINDS: dict[str, PartKind] = {h: p for p in PART_KINDS.values() for h in p.hosts}
 
@@ -191,4 +228,4 @@ PHRASE_WORDS = (DETERMINERS | LEVEL_WORDS.keys() | ORDINALS.keys() | SIDE_WORDS
 
 
 __all__ = ["DETERMINERS", "DOORS", "DRAWERS", "HOST_KINDS", "LEVEL_WORDS", "ORDINALS", "PART_KINDS",
-           "PHRASE_WORDS", "SIDE_WORDS", "SWITCHES", "PartKind", "Size"]
+           "PHRASE_WORDS", "SHELF_LEVELS", "SIDE_WORDS", "SWITCHES", "PartKind", "Size"]

@@ -61,6 +61,7 @@ class _Furniture:
         # What the words name of each host's parts: its parts in goals or holding movers.
         named = {n for f in graph.factors for n in f.goal.variable_names()}
         named |= {getattr(v.initial, "container", None) for v in graph.variables}
+        named |= {getattr(v.initial, "support", None) for v in graph.variables}
         self.implied = dict.fromkeys(self.counts, 1)
         for part, (host, _, _) in self.seats.items():
             if part in named:
@@ -90,7 +91,7 @@ class _Furniture:
             state = "" if name in self.said or opening == 0 else \
                 "open " if opening >= 1 else "half-open "
             level = self._level(name)
-            words = f"the {state}{level + ' ' if level else ''}{v.kind}"
+            words = f"the {state}{level + ' ' if level else ''}{spec.said_noun}"
             hosts = [u for u in self.graph.variables if u.kind == v.kind and u.name in self.seats]
             several = len({self.seats[u.name][0] for u in hosts}) > 1
             if host not in self.said or several:
@@ -102,7 +103,7 @@ class _Furniture:
             n = self.counts[name]
             if name not in self.said and n > self.implied[name]:
                 words = f"{words} with {_NUMBERS.get(n, str(n))} " \
-                        f"{plural_of(HOST_KINDS[v.kind].part)}"
+                        f"{plural_of(HOST_KINDS[v.kind].said_noun)}"
             self.said.add(name)
             return words
         return noun(v)
@@ -113,12 +114,16 @@ def _goal_words(graph: TaskGraph, name: str, told: _Furniture | None = None) -> 
     goal = f.goal
     told = told or _Furniture(graph)
     inside = [(o, c) for o in goal.objects
-              if (c := getattr(graph.variable(o).initial, "container", None)) in told.seats
+              if (c := getattr(graph.variable(o).initial, "container", None)
+                  or getattr(graph.variable(o).initial, "support", None)) in told.seats
               and c not in goal.variable_names()]
     taken = ""
     if inside and goal.type in ("in_zone", "inside", "on") and len(goal.objects) == 1:
-        # "take the red block out of the open top drawer ... and put it into the zone"
-        taken = f"take {told.noun(inside[0][0])} out of {told.noun(inside[0][1])} and "
+        # "take the red block out of the open top drawer ... and put it into the zone",
+        # "take the blue block off the upper level of the shelf and ..."
+        spec = PART_KINDS[graph.variable(inside[0][1]).kind]
+        taken = f"take {told.noun(inside[0][0])} {'off' if spec.holds else 'out of'} " \
+                f"{told.noun(inside[0][1])} and "
     movers = "it" if taken else " and ".join(told.noun(o) for o in goal.objects)
     anchors = {field: [told.noun(n) for n in goal.anchor_names(field)]
                for field in type(goal).anchor_fields}

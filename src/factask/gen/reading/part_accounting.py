@@ -2,8 +2,8 @@
 (:mod:`factask.gen.reading.accounting` asks here first).
 
 A level word ("top", "middle", "second ... from the top") is read where the graph
-uses a part at that level (a goal names it, something starts in it, or it starts
-open); a side word before a part ("the left drawer") never: parts are stacked; an
+uses a part at that level (a goal names it, something starts in or on it, or it
+starts open); a side word before a part ("the left drawer") never: parts are stacked; an
 ordinal past the most a host holds never ("the fourth drawer"); "half" where a
 part starts partly open; a verb or particle of a part's relation ("push", "pull",
 "back in", "all the way out") where the graph has that relation.
@@ -95,7 +95,8 @@ def _graph_seats(graph: TaskGraph) -> list[tuple[int, int, float]]:
     words are about: a goal names it, something starts in it, or it starts open."""
     out = []
     named = {n for f in graph.factors for n in f.goal.variable_names()}
-    named |= {getattr(v.initial, "container", None) for v in graph.variables}
+    named |= {getattr(v.initial, f, None) for v in graph.variables
+              for f in ("container", "support")}  # "off the top shelf": it starts on it
     seats = {}
     for v in graph.variables:
         spec = PART_KINDS.get(v.kind)

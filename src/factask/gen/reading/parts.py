@@ -313,13 +313,23 @@ def _taken_out(words: Sequence[str], found: Sequence[Mention],
         if w in ("it", "them") and before and (words[i - 1] == "from"
                                                or words[max(i - 2, 0):i] == ["out", "of"]):
             sources.append((replace(before[-1][0], first=i, last=i), before[-1][1]))
+        hosts = [m for m in found if m.kind in spec.hosts]
+        if spec.holds and hosts and kind_of(w)[0] in spec.hosts \
+                and not any(p.host == i for p, _ in seated):
+            # "take the block off the shelf": of a host with one part, on that part
+            f = i
+            while f and (words[f - 1] in DETERMINERS or words[f - 1] in COLOR_NAMES):
+                f -= 1
+            sources.append((Phrase(f, i, host=i),
+                            _host_of(words, i, i, hosts, _positions(words, hosts))))
     for p, host in sources:
         f = p.first
-        if not (f >= 1 and words[f - 1] == "from") and words[max(f - 2, 0):f] != ["out", "of"]:
+        if not (f >= 1 and words[f - 1] in _FROM.get(spec.holds, ("from",))) \
+                and words[max(f - 2, 0):f] not in (["out", "of"], ["off", "of"]):
             continue
         count = total[host.name]
         level = resolve(p, count) if p.level else (0 if count == 1 else None)
-        if level is None or not starts.get((host.name, spec.part, level), 0.0):
+        if level is None or not (spec.holds or starts.get((host.name, spec.part, level), 0.0)):
             continue
         for q in range(f - 2, max(f - 10, -1), -1):
             kind = kind_of(words[q])[0]
@@ -329,9 +339,15 @@ def _taken_out(words: Sequence[str], found: Sequence[Mention],
             objects = [m for m in found if m.kind == kind and colour in (None, m.color)]
             if len(objects) == 1 and not objects[0].start:
                 part = part_name(host, level, count, spec, prefixed)
-                out[objects[0].name] = (("type", "inside"), ("container", part))
+                out[objects[0].name] = (("type", "on"), ("support", part)) if spec.holds \
+                    else (("type", "inside"), ("container", part))
             break
     return out
+
+
+#: Words before a part a thing is taken from, by how the part holds it (a shelf's
+#: level: "off the top shelf").
+_FROM = {"on": ("from", "off")}
 
 
 def resolve(p: Phrase, count: int) -> int | None:
@@ -359,7 +375,7 @@ def _host_and_parts(host: Mention, count: int, spec: PartKind,
         start = spec.start_of(host.name, level, starts.get((host.name, spec.part, level), 0.0))
         out.append(make(part_name(host, level, count, spec, prefixed), spec.part,
                         spec.color or host.color, 1,
-                        size=spec.part_size(host.kind, size, count), start=start))
+                        size=spec.part_size(host.kind, size, count, level), start=start))
     return out
 
 

@@ -40,6 +40,8 @@ KIND_WORDS: dict[str, str] = {
     "holedbox": "holed_box",
     # Objects of no stated shape are blocks: "pack the objects into the container".
     "object": "block", "item": "block", "piece": "block", "shape": "block",
+    # A part named by a word of its own (:attr:`PartKind.word`): "shelflevel".
+    **{p.word: p.part for p in PART_KINDS.values() if p.word},
 }
 
 
@@ -225,7 +227,41 @@ def words_of(text: str) -> list[str]:
         text = re.sub(r"\bbox(es)?\b", r"container\1", text)
     for pattern, kind_word in PHRASES:
         text = pattern.sub(kind_word, text)
+    for spec in PART_KINDS.values():
+        text = _part_words(spec, text) if spec.word else text
     return _resolve_ones(_verb_senses(WORD.findall(text)))
+
+
+#: Nouns a part named by its own word (:attr:`PartKind.word`) is said with after a
+#: level word ("the top shelf", "the lower level", "the upper step").
+PART_NOUNS = ("level", "step", "tier")
+_ORDINALS = "first|second|third|fourth|fifth|sixth"
+
+
+def _part_words(spec: PartKind, text: str) -> str:
+    """A shelf's levels as its part word (:attr:`PartKind.word`), where the words name
+    its host: "the top shelf", "the lower level of the shelf", "the shelf level",
+    "the upper one" after a level (a level word with no level noun elsewhere is no
+    part: "the top level of the pyramid")."""
+    h = spec.host
+    hosts = rf"(?:{h}|{h}s|{h[:-1]}ves)" if h.endswith("f") else rf"(?:{h}|{h}s)"
+    if not re.search(rf"\b{hosts}\b", text):
+        return text
+    nouns = "|".join(PART_NOUNS)
+    level = rf"(?:{_LEVELS}|{_ORDINALS})"
+    w = spec.word
+    text = re.sub(rf"\b{h}\s+(?:{nouns})(s?)\b", rf"{w}\1", text)
+    text = re.sub(rf"\b({level})\s+(?:{h}\s+)?(?:{h}|{nouns})\b(?!\s*'?\s*s\b)", rf"\1 {w}",
+                  text)
+    text = re.sub(rf"\b({level})\s+(?:{h[:-1]}ves|{h}s|(?:{nouns})s)\b", rf"\1 {w}s", text)
+    text = re.sub(rf"\b(?:{nouns})(s?)(?=\s+of\s+(?:the|its|a|this|that)\s+(?:[a-z]+\s+)?"
+                  rf"{hosts}\b)", rf"{w}\1", text)
+    # "a shelf with three levels": its count of parts
+    text = re.sub(rf"\b(with|has|have|having)\s+(\w+)\s+(?:{h}\s+)?(?:{nouns})s\b",
+                  rf"\1 \2 {w}s", text)
+    if w in text:
+        text = re.sub(rf"\b({level})\s+one\b", rf"\1 {w}", text)
+    return text
 
 
 #: Kind words that are also verbs or other words ("three bowls stand in a row",
