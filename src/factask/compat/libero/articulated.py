@@ -40,12 +40,12 @@ from factask.compat.libero.kinds import LiberoKind, LiberoUnsupported, region_ro
 from factask.compat.libero.model import BddlProblem, Predicate
 from factask.vocabulary.kinds import (
     DOOR_THICKNESS,
-    shelf_level_size,
     HANDLE_DEPTH,
     SWITCH_HOSTS,
     door_size,
     drawer_size,
     drawer_travel,
+    shelf_level_size,
     switch_size,
 )
 from factask.vocabulary.names import unique_name
@@ -156,7 +156,8 @@ class ArticulatedParts:
         control strip) or a stepped shelf (its lowest level at its -x side): turned to
         face the robot whatever LIBERO's yaw."""
         spec = self.specs[libero]
-        return bool(spec.drawers) or bool(spec.levels) or libero in self.doors or libero in self.switches
+        return (bool(spec.drawers) or bool(spec.levels) or libero in self.doors
+                or libero in self.switches)
 
     def room_in_front(self, obj: str, size: tuple[float, float, float], x: float) -> float:
         """A cabinet's or microwave's x moved away from the robot, where needed, so that

@@ -97,18 +97,18 @@ TYPES: dict[str, LiberoKind] = {
                            "cabinet's middle drawer slides out over it (the 0.75 map "
                            "puts the rack 4 cm in front of the cabinet)",
                            regions=(("top_region", "top"), ("top_side", "top"))),
-    "wooden_shelf": shelf((0.36, 0.25, 0.20), "brown",
+    "wooden_shelf": shelf((0.44, 0.25, 0.20), "brown",
                           "wooden shelf: LIBERO's three stacked levels (19 cm deep) as "
                           "factask's stepped shelf of three levels rising away from the "
-                          "robot, 36 cm deep so that each step holds a bowl; its top "
+                          "robot, 44 cm deep so that each step (14.3 cm) holds a bowl; its top "
                           "board (top_side) is the top level",
                           levels=(("bottom_region", 0), ("middle_region", 1),
                                   ("top_region", 2), ("top_side", 2))),
-    "wooden_two_layer_shelf": shelf((0.36, 0.35, 0.20), "brown",
+    "wooden_two_layer_shelf": shelf((0.44, 0.35, 0.20), "brown",
                                     "wooden two-layer shelf: its two layers and its top "
                                     "board as factask's stepped shelf of three levels "
                                     "rising away from the robot (bottom layer, top layer, "
-                                    "top board), 36 cm deep so that each step holds a "
+                                    "top board), 44 cm deep so that each step (14.3 cm) holds a "
                                     "bowl",
                                     levels=(("bottom_region", 0), ("top_region", 1),
                                             ("top_side", 2))),
@@ -154,8 +154,10 @@ TYPES: dict[str, LiberoKind] = {
     "white_yellow_mug": can(0.08, 0.09, "yellow", "white and yellow mug (no handle)", "mug"),
     "moka_pot": can(0.08, 0.13, "silver", "moka pot (no handle)", "pot"),
     # ---- books ---------------------------------------------------------------------
-    "black_book": box((0.15, 0.10, 0.03), "black", "black book, lying flat", "book"),
-    "yellow_book": box((0.15, 0.10, 0.03), "yellow", "yellow book, lying flat", "book"),
+    "black_book": box((0.10, 0.15, 0.03), "black", "black book, lying flat, its long side "
+                    "across (y: it fits a shelf's step and the caddy so)", "book"),
+    "yellow_book": box((0.10, 0.15, 0.03), "yellow", "yellow book, lying flat, its long side "
+                    "across (y: it fits a shelf's step and the caddy so)", "book"),
     # ---- food boxes and packs (HOPE) -----------------------------------------------
     "cookies": box((0.14, 0.08, 0.05), "orange", "cookie box, lying flat"),
     "cream_cheese": box((0.075, 0.045, 0.03), "silver", "cream cheese pack"),
