@@ -207,7 +207,7 @@ def container(size: Size, color: str, note: str, inside: tuple[str, ...] = ("con
 
 def fixed_box(size: Size, color: str, note: str, regions: tuple[tuple[str, RegionRole], ...]
               = (("top_side", "top"),), articulation: str = "") -> LiberoKind:
-    """A fixture as a fixed ``box`` (a stove, a rack, a shelf, a microwave): things
+    """A fixture as a fixed ``box`` (a rack, a fridge, a plain microwave): things
     stand on its top; its other regions have the roles given.
 
     Args:
