@@ -62,17 +62,6 @@ MISREAD: dict[str, tuple[str, ...]] = {
         "cylinder-alignment",),
     "a start the words do not say (the blue cylinder starts on the green stand)": (
         "move-kit-from-zone-to-cylinder",),
-    "the reading does not know microwaves, doors and their open and closed yet "
-    "(issue 38, generation)": (
-        "open-microwave", "close-microwave", "open-microwave-and-put-bowl-inside",
-        "put-bowl-in-microwave-and-close-it", "put-bowl-in-open-microwave-and-close-it",
-        "put-mug-in-white-microwave-and-close-it"),
-    "the reading does not know stoves, switches, switched_on and switched_off yet "
-    "(issue 38, generation)": ("turn-on-stove", "turn-off-stove",
-                               "turn-on-stove-and-put-pot-on-it",
-                               "put-block-on-stove-and-turn-it-on",
-                               "turn-off-stove-and-move-pot-to-zone", "turn-on-two-stoves",
-                               "turn-on-lamp", "put-pot-on-stove-and-turn-it-on"),
     "the reading does not know shelves yet (issue 38, generation)": (
         "put-block-on-upper-shelf-level", "put-bowl-on-lower-shelf-level",
         "move-block-up-a-shelf-level", "put-blocks-on-two-shelf-levels",

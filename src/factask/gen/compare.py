@@ -62,10 +62,10 @@ import networkx as nx
 import numpy as np
 from networkx.algorithms.isomorphism import DiGraphMatcher
 
+from factask.gen.reading.articulated import PART_KINDS
 from factask.gen.reading.words import GRADE_WORDS
 from factask.graph.taskgraph import TaskGraph, parse_graph
 from factask.vocabulary.palette import colour_of_word
-from factask.vocabulary.variables import InCabinet
 
 #: Relations that hold object by object: a goal over several objects is one per object.
 PER_OBJECT_RELATIONS = frozenset(["in_zone", "inside", "on"])
@@ -187,16 +187,22 @@ def _instances(graph: TaskGraph, stated: frozenset[str] | None = None, graded: b
 
 
 def _seats(graph: TaskGraph) -> dict[str, str]:
-    """Drawer -> its place in its cabinet and how it starts ("level 3 of 3, open"): the
-    top drawer is not the bottom one, nor an open drawer a shut one."""
-    out: dict[str, str] = {}
-    counts = Counter(v.initial.cabinet for v in graph.variables
-                     if isinstance(v.initial, InCabinet))
+    """Articulated part -> its place in its host and how it starts ("level 3 of 3,
+    open", "level 1 of 1, on"), read from the part's start type in
+    :data:`~factask.gen.reading.articulated.PART_KINDS`: the top drawer is not the
+    bottom one, nor an open drawer a shut one, nor a switch on one off."""
+    seats: dict[str, tuple[str, int, float, bool]] = {}
     for v in graph.variables:
-        if isinstance(v.initial, InCabinet):
-            o = v.initial.opening
-            state = "shut" if o == 0 else "open" if o >= 1 else "partly open"
-            out[v.name] = f"level {v.initial.level + 1} of {counts[v.initial.cabinet]}, {state}"
+        spec = PART_KINDS.get(v.kind)
+        seat = spec.seat_of(v.initial.model_dump()) if spec and v.initial is not None else None
+        if spec is not None and seat is not None:
+            seats[v.name] = (*seat, spec.binary)
+    counts = Counter(host for host, _, _, _ in seats.values())
+    out: dict[str, str] = {}
+    for name, (host, level, o, binary) in seats.items():
+        state = ("on" if o else "off") if binary else \
+            "shut" if o == 0 else "open" if o >= 1 else "partly open"
+        out[name] = f"level {level + 1} of {counts[host]}, {state}"
     return out
 
 

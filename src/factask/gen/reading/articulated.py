@@ -4,22 +4,22 @@ sizes, the verbs and particles of each relation, its start words).
 
 Every reader of articulated furniture (:mod:`factask.gen.reading.parts`: mentions,
 clauses, accounting; :mod:`factask.gen.reading.describe`) reads this table, not a
-kind: a second articulated kind is one more entry in :data:`PART_KINDS`. A
-microwave's door, say: ``PartKind(part="door", host="microwave", start=<its start
-type>, host_field="microwave", most=1, names={1: ("",)}, host_sizes={1: None},
-part_size=<its size rule>, verbs={"open": {"open", "swing"}, "closed": {"close",
-"shut"}}, particles={"open": {"open"}, "closed": {"shut", "closed"}}, ...)``; a
-stove's switch ``verbs={"on": {"turn", "switch"}, ...}`` with the particles "on" /
-"off" and the relations its own.
+kind: an articulated kind is one entry in :data:`PART_KINDS` -- a cabinet's drawers
+(:data:`DRAWERS`: stacked by level, slid ``open`` / ``closed``), a microwave's door
+(:data:`DOORS`: a lone part the words name by its host, "open the microwave"; what
+goes "into the microwave" goes in behind it) and a stove's or lamp's switch
+(:data:`SWITCHES`: ``mounted_on`` its host, ``on`` or off, ``switched_on`` /
+``switched_off``: "turn on the stove", "press the lamp's switch").
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 from factask.library.catalog_articulated import THREE_DRAWERS, TWO_DRAWERS
-from factask.vocabulary.kinds import MAX_DRAWERS, drawer_size
+from factask.vocabulary.kinds import MAX_DRAWERS, door_size, drawer_size, switch_size
 
 Size = tuple[float, float, float]
 
@@ -37,7 +37,7 @@ class PartKind:
         names: Number of parts -> their level names, the bottom one first ("" for
             a lone part: "the drawer").
         host_sizes: Number of parts -> the host's size (None: its kind's default).
-        part_size: The size of a part, from its host's size and number of parts.
+        part_size: The size of a part, from its host's kind, size and number of parts.
         verbs: Relation -> the verbs that say it ("open", "pull" / "close", "shut",
             "push").
         particles: Relation -> the words after a verb or the part that say it
@@ -51,6 +51,20 @@ class PartKind:
         assumed: Relation -> how far a part the words act on so starts where they say
             nothing of its start ("close the drawer": it is open; shut, the goal would
             hold at the start).
+        also: Other host kinds with such a part (a lamp's switch, as a stove's).
+        state_field: The start's field saying how far it starts open (``opening``,
+            ``on``).
+        level_field: The start's field giving the level (None: a lone part).
+        binary: The state is a yes / no (a switch on or off), not a fraction.
+        by_host: The words name the part by its host ("open the microwave", "turn on
+            the stove": its lone part is meant).
+        into: What a put "into" the part goes into: ``part`` (a drawer), ``host`` (a
+            microwave, behind its door), or None (nothing goes into a switch).
+        admits: (the relation that lets things in, the one that shuts them out), or
+            None: a part that starts shut is opened before anything goes in.
+        states_after: Its start words stand only after it ("the stove is on", never
+            "the on stove").
+        color: The parts' own colour (a switch's button is red), or None: its host's.
     """
 
     part: str
@@ -68,6 +82,37 @@ class PartKind:
     order: dict[str, str]
     said: dict[str, str]
     assumed: dict[str, float]
+    also: tuple[str, ...] = ()
+    state_field: str = "opening"
+    level_field: str | None = "level"
+    binary: bool = False
+    by_host: bool = False
+    into: str | None = "part"
+    admits: tuple[str, str] | None = ("open", "closed")
+    states_after: bool = False
+    color: str | None = None
+
+    @property
+    def hosts(self) -> tuple[str, ...]:
+        """Every host kind with such parts, the one made where none is named first."""
+        return (self.host, *self.also)
+
+    def start_of(self, host: str, level: int, state: float) -> tuple[tuple[str, Any], ...]:
+        """A part's start as (field, value) pairs: in ``host`` at ``level``, ``state``
+        open (a fraction; a binary state is on where it is above 0)."""
+        out: list[tuple[str, Any]] = [("type", self.start), (self.host_field, host)]
+        if self.level_field:
+            out.append((self.level_field, level))
+        out.append((self.state_field, state > 0 if self.binary else state))
+        return tuple(out)
+
+    def seat_of(self, start: dict[str, Any]) -> tuple[str, int, float] | None:
+        """(host, level, how far open) of a part's start (``model_dump`` or pairs), or
+        None: not such a start."""
+        if start.get("type") != self.start or self.host_field not in start:
+            return None
+        level = int(start.get(self.level_field, 0)) if self.level_field else 0
+        return str(start[self.host_field]), level, float(start.get(self.state_field, 0.0))
 
     def level_name(self, level: int, count: int) -> str:
         """``top``, ``middle``, ``bottom`` ("" for a lone part)."""
@@ -79,7 +124,7 @@ DRAWERS = PartKind(
     most=MAX_DRAWERS,
     names={1: ("",), 2: ("bottom", "top"), 3: ("bottom", "middle", "top")},
     host_sizes={1: None, 2: TWO_DRAWERS, 3: THREE_DRAWERS},
-    part_size=drawer_size,
+    part_size=lambda _kind, size, count: drawer_size(size, count),
     verbs={"open": frozenset({"open", "opens", "pull", "pulls", "unshut"}),
            "closed": frozenset({"close", "closes", "shut", "shuts", "push", "pushes"})},
     particles={"open": frozenset({"out", "open", "up"}),
@@ -91,10 +136,38 @@ DRAWERS = PartKind(
     said={"open": "open", "closed": "close"},
     assumed={"closed": 1.0},
 )
+#: A microwave's hinged door: one per microwave, named by it ("open the microwave");
+#: what is put "into the microwave" goes in behind it.
+DOORS = PartKind(
+    part="door", host="microwave", start="in_cabinet", host_field="cabinet", most=1,
+    names={1: ("",)}, host_sizes={1: None},
+    part_size=lambda _kind, size, _count: door_size(size),
+    verbs={"open": frozenset({"open", "opens", "unshut"}),
+           "closed": frozenset({"close", "closes", "shut", "shuts"})},
+    particles={"open": frozenset({"open"}), "closed": frozenset({"shut", "closed"})},
+    neutral=frozenset({"swing", "swings"}),
+    states={"open": 1.0, "opened": 1.0, "ajar": 0.5, "half": 0.5, "partly": 0.5,
+            "closed": 0.0, "shut": 0.0},
+    order={}, said={"open": "open", "closed": "close"}, assumed={"closed": 1.0},
+    by_host=True, into="host")
+#: A switchable fixture's switch (a stove's, a lamp's): one per host, named by it
+#: ("turn on the stove", "switch off the lamp") or itself ("press the lamp's switch").
+SWITCHES = PartKind(
+    part="switch", host="stove", also=("lamp",), start="mounted_on", host_field="host",
+    most=1, names={1: ("",)}, host_sizes={1: None},
+    part_size=lambda kind, _size, _count: switch_size(kind),
+    verbs={"switched_on": frozenset({"press", "presses", "activate", "ignite"}),
+           "switched_off": frozenset({"deactivate", "extinguish"})},
+    particles={"switched_on": frozenset({"on"}), "switched_off": frozenset({"off"})},
+    neutral=frozenset({"turn", "turns", "flip", "flips"}),
+    states={"on": 1.0, "off": 0.0},
+    order={}, said={"switched_on": "turn on", "switched_off": "turn off"},
+    assumed={"switched_off": 1.0}, state_field="on", level_field=None, binary=True,
+    by_host=True, into=None, admits=None, states_after=True, color="red")
 #: Part kind -> its table entry: the one place an articulated kind is described.
-PART_KINDS: dict[str, PartKind] = {DRAWERS.part: DRAWERS}
+PART_KINDS: dict[str, PartKind] = {p.part: p for p in (DRAWERS, DOORS, SWITCHES)}
 #: Host kind -> the entry of its parts.
-HOST_KINDS: dict[str, PartKind] = {p.host: p for p in PART_KINDS.values()}
+HOST_KINDS: dict[str, PartKind] = {h: p for p in PART_KINDS.values() for h in p.hosts}
 
 #: Level words -> (counted from: "bottom" / "top", rank, fewest parts it asks).
 LEVEL_WORDS: dict[str, tuple[str, int, int]] = {
@@ -114,8 +187,8 @@ DETERMINERS = frozenset({"the", "a", "an", "its", "their", "this", "that", "each
                          "both", "all", "one", "these", "those", "his", "her"})
 #: Every word that may stand inside a part's phrase, before its kind word.
 PHRASE_WORDS = (DETERMINERS | LEVEL_WORDS.keys() | ORDINALS.keys() | SIDE_WORDS
-                | {w for p in PART_KINDS.values() for w in p.states})
+                | {w for p in PART_KINDS.values() if not p.states_after for w in p.states})
 
 
-__all__ = ["DETERMINERS", "DRAWERS", "HOST_KINDS", "LEVEL_WORDS", "ORDINALS", "PART_KINDS",
-           "PHRASE_WORDS", "SIDE_WORDS", "PartKind", "Size"]
+__all__ = ["DETERMINERS", "DOORS", "DRAWERS", "HOST_KINDS", "LEVEL_WORDS", "ORDINALS", "PART_KINDS",
+           "PHRASE_WORDS", "SIDE_WORDS", "SWITCHES", "PartKind", "Size"]

@@ -47,6 +47,7 @@ from factask.gen.reading.goal_order import (
 from factask.gen.reading.grades import pick_graded
 from factask.gen.reading.mentions import MATCH_AFTER, MOVE_VERBS, Mention
 from factask.gen.reading.orders import PLACES, ordered_by_words
+from factask.gen.reading.part_order import sequence_parts
 from factask.gen.reading.parts import (
     LEVEL_WORDS,
     PART_KINDS,
@@ -55,14 +56,16 @@ from factask.gen.reading.parts import (
     acts_on_pronoun,
     actuation,
     bare_inside,
+    containers_of,
     part_referents,
+    parts_named_by,
     phrase_at,
-    sequence_parts,
+    said_as,
     still_parts,
 )
 from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.selectors import is_selector, selector_before, spell_out, unpicked
-from factask.gen.reading.words import count_of, kind_of, resolve_ones, words_of
+from factask.gen.reading.words import count_of, kind_of, passive_scene, resolve_ones, words_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
 
@@ -83,27 +86,6 @@ STILL_VERBS = frozenset({"leave", "keep", "ignore", "avoid", "skip", "remain", "
 #: Verbs that say how things are, not what to do: "the ball is in the left bowl".
 STATE_VERBS = frozenset({"is", "are", "sits", "sit", "lies", "lie", "starts", "start",
                          "holds", "hold", "rests", "contains", "standing", "was", "were"})
-#: Participles that, after "is" / "are", say how the scene is set, not what to do:
-#: "the pallets are placed in a row", "the blocks are scattered on the table".
-SCENE_PARTICIPLES = frozenset({"placed", "arranged", "scattered", "positioned", "located",
-                               "lined", "laid", "spread", "distributed", "situated",
-                               "stacked", "set", "put", "kept", "stored", "lying"})
-#: Words that make such a phrase a goal after all: "the blocks should be placed ...".
-_MODALS = frozenset({"should", "must", "need", "needs", "to", "will", "shall", "has", "have"})
-
-
-def _passive_scene(words: list[str]) -> bool:
-    """Whether a part describes the scene in the passive ("the pallets are placed in a
-    row"): a state verb right before a scene participle, no modal in the part."""
-    if _MODALS & set(words):
-        return False
-    return any(w in ("is", "are", "was", "were") and k + 1 < len(words)
-               and (words[k + 1] in SCENE_PARTICIPLES or (
-                   words[k + 1] in ("randomly", "already", "all", "initially")
-                   and k + 2 < len(words) and words[k + 2] in SCENE_PARTICIPLES))
-               for k, w in enumerate(words))
-
-
 #: Words that begin a part that comes first: "first put ...".
 _FIRST = frozenset({"first", "firstly", "start"})
 #: Prepositions that make the phrase after them an anchor, by the relation they ask.
@@ -123,7 +105,8 @@ _LEAD = frozenset({"the", "a", "an", "its", "their", "each", "every", "one", "ow
                    "smaller", "square", "round", "brown", "marked", "target", "specified",
                    "designated", "empty", "open", "flat", "tall", "short", "wooden",
                    "middle", "center", "centre", "different", "separate"}) | MATCH_AFTER \
-    | LEVEL_WORDS.keys() | {w for p in PART_KINDS.values() for w in p.states}
+    | LEVEL_WORDS.keys() | {w for p in PART_KINDS.values() if not p.states_after
+                           for w in p.states}
 #: Words that refer back to the objects moved last.
 PRONOUNS = frozenset({"them", "they", "it", "those", "these", "both"})
 #: Shape words: the arrangement they name.
@@ -357,7 +340,7 @@ def _read(proposal: str, found: tuple[Mention, ...]
             and not acting
         # "The red block sits on top of the yellow cylinder": the scene, no goal.
         described = (bool(STATE_VERBS & verbs) and not (ACTION_VERBS | SHAPES.keys()) & verbs
-                     and not acting) or _passive_scene(words)
+                     and not acting) or passive_scene(words)
         described_subject = False
         negated = False
         for i, w in enumerate(words):
@@ -375,11 +358,14 @@ def _read(proposal: str, found: tuple[Mention, ...]
             elif kind_of(w)[0] is not None:
                 refs = _referents(words, i, found)
             elif pending and last_part and bare_inside(words, i):
-                refs, bare = list(last_part), True  # "open the drawer and put the bowl inside"
+                # "open the drawer and put the bowl inside"; a microwave's door: into it
+                refs, bare = containers_of(last_part, found), True
             else:
                 continue
             if not refs:
                 continue
+            if named_parts := parts_named_by(refs, found):
+                last_part = named_parts  # "put the mug in the microwave and close it"
             prep = "in" if bare else _anchor_prep(words, i)
             if negated or idle or _among(words, i) or (
                     _source(words, i) and not any(m.movable for m in refs)):
@@ -392,8 +378,11 @@ def _read(proposal: str, found: tuple[Mention, ...]
                 if relation is not None:  # "open the top drawer", "and close it"
                     part_goals.append(ReadGoal(relation, tuple(m.name for m in refs), None,
                                                False, step))
-                    last = refs  # "open the drawer and put the block inside it"
+                    # "open the drawer (the microwave) and put the block inside it"
+                    last = said_as(refs, found)
                     continue
+                if described:  # "the microwave is open; put the bowl inside it"
+                    last = said_as(refs, found)
             movers = [m for m in pending if m not in refs]
             if described:
                 # The scene's objects: kept still unless a goal uses them; what the part

@@ -51,10 +51,10 @@ class _Furniture:
         self.seats: dict[str, tuple[str, int, float]] = {}  # part -> host, level, opening
         for v in graph.variables:
             spec = PART_KINDS.get(v.kind)
-            start = v.initial.model_dump() if spec and v.initial is not None else {}
-            if spec and start.get("type") == spec.start:
-                self.seats[v.name] = (start[spec.host_field], int(start["level"]),
-                                      float(start.get("opening", 0.0)))
+            seat = spec.seat_of(v.initial.model_dump()) if spec and v.initial is not None \
+                else None
+            if seat is not None:
+                self.seats[v.name] = seat
         self.counts: dict[str, int] = {}
         for host, _, _ in self.seats.values():
             self.counts[host] = self.counts.get(host, 0) + 1
@@ -77,6 +77,14 @@ class _Furniture:
     def noun(self, name: str) -> str:
         """The variable ``name`` as the words name it."""
         v = self.graph.variable(name)
+        spec = PART_KINDS.get(v.kind)
+        if name in self.seats and spec is not None and spec.by_host:
+            # "the open gray microwave", "the gray stove": a lone part by its host
+            _, _, opening = self.seats[name]
+            state = "" if name in self.said or opening == 0 or spec.states_after else \
+                "open " if opening >= 1 else "half-open "
+            self.said.add(name)
+            return f"the {state}{self.noun(self.seats[name][0]).removeprefix('the ')}"
         if name in self.seats:
             host, _, opening = self.seats[name]
             state = "" if name in self.said or opening == 0 else \

@@ -278,7 +278,7 @@ def mentions(proposal: str) -> list[Mention]:
     out = select_members(desc, out, MAX_SPLIT_MENTIONS)  # "the second zone": its members
     out = distribute(desc, out, MAX_SPLIT_MENTIONS)  # "in each zone": a share each
     from factask.gen.reading.parts import seat_parts  # parts reads Mention: no cycle
-    return seat_parts(words, out)  # "the top drawer of the cabinet": a drawer of three
+    return seat_parts(words, out, MAX_SPLIT_MENTIONS)  # "the top drawer": a drawer of three
 
 
 def colour_matched(text: str) -> bool:

@@ -96,16 +96,16 @@ def _graph_seats(graph: TaskGraph) -> list[tuple[int, int, float]]:
     out = []
     named = {n for f in graph.factors for n in f.goal.variable_names()}
     named |= {getattr(v.initial, "container", None) for v in graph.variables}
+    seats = {}
     for v in graph.variables:
         spec = PART_KINDS.get(v.kind)
-        start = v.initial.model_dump() if v.initial is not None else {}
-        if spec is None or start.get("type") != spec.start:
-            continue
-        host = start[spec.host_field]
-        n = sum(1 for u in graph.variables if u.initial is not None
-                and u.initial.model_dump().get(spec.host_field) == host)
-        if v.name in named or start.get("opening"):
-            out.append((int(start["level"]), n, float(start.get("opening", 0.0))))
+        seat = spec.seat_of(v.initial.model_dump()) if spec and v.initial is not None else None
+        if seat is not None:
+            seats[v.name] = seat
+    for name, (host, level, opening) in seats.items():
+        n = sum(1 for h, _, _ in seats.values() if h == host)
+        if name in named or opening:
+            out.append((level, n, opening))
     return out
 
 

@@ -43,7 +43,6 @@ from factask.gen.reading.articulated import (
     PartKind,
     Size,
 )
-from factask.gen.reading.read_goal import ReadGoal
 from factask.gen.reading.words import count_of, kind_of
 from factask.vocabulary.kinds import kind_spec
 from factask.vocabulary.palette import COLOR_NAMES
@@ -136,7 +135,7 @@ def phrase_at(words: Sequence[str], i: int) -> Phrase:
     # "a cabinet with three drawers", "the cabinet has two drawers": a count, no part.
     stated = count > 0 and first >= 2 and words[first - 1] in ("with", "has", "have",
                                                                 "having", "of") \
-        and kind_of(words[first - 2])[0] == spec.host
+        and kind_of(words[first - 2])[0] in spec.hosts
     k = i + 1
     if level and words[k:k + 3] in (["from", "the", "top"], ["from", "the", "bottom"]):
         level = ("top" if words[k + 2] == "top" else "bottom", level[1])
@@ -146,9 +145,9 @@ def phrase_at(words: Sequence[str], i: int) -> Phrase:
         h = k + 1
         while h < len(words) and (words[h] in DETERMINERS or words[h] in COLOR_NAMES):
             h += 1
-        if h < len(words) and kind_of(words[h])[0] == spec.host:
+        if h < len(words) and kind_of(words[h])[0] in spec.hosts:
             host, k = h, h + 1
-    if first >= 2 and words[first - 1] == "s" and kind_of(words[first - 2])[0] == spec.host:
+    if first >= 2 and words[first - 1] == "s" and kind_of(words[first - 2])[0] in spec.hosts:
         host = first - 2  # "the cabinet's top drawer": the phrase starts at "the"
         while first - 3 >= 0 and (words[first - 3] in DETERMINERS
                                   or words[first - 3] in COLOR_NAMES):
@@ -181,7 +180,8 @@ def _host_of(words: Sequence[str], at: int | None, i: int, hosts: list[Mention],
     it, else the first."""
     if at is not None:
         colour = words[at - 1] if at and words[at - 1] in COLOR_NAMES else None
-        same = [m for m in hosts if colour is None or m.color == colour]
+        same = [m for m in hosts if m.kind == kind_of(words[at])[0]
+                and (colour is None or m.color == colour)]
         if same:
             return same[0]
     before = [m for m in hosts if positions.get(m.name, len(words)) < i]
@@ -198,7 +198,8 @@ def _positions(words: Sequence[str], hosts: list[Mention]) -> dict[str, int]:
     return out
 
 
-def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
+def seat_parts(words: Sequence[str], found: Sequence[Mention],
+               most: int | None = None) -> list[Mention]:
     """``found`` with its parts seated: each host with as many parts as the words ask,
     every part a mention of its own (one per level, named by it: ``top_drawer``) that
     starts in its host at its level, as open as the words say.
@@ -210,6 +211,8 @@ def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
     Args:
         words: The proposal's words (:func:`factask.gen.reading.words.words_of`).
         found: Its mentions.
+        most: The most mentions there may be (None: any number): the hosts named
+            last are left out, with their parts, until the rest fit.
 
     Returns:
         The mentions, each host followed by its parts.
@@ -219,11 +222,18 @@ def seat_parts(words: Sequence[str], found: Sequence[Mention]) -> list[Mention]:
     out = list(found)
     for spec in PART_KINDS.values():
         out = _seat(words, out, spec)
+    while most is not None and len(out) > most:
+        host = next((m for m in reversed(out) if m.kind in HOST_KINDS), None)
+        if host is None:
+            break
+        gone = {host.name} | {m.name for m in out if (s := seated(m)) and s[0] == host.name}
+        out = [m if not {v for _, v in m.start} & gone else replace(m, start=())  # type: ignore[type-var]
+               for m in out if m.name not in gone]
     return out
 
 
 def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Mention]:
-    hosts = [m for m in found if m.kind == spec.host]
+    hosts = [m for m in found if m.kind in spec.hosts]
     phrases = [(i, phrase_at(words, i)) for i, w in enumerate(words) if is_part(w) is spec]
     if not hosts and not phrases:
         return found
@@ -232,7 +242,7 @@ def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Me
         hosts = [make(spec.host, spec.host, None, 1)]
     positions = _positions(words, hosts)
     counts = {m.name: max([_host_count(words, k, spec) for k in range(len(words))
-                           if kind_of(words[k])[0] == spec.host and _host_of(
+                           if kind_of(words[k])[0] in spec.hosts and _host_of(
                                words, k, k, hosts, positions) is m] or [0]) for m in hosts}
     fewest = dict.fromkeys(counts, 1)
     starts: dict[tuple[str, str, int], float] = {}
@@ -277,7 +287,7 @@ def _seat(words: Sequence[str], found: list[Mention], spec: PartKind) -> list[Me
                     done.add(host.name)
         if m is None or m.kind == spec.part:
             continue
-        if m.kind == spec.host:
+        if m.kind in spec.hosts:
             if m.name not in done:
                 out.extend(_host_and_parts(m, total[m.name], spec, starts, len(hosts) > 1,
                                            make))
@@ -343,22 +353,21 @@ def part_name(host: Mention, level: int, count: int, spec: PartKind, prefixed: b
 def _host_and_parts(host: Mention, count: int, spec: PartKind,
                     starts: dict[tuple[str, str, int], float], prefixed: bool,
                     make: Callable[..., Mention]) -> list[Mention]:
-    size = spec.host_sizes.get(count) or host.size or kind_spec(spec.host).default_size
+    size = spec.host_sizes.get(count) or host.size or kind_spec(host.kind).default_size
     out = [replace(host, size=spec.host_sizes.get(count) or host.size)]  # type: ignore[type-var]
     for level in range(count):
-        start = (("type", spec.start), (spec.host_field, host.name), ("level", level),
-                 ("opening", starts.get((host.name, spec.part, level), 0.0)))
+        start = spec.start_of(host.name, level, starts.get((host.name, spec.part, level), 0.0))
         out.append(make(part_name(host, level, count, spec, prefixed), spec.part,
-                        host.color, 1, size=spec.part_size(size, count), start=start))
+                        spec.color or host.color, 1,
+                        size=spec.part_size(host.kind, size, count), start=start))
     return out
 
 
-def _seated(m: Mention) -> tuple[str, int] | None:
-    start = dict(m.start)
+def seated(m: Mention) -> tuple[str, int] | None:
+    """(host, level) of a seated part's mention, or None: not a seated part."""
     spec = PART_KINDS.get(m.kind)
-    if spec is None or spec.host_field not in start:
-        return None
-    return str(start[spec.host_field]), int(start["level"])
+    seat = spec.seat_of(dict(m.start)) if spec else None
+    return (seat[0], seat[1]) if seat else None
 
 
 def part_referents(words: Sequence[str], i: int, found: Sequence[Mention]) -> list[Mention]:
@@ -375,15 +384,15 @@ def part_referents(words: Sequence[str], i: int, found: Sequence[Mention]) -> li
     p = phrase_at(words, i)
     if spec is None or p.stated or p.unplaced:
         return []
-    hosts = [m for m in found if m.kind == spec.host]
+    hosts = [m for m in found if m.kind in spec.hosts]
     if not hosts:
         return []
     host = _host_of(words, p.host, i, hosts, _positions(words, hosts))
-    parts = [m for m in found if m.kind == spec.part and (s := _seated(m)) and s[0] == host.name]
+    parts = [m for m in found if m.kind == spec.part and (s := seated(m)) and s[0] == host.name]
     if p.level is None:
         return parts if p.plural or len(parts) == 1 else []
     level = resolve(p, len(parts))
-    return [m for m in parts if (s := _seated(m)) and s[1] == level]
+    return [m for m in parts if (s := seated(m)) and s[1] == level]
 
 
 def actuation(words: Sequence[str], first: int, last: int) -> str | None:
@@ -393,9 +402,13 @@ def actuation(words: Sequence[str], first: int, last: int) -> str | None:
     j, particle = first - 1, None
     if j >= 1 and words[j] in PARTICLES and words[j - 1] in ALL_VERBS | NEUTRAL_VERBS:
         particle, j = words[j], j - 1  # "pull out the drawer", "open up the drawer"
-    if j >= 1 and words[j] in ("and", "or") and is_part(words[j - 1]):
-        p = phrase_at(words, j - 1)  # "open the bottom drawer and the top drawer"
-        return actuation(words, p.first, p.last)
+    if j >= 1 and words[j] in ("and", "or"):
+        # "open the bottom drawer and the top drawer", "the switch of the stove and ..."
+        before = next((k for k in range(j - 1, max(j - 8, -1), -1) if is_part(words[k])
+                       and phrase_at(words, k).last == j - 1), None)
+        if before is not None:
+            p = phrase_at(words, before)
+            return actuation(words, p.first, p.last)
     verb = words[j] if j >= 0 else None
     if verb not in ALL_VERBS and verb not in NEUTRAL_VERBS:
         return None
@@ -454,91 +467,43 @@ def bare_inside(words: Sequence[str], i: int) -> bool:
     return nxt is None or nxt in ("and", "then", "too", "as", "well", "first", "after")
 
 
-def sequence_parts(goals: list[ReadGoal], found: Sequence[Mention]) -> list[ReadGoal]:
-    """Goals renumbered so that two goals of one step that act on the same part (slide it,
-    or put something in it) follow the words' order: "put the block in the drawer and
-    close it" puts first, then closes."""
-    kinds = {m.name: m.kind for m in found}
-    goals = _in_reach_order(_opened_first(goals, found), found)
-    ordered = _ordered_actions(found)
-
-    held = {m.name: v for m in found for k, v in m.start if k == "container"}
-
-    def touched(g: ReadGoal) -> set[str]:
-        names = {*g.objects, *([g.anchor] if g.anchor else [])}
-        names |= {held[n] for n in g.objects if n in held}  # taken out of a drawer
-        return {n for n in names if kinds.get(n) in PART_KINDS}
-
-    out: list[ReadGoal] = []
-    step, old, group, done = -1, None, set(), set()
-    for g in goals:
-        parts = touched(g)
-        # "open both drawers": one after the other, as the table orders them
-        acts = {(ordered[n], g.relation) for n in g.objects if n in ordered}
-        if g.step != old or parts & group or acts & done:
-            step, group, done = step + 1, set(), set()
-        old = g.step
-        group |= parts
-        done |= acts
-        out.append(replace(g, step=step))
-    return out
-
-
-def _ordered_actions(found: Sequence[Mention]) -> dict[str, str]:
-    """Part -> its host, for the parts of a kind whose relations the table orders."""
-    return {m.name: seat[0] for m in found if (seat := _seated(m))
-            and PART_KINDS[m.kind].order}
-
-
-def _in_reach_order(goals: list[ReadGoal], found: Sequence[Mention]) -> list[ReadGoal]:
-    """``goals`` with each goal that acts on several parts split into one per part, and
-    the goals of one step that do an ordered relation to parts of one host put in the
-    table's order (:attr:`~factask.gen.reading.articulated.PartKind.order`): "open the
-    top and bottom drawers" opens the bottom one first."""
+def containers_of(parts: Sequence[Mention], found: Sequence[Mention]) -> list[Mention]:
+    """What things are put into where the words put them into ``parts`` (the table's
+    ``into``): a drawer itself, a door's microwave; none for a switch."""
     by_name = {m.name: m for m in found}
-    seats = {n: s for n, m in by_name.items() if (s := _seated(m))}
-
-    def order_of(g: ReadGoal) -> str | None:
-        kinds = {by_name[n].kind for n in g.objects if n in seats}
-        if len(kinds) != 1 or len(kinds | {by_name[n].kind for n in g.objects}) != 1:
-            return None
-        return PART_KINDS[kinds.pop()].order.get(g.relation)
-
-    split: list[ReadGoal] = []
-    for g in goals:
-        if order_of(g) and len(g.objects) > 1:
-            split.extend(replace(g, objects=(n,)) for n in g.objects)
-        else:
-            split.append(g)
-    out = list(split)
-    runs: dict[tuple[int, str, str], list[int]] = {}
-    for k, g in enumerate(split):
-        if order_of(g) is not None:
-            runs.setdefault((g.step, g.relation, seats[g.objects[0]][0]), []).append(k)
-    for places in runs.values():
-        members = [split[k] for k in places]
-        up = order_of(members[0]) == "up"
-        members.sort(key=lambda g: seats[g.objects[0]][1], reverse=not up)
-        for k, g in zip(places, members, strict=True):
-            out[k] = g
+    out: list[Mention] = []
+    for m in parts:
+        spec = PART_KINDS.get(m.kind)
+        seat = seated(m)
+        into = m if spec and spec.into == "part" else \
+            by_name.get(seat[0]) if spec and spec.into == "host" and seat else None
+        if into is not None and into not in out:
+            out.append(into)
     return out
 
 
-def _opened_first(goals: list[ReadGoal], found: Sequence[Mention]) -> list[ReadGoal]:
-    """``goals`` with an ``open`` goal before each goal that puts something into a part
-    that starts shut and that no goal before opens: nothing goes into a shut drawer
-    ("put the block in the drawer and close it": open it, put, close)."""
-    shut = {m.name for m in found if m.kind in PART_KINDS and dict(m.start).get("opening") == 0}
-    out: list[ReadGoal] = []
-    for g in goals:
-        if g.relation == "inside" and g.anchor in shut:
-            out.append(ReadGoal("open", (g.anchor,), None, False, g.step))
-        out.append(g)
-        if g.relation in ("inside", "open"):
-            shut -= {g.anchor, *g.objects}
-        elif g.relation == "closed":
-            shut |= set(g.objects)
+def said_as(parts: Sequence[Mention], found: Sequence[Mention]) -> list[Mention]:
+    """What the words named for ``parts``: the host of a part named by it ("turn on
+    the stove and put the pot on it": the stove), else the parts."""
+    by_name = {m.name: m for m in found}
+    out: list[Mention] = []
+    for m in parts:
+        spec = PART_KINDS.get(m.kind)
+        seat = seated(m)
+        said = by_name.get(seat[0]) if spec and spec.by_host and seat else m
+        if said is not None and said not in out:
+            out.append(said)
     return out
+
+
+def parts_named_by(refs: Sequence[Mention], found: Sequence[Mention]) -> list[Mention]:
+    """The parts that hosts named by their part stand for ("put the mug into the
+    microwave and close it": its door), or none: ``refs`` are not all such hosts."""
+    specs = [HOST_KINDS.get(m.kind) for m in refs]
+    if not refs or not all(s is not None and s.by_host for s in specs):
+        return []
+    names = {m.name for m in refs}
+    return [m for m in found if (s := seated(m)) and s[0] in names]
 
 
 def still_parts(found: Sequence[Mention]) -> set[str]:
@@ -551,9 +516,9 @@ def with_hosts(used: set[str], found: Sequence[Mention]) -> set[str]:
     without its host, nor a host without all its parts."""
     names = {m.name for m in found}
     used = used | {v for m in found if m.name in used for _, v in m.start if v in names}
-    hosts = {s[0] for m in found if m.name in used and (s := _seated(m))}
+    hosts = {s[0] for m in found if m.name in used and (s := seated(m))}
     hosts |= {m.name for m in found if m.name in used and m.kind in HOST_KINDS}
-    return used | hosts | {m.name for m in found if (s := _seated(m)) and s[0] in hosts}
+    return used | hosts | {m.name for m in found if (s := seated(m)) and s[0] in hosts}
 
 
 __all__ = [
@@ -571,13 +536,16 @@ __all__ = [
     "acts_on_pronoun",
     "actuation",
     "bare_inside",
+    "containers_of",
     "is_part",
     "part_name",
     "part_referents",
+    "parts_named_by",
     "phrase_at",
     "resolve",
+    "said_as",
     "seat_parts",
-    "sequence_parts",
+    "seated",
     "still_parts",
     "with_hosts",
 ]

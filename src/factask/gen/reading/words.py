@@ -13,8 +13,9 @@ same words.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
-from factask.gen.reading.articulated import LEVEL_WORDS, PART_KINDS
+from factask.gen.reading.articulated import LEVEL_WORDS, PART_KINDS, PartKind
 from factask.vocabulary.kinds import ASSET_KINDS
 from factask.vocabulary.palette import COLOR_NAMES
 
@@ -28,6 +29,7 @@ KIND_WORDS: dict[str, str] = {
     "package": "box", "parcel": "box", "disk": "cylinder", "disc": "cylinder",
     "puck": "cylinder", "peg": "cylinder", "rod": "cylinder", "dish": "bowl",
     "pot": "bowl", "orb": "ball", "pad": "zone", "mat": "zone", "platform": "pallet",
+    "mug": "cylinder", "button": "switch",
     "plate": "stand", "hole": "fixture", "slot": "fixture", "socket": "fixture",
     "stripe": "line", "strip": "line", "cable": "rope", "cord": "rope", "chain": "rope",
     "heap": "pile", "board": "kit", "silhouette": "fixture",
@@ -59,7 +61,7 @@ NUMBER_WORDS: dict[str, int] = {
 #: Phrases read as one kind word before the words are split: an L-shaped piece is an
 #: ell (not an ell and a block), a pile of small blocks one pile (its pieces are the
 #: pile, not objects of their own).
-PHRASES: tuple[tuple[re.Pattern[str], str], ...] = (
+PHRASES: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ...] = (
     # An L-shaped marker on the table is a corner; "the corners of the pallet" are places
     # on it, not objects.
     (re.compile(r"\b(?:l|ell)\s*shaped?\s+(?:marker|mark|outline|corner)(s?)\b"), r"corner\1"),
@@ -99,6 +101,50 @@ _LEVELS = "|".join(LEVEL_WORDS)
 _PARTS = "|".join(PART_KINDS)
 PHRASES = (*PHRASES, (re.compile(rf"\b({_LEVELS})\s+(and|or)\s+(?:the\s+)?({_LEVELS})\s+"
                                  rf"({_PARTS})s?\b"), r"\1 \4 \2 the \3 \4"))
+
+
+def _by_host(spec: PartKind) -> tuple[tuple[re.Pattern[str], Callable[[re.Match[str]], str]
+                                             | str], ...]:
+    """Phrases that name a lone part by its host (:attr:`PartKind.by_host`), read as the
+    part of that host: "open the white microwave" -> "open the door of the white
+    microwave", "turn the stove on", "the microwave door", "the stove is on" (its start
+    words after it: "the switch of the stove is on")."""
+    hosts = "|".join(spec.hosts)
+    verbs = "|".join(sorted(w for ws in spec.verbs.values() for w in ws) + sorted(spec.neutral))
+    particles = "|".join(sorted(w for ws in spec.particles.values() for w in ws))
+    colours = "|".join(COLOR_NAMES)
+    states = "|".join(spec.states)
+
+    def acted(m: re.Match[str]) -> str:
+        said = m.group("mods").split()
+        state = " ".join(w for w in said if w in spec.states)
+        colour = " ".join(w for w in said if w not in spec.states)
+        return " ".join(w for w in (m.group("verb"), m.group("det"), state, spec.part, "of",
+                                    "the", colour, m.group("host")) if w)
+
+    return (
+        (re.compile(rf"\b((?:(?:{colours})\s+)*)({hosts})\s+{spec.part}\b"),
+         rf"{spec.part} of the \1\2"),
+        (re.compile(rf"\b(?P<verb>(?:{verbs})(?:\s+(?:{particles}))?)\s+"
+                    r"(?P<det>the|its|their|this|that|your)\s+"
+                    rf"(?P<mods>(?:(?:{colours}|{states})\s+)*)(?P<host>{hosts})\b"
+                    rf"(?!\s*'?\s*s\b)"), acted),
+        # "turn on the stove and the lamp": the part of each
+        (re.compile(rf"\b({spec.part}\s+of\s+the\s+(?:(?:{colours})\s+)*(?:{hosts}))\s+"
+                    rf"(and|or)\s+(the|its)\s+((?:(?:{colours})\s+)*)({hosts})\b"
+                    r"(?!\s*'?\s*s\b)"), rf"\1 \2 \3 {spec.part} of the \4\5"),
+        (re.compile(rf"\b(the|its)\s+((?:(?:{colours})\s+)*)({hosts})\s+(is|was|starts)\s+"
+                    rf"(?=(?:{states})\b)"), rf"\1 {spec.part} of the \2\3 that is "),
+    )
+
+
+#: "switch on the lamp", "switch it off": the verb, not the kind word.
+PHRASES = (*PHRASES,
+           (re.compile(r"\bswitch(es)?(?=\s+(?:on|off|it|them)\b|\s+(?:the|its)\s+(?:\w+\s+)"
+                       r"{0,2}?(?:stove|lamp|microwave)s?\s+(?:on|off)\b)"), r"turn\1"),
+           (re.compile(r"\b(?:stove\s*top|cooktop|hob|burner)(s?)\b"), r"stove\1"),
+           (re.compile(r"\bstove(s?)\s+stove(s?)\b"), r"stove\1"),
+           *(rule for spec in PART_KINDS.values() if spec.by_host for rule in _by_host(spec)))
 
 #: Words that may stand between a count and its kind word without changing what is
 #: counted: "four differently colored blocks", "three small matching cubes".
@@ -284,6 +330,41 @@ def count_of(word: str) -> int:
     return int(word) if word.isdigit() else NUMBER_WORDS.get(word, 0)
 
 
-__all__ = ["DECK_SIZE", "DECK_WORDS", "GRADE_WORDS", "KIND_WORDS", "MODIFIERS", "NUMBER_WORDS",
-           "OBJECT_LEAD", "PHRASES", "WORD", "count_of", "kind_of", "plural_of", "resolve_ones",
-           "words_of"]
+#: Participles that, after "is" / "are", say how the scene is set, not what to do:
+#: "the pallets are placed in a row", "the blocks are scattered on the table".
+SCENE_PARTICIPLES = frozenset({"placed", "arranged", "scattered", "positioned", "located",
+                               "lined", "laid", "spread", "distributed", "situated",
+                               "stacked", "set", "put", "kept", "stored", "lying"})
+#: Words that make such a phrase a goal after all: "the blocks should be placed ...".
+_MODALS = frozenset({"should", "must", "need", "needs", "to", "will", "shall", "has", "have"})
+
+
+def passive_scene(words: list[str]) -> bool:
+    """Whether a part describes the scene in the passive ("the pallets are placed in a
+    row"): a state verb right before a scene participle, no modal in the part."""
+    if _MODALS & set(words):
+        return False
+    return any(w in ("is", "are", "was", "were") and k + 1 < len(words)
+               and (words[k + 1] in SCENE_PARTICIPLES or (
+                   words[k + 1] in ("randomly", "already", "all", "initially")
+                   and k + 2 < len(words) and words[k + 2] in SCENE_PARTICIPLES))
+               for k, w in enumerate(words))
+
+
+__all__ = [
+    "DECK_SIZE",
+    "DECK_WORDS",
+    "GRADE_WORDS",
+    "KIND_WORDS",
+    "MODIFIERS",
+    "NUMBER_WORDS",
+    "OBJECT_LEAD",
+    "PHRASES",
+    "WORD",
+    "count_of",
+    "kind_of",
+    "passive_scene",
+    "plural_of",
+    "resolve_ones",
+    "words_of",
+]
