@@ -28,6 +28,7 @@ from factask.compat.libero.kinds import (
     region_role,
 )
 from factask.vocabulary.kinds import kind_spec, shape_problem
+from factask.vocabulary.world import WORKSPACE_X
 
 OWN = {p.stem: p for p in sorted((Path(__file__).parent / "data" / "libero_own")
                                  .glob("*.bddl"))}
@@ -59,8 +60,6 @@ REFUSED = {
                                                     "hangs only on a microwave")),
     "refused_turn_on_the_faucet": (LiberoUnsupported, ("faucet", "push buttons",
                                                        "no faucet kind")),
-    "refused_put_the_book_on_the_bottom_layer_of_the_shelf": (
-        LiberoUnsupported, ("bottom_region", "under the board above", "cannot reach")),
     "refused_put_the_bowl_against_the_side_of_the_storage_box": (
         LiberoUnsupported, ("left_side", "side face")),
     "refused_put_the_pot_in_the_back_of_the_shelf": (UnknownLiberoRegion,
@@ -127,8 +126,12 @@ def test_the_category_rule_types_unregistered_names_and_only_those_it_knows():
 def test_region_roles_by_rule():
     assert region_role(LIBERO_KINDS["basket"], "contain_region") == "inside"
     assert region_role(LIBERO_KINDS["desk_caddy"], "back_contain_region") == "inside"
-    assert region_role(LIBERO_KINDS["wooden_shelf"], "top_side") == "top"
-    assert region_role(LIBERO_KINDS["wooden_shelf"], "middle_region") == "covered"
+    # A shelf's level regions are levels of the stepped shelf, not roles.
+    assert region_role(LIBERO_KINDS["wooden_shelf"], "middle_region") is None
+    assert LIBERO_KINDS["wooden_shelf"].level_of("middle_region") == 1
+    assert LIBERO_KINDS["wooden_shelf"].level_of("top_side") == 2
+    assert LIBERO_KINDS["wooden_two_layer_shelf"].level_of("top_region") == 1
+    assert LIBERO_KINDS["wooden_two_layer_shelf"].level_count == 3
     assert region_role(LIBERO_KINDS["microwave"], "heating_region") == "inside"
     assert region_role(LIBERO_KINDS["microwave"], "top_side") == "open_top"
     assert region_role(LIBERO_KINDS["microwave"].plain, "top_side") == "top"
@@ -161,7 +164,7 @@ def test_compartments_fixtures_and_drawers_of_the_own_files():
     assert sum("compartment" in w for w in result.warnings) == 2
     graph = import_libero(OWN["kitchen_put_the_moka_pot_on_the_shelf"]).graph
     (factor,) = graph.factors
-    assert factor.goal.type == "on" and factor.goal.support == "wooden_shelf_1"
+    assert factor.goal.type == "on" and factor.goal.support == "wooden_shelf_1_level_2"
     assert graph.variable("wooden_shelf_1").fixed
     result = import_libero(OWN["kitchen_put_the_bowl_in_the_bottom_drawer_of_the_white_cabinet"])
     opened, put = result.graph.factors
@@ -172,6 +175,35 @@ def test_compartments_fixtures_and_drawers_of_the_own_files():
     result = import_libero(OWN["kitchen_put_the_moka_pot_on_the_lit_stove"])
     assert result.graph.factors[0].goal.support == "flat_stove_1"
     assert result.graph.variable("flat_stove_1_switch").initial.on
+
+
+def test_the_shelves_are_stepped_shelves_and_their_levels():
+    result = import_libero(OWN["study_put_the_book_on_the_bottom_layer_of_the_shelf"])
+    graph = result.graph
+    shelf = graph.variable("wooden_two_layer_shelf_1")
+    assert shelf.kind == "shelf" and shelf.fixed and shelf.initial.yaw_deg == 0.0
+    levels = [graph.variable(f"wooden_two_layer_shelf_1_level_{k}") for k in range(3)]
+    assert [v.kind for v in levels] == ["shelf_level"] * 3
+    assert [v.initial.level for v in levels] == [0, 1, 2]
+    assert all(v.initial.cabinet == "wooden_two_layer_shelf_1" for v in levels)
+    assert levels[0].size[2] < levels[1].size[2] < levels[2].size[2]
+    assert levels[1].size[2] - levels[0].size[2] >= 0.05  # real levels, 5 cm apart
+    (factor,) = graph.factors
+    assert factor.goal.type == "on" and factor.goal.support == "wooden_two_layer_shelf_1_level_0"
+    assert any("stepped shelf" in w for w in result.warnings)
+    # The shelf's footprint stays on the workspace (moved back where needed).
+    x = shelf.initial.x
+    assert WORKSPACE_X[0] - 1e-9 <= x - shelf.size[0] / 2
+    assert x + shelf.size[0] / 2 <= WORKSPACE_X[1] + 1e-9
+    # A start on a level; a move between levels.
+    graph = import_libero(
+        OWN["study_move_the_book_from_the_bottom_to_the_top_layer_of_the_shelf"]).graph
+    assert graph.variable("black_book_1").initial.support == "wooden_two_layer_shelf_1_level_0"
+    assert graph.factors[0].goal.support == "wooden_two_layer_shelf_1_level_1"
+    # top_region and top_side of the wooden shelf are both its top level.
+    graph = import_libero(OWN["study_put_the_mug_on_the_top_level_of_the_shelf"]).graph
+    assert graph.factors[0].goal.support == "wooden_shelf_1_level_2"
+    assert len([v for v in graph.variables if v.kind == "shelf_level"]) == 3
 
 
 def test_the_microwave_is_a_microwave_and_its_door():
@@ -248,7 +280,7 @@ def _one_type_task(type_name: str) -> BddlProblem | None:
     name, table = f"{type_name}_1", "kitchen_table"
     movable = "cherries" if spec.kind == "bowl" else "butter"
     if spec.fixture or (spec.fixed and not kind_spec(spec.kind).receptacle):
-        tops = [r for r, role in spec.regions if role == "top"]
+        tops = [r for r, role in spec.regions if role == "top"] + [r for r, _ in spec.levels]
         insides = [r for r, role in spec.regions if role == "inside"]
         if not tops and not insides:
             return None

@@ -18,6 +18,10 @@ the importer that reads them).
   ``switch`` variable ``<stove>_switch`` (``mounted_on`` it, on where ``:init`` says
   ``Turnon``); ``Turnon`` / ``Turnoff`` of the fixture are ``switched_on`` /
   ``switched_off`` of its switch.
+* Shelf levels (not articulated, but parts of a fixture like a cabinet's drawers): a
+  shelf type with level regions (:attr:`LiberoKind.levels`) gets one ``shelf_level``
+  variable per level (``<shelf>_level_<k>``, ``in_cabinet`` of the stepped shelf);
+  ``On`` / ``In`` a level region is ``on`` the level, in ``:init`` a start on it.
 * A put into a drawer or microwave whose gate (the drawer, the door:
   :func:`~factask.vocabulary.variables.gates_of`) starts shut gets an ``open``
   milestone first (:meth:`ArticulatedParts.open_before_putting_inside`).
@@ -41,6 +45,7 @@ from factask.vocabulary.kinds import (
     door_size,
     drawer_size,
     drawer_travel,
+    shelf_level_size,
     switch_size,
 )
 from factask.vocabulary.names import unique_name
@@ -113,6 +118,8 @@ class ArticulatedParts:
         """Name the drawer, door and switch variables (after :attr:`names`)."""
         #: A cabinet's drawer region (full name) → (drawer variable, cabinet, level).
         self.drawers: dict[str, tuple[str, str, int]] = {}
+        #: A shelf's level region (full name) → (level variable, shelf, level).
+        self.levels: dict[str, tuple[str, str, int]] = {}
         #: A microwave (LIBERO name) → its door variable.
         self.doors: dict[str, str] = {}
         #: A switchable fixture (LIBERO name) → its switch variable.
@@ -126,6 +133,17 @@ class ArticulatedParts:
                 word = region.removesuffix("_region")
                 var = unique_name(f"{self.names[libero]}_{word}_drawer", self.taken_names)
                 self.drawers[f"{libero}_{region}"] = (var, libero, level)
+            level_vars = [unique_name(f"{self.names[libero]}_level_{k}", self.taken_names)
+                          for k in range(spec.level_count)]
+            for region, k in spec.levels:
+                self.levels[f"{libero}_{region}"] = (level_vars[k], libero, k)
+            if spec.levels:
+                self.warnings.append(
+                    f"{libero}: LIBERO's {self.types[libero]} stacks its levels under "
+                    f"boards a top-down suction cup cannot reach under; it is factask's "
+                    f"stepped shelf of {spec.level_count} levels rising away from the "
+                    "robot, each open from above (level 0, the lowest, in front: "
+                    + ", ".join(f"{r} is level {k}" for r, k in spec.levels) + ")")
             if spec.kind == "microwave":
                 self.doors[libero] = unique_name(f"{self.names[libero]}_door",
                                                  self.taken_names)
@@ -135,9 +153,11 @@ class ArticulatedParts:
 
     def faces_robot(self, libero: str) -> bool:
         """A fixture whose moving part is on its -x side (drawers, a door, a switch's
-        control strip): turned to face the robot whatever LIBERO's yaw."""
+        control strip) or a stepped shelf (its lowest level at its -x side): turned to
+        face the robot whatever LIBERO's yaw."""
         spec = self.specs[libero]
-        return bool(spec.drawers) or libero in self.doors or libero in self.switches
+        return (bool(spec.drawers) or bool(spec.levels) or libero in self.doors
+                or libero in self.switches)
 
     def room_in_front(self, obj: str, size: tuple[float, float, float], x: float) -> float:
         """A cabinet's or microwave's x moved away from the robot, where needed, so that
@@ -272,7 +292,7 @@ class ArticulatedParts:
 
     # ---- the variables --------------------------------------------------------------
     def part_variables(self) -> list[dict[str, Any]]:
-        """The drawer, door and switch variables."""
+        """The drawer, shelf level, door and switch variables."""
         out: list[dict[str, Any]] = []
         for var, libero, level in self.drawers.values():
             spec = self.specs[libero]
@@ -284,6 +304,21 @@ class ArticulatedParts:
                             "level": level, "opening": self.openings.get(var, 0.0)},
                 "description": f"drawer {level} (bottom 0) of {libero}: LIBERO region "
                                f"{spec.drawers[level]}"})
+        seen: set[str] = set()
+        for var, libero, level in self.levels.values():
+            spec = self.specs[libero]
+            assert spec.size is not None
+            if var in seen:
+                continue
+            seen.add(var)
+            regions = [r for r, k in spec.levels if k == level]
+            out.append({
+                "name": var, "kind": "shelf_level", "color": spec.color,
+                "size": list(shelf_level_size(spec.size, spec.level_count, level)),
+                "initial": {"type": "in_cabinet", "cabinet": self.names[libero],
+                            "level": level},
+                "description": f"level {level} (lowest 0) of the stepped shelf {libero}: "
+                               f"LIBERO region {' and '.join(regions)}"})
         for libero, var in self.doors.items():
             spec = self.specs[libero]
             assert spec.size is not None

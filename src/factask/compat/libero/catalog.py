@@ -9,7 +9,7 @@ of each asset's XML (``contain_region``, ``top_side``, ``heating_region``, the
 shelf levels, the caddy's compartments), the scenes are the problem classes of
 ``libero/libero/envs/problems/`` with their table sizes. Sizes are real-ish sizes of
 the real things (full extents, metres), read off the asset's sites where they say
-it (the cabinets' and the shelves' top boards, the caddy's compartments, the
+it (the cabinets' top boards, the caddy's compartments, the
 microwave's top), else a typical size of the grocery or dish.
 """
 
@@ -26,9 +26,8 @@ from factask.compat.libero.spec import (
     container,
     fixed_box,
     scene_table,
+    shelf,
 )
-
-_SHELF_LEVEL = "a shelf level under the board above it"
 
 TYPES: dict[str, LiberoKind] = {
     # ---- the scenes' tables and the floor: factask's table -------------------------
@@ -98,18 +97,21 @@ TYPES: dict[str, LiberoKind] = {
                            "cabinet's middle drawer slides out over it (the 0.75 map "
                            "puts the rack 4 cm in front of the cabinet)",
                            regions=(("top_region", "top"), ("top_side", "top"))),
-    "wooden_shelf": fixed_box((0.19, 0.25, 0.22), "brown",
-                              "wooden shelf: a fixed box 22 cm high, its top board a "
-                              "support; its three levels lie under boards",
-                              regions=(("top_side", "top"), ("top_region", "covered"),
-                                       ("middle_region", "covered"),
-                                       ("bottom_region", "covered"))),
-    "wooden_two_layer_shelf": fixed_box((0.19, 0.35, 0.21), "brown",
-                                        "wooden two-layer shelf: a fixed box 21 cm high, "
-                                        "its top board a support; its two layers lie "
-                                        "under boards",
-                                        regions=(("top_side", "top"), ("top_region", "covered"),
-                                                 ("bottom_region", "covered"))),
+    "wooden_shelf": shelf((0.44, 0.25, 0.20), "brown",
+                          "wooden shelf: LIBERO's three stacked levels (19 cm deep) as "
+                          "factask's stepped shelf of three levels rising away from the "
+                          "robot, 44 cm deep so that each step (14.3 cm) holds a bowl; its top "
+                          "board (top_side) is the top level",
+                          levels=(("bottom_region", 0), ("middle_region", 1),
+                                  ("top_region", 2), ("top_side", 2))),
+    "wooden_two_layer_shelf": shelf((0.44, 0.35, 0.20), "brown",
+                                    "wooden two-layer shelf: its two layers and its top "
+                                    "board as factask's stepped shelf of three levels "
+                                    "rising away from the robot (bottom layer, top layer, "
+                                    "top board), 44 cm deep so that each step (14.3 cm) holds a "
+                                    "bowl",
+                                    levels=(("bottom_region", 0), ("top_region", 1),
+                                            ("top_side", 2))),
     "rack": fixed_box((0.20, 0.14, 0.04), "silver", "simple dish rack: a fixed low box",
                       regions=(("top_side", "top"), ("top_region", "top"))),
     "dining_set_group": LiberoKind("kit", (0.20, 0.20, 0.02), "white", fixed=True,
@@ -152,8 +154,10 @@ TYPES: dict[str, LiberoKind] = {
     "white_yellow_mug": can(0.08, 0.09, "yellow", "white and yellow mug (no handle)", "mug"),
     "moka_pot": can(0.08, 0.13, "silver", "moka pot (no handle)", "pot"),
     # ---- books ---------------------------------------------------------------------
-    "black_book": box((0.15, 0.10, 0.03), "black", "black book, lying flat", "book"),
-    "yellow_book": box((0.15, 0.10, 0.03), "yellow", "yellow book, lying flat", "book"),
+    "black_book": box((0.10, 0.15, 0.03), "black", "black book, lying flat, its long side "
+                    "across (y: it fits a shelf's step and the caddy so)", "book"),
+    "yellow_book": box((0.10, 0.15, 0.03), "yellow", "yellow book, lying flat, its long side "
+                    "across (y: it fits a shelf's step and the caddy so)", "book"),
     # ---- food boxes and packs (HOPE) -----------------------------------------------
     "cookies": box((0.14, 0.08, 0.05), "orange", "cookie box, lying flat"),
     "cream_cheese": box((0.075, 0.045, 0.03), "silver", "cream cheese pack"),

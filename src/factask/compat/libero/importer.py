@@ -17,7 +17,9 @@ predicate or object and why):
   receptacle; ``(In a <receptacle>_<region>)`` → ``inside``; ``(On a <fixture>_<top
   region>)`` → ``on`` the fixture, ``(In a <fixture>_<inside region>)`` →
   ``inside`` it (the region's role: :func:`~factask.compat.libero.kinds.region_role`;
-  a covered shelf level, a region behind a door or a side face is refused);
+  a region behind a door or a side face is refused);
+  ``(On a <shelf>_<level region>)`` → ``on`` that level of the stepped shelf
+  (:mod:`factask.compat.libero.articulated`), in ``:init`` a start on it;
   ``(On a <table>_<region>)`` → ``in_zone`` of a goal zone made for the region
   (:meth:`_Importer.goal_zone`). A stand-in fixed by default that a goal moves
   becomes movable; a goal that moves a fixture is refused.
@@ -95,9 +97,7 @@ ROUND_FIT_MARGIN = 0.005
 #: Colour of the goal zones made from table regions.
 ZONE_COLOR = "gray"
 #: Why a region of each refused role is refused.
-_WHY_ROLE = {"covered": "a shelf level under the board above it: a top-down suction cup "
-                        "cannot reach it",
-             "door": "behind a door factask does not model",
+_WHY_ROLE = {"door": "behind a door factask does not model",
              "side": "a side face of it: no factask relation puts things against a side",
              "open_top": "the top of factask's microwave, which is open at the top (no "
                          "roof, so that top-down cups put things in): nothing stands on "
@@ -178,7 +178,7 @@ class _Importer(ArticulatedParts):
         no rule types (the object itself is then the host).
 
         Raises:
-            LiberoUnsupported: the region is a covered shelf level, behind a door, a
+            LiberoUnsupported: the region is behind a door, a
                 side, or a fixture's region no rule types (:class:`UnknownLiberoRegion`).
         """
         target = region.target
@@ -201,7 +201,8 @@ class _Importer(ArticulatedParts):
             raise self._refuse_role(pred, region, role, type_name, spec)
         if not self.is_fixture(target):
             return None
-        known = [r for r, _ in spec.regions] + list(spec.drawers)
+        known = ([r for r, _ in spec.regions] + list(spec.drawers)
+                 + [r for r, _ in spec.levels])
         raise UnknownLiberoRegion(
             f"{self.where}: {pred}: region {region.name!r} of the {type_name} "
             f"({region.full_name}) is no region factask knows for this type (known: "
@@ -263,6 +264,8 @@ class _Importer(ArticulatedParts):
             return {"type": "table"}
         if host in self.drawers:
             return {"type": "inside", "container": self.drawers[host][0]}
+        if host in self.levels:
+            return {"type": "on", "support": self.levels[host][0]}
         region = self.p.regions_by_full_name.get(host)
         if region is not None:
             if self.is_table(region.target):
@@ -307,6 +310,10 @@ class _Importer(ArticulatedParts):
             half_x, half_y = (size[1], size[0]) if turned else (size[0], size[1])
             x = min(max(cx, WORKSPACE_X[0] + half_x / 2), WORKSPACE_X[1] - half_x / 2)
             x = self.room_in_front(obj, size, x)
+            if self.specs[obj].levels and abs(x - cx) > 1e-3:
+                self.warnings.append(f"{obj}: the stepped shelf ({size[0] * 100:.0f} cm "
+                                     f"deep) moved from x {cx:.3f} to {x:.3f} m so that "
+                                     "its whole footprint is on the workspace")
             y = min(max(cy, WORKSPACE_Y[0] + half_y / 2), WORKSPACE_Y[1] - half_y / 2)
             return {"type": "pose", "x": round(x, 4), "y": round(y, 4),
                     "yaw_deg": round(yaw, 3)}
@@ -366,6 +373,8 @@ class _Importer(ArticulatedParts):
     def goal_of(self, pred: Predicate, var: str, host: str) -> dict[str, Any]:
         if host in self.drawers:  # In / On a cabinet's drawer region: inside the drawer
             return {"type": "inside", "objects": [var], "container": self.drawers[host][0]}
+        if host in self.levels:  # On / In a shelf's level region: on the level
+            return {"type": "on", "objects": [var], "support": self.levels[host][0]}
         region = self.p.regions_by_full_name.get(host)
         if region is not None:
             if self.is_table(region.target):

@@ -20,9 +20,12 @@ one per category (:mod:`factask.compat.libero.spec`):
   whose top side things stand on; the flat stove is a ``stove`` with a push-button
   switch, its cook region its top; the microwave is a ``microwave`` with a hinged
   door, its heating region its inside (a plain fixed box where a file never names
-  its door: :attr:`LiberoKind.plain`); the fridge, shelves, racks are fixed
-  ``box``es whose top side is a support. What moves on them and factask does not
-  model (a fridge's hinged door, a slide cabinet's sliding door, a faucet's handle)
+  its door: :attr:`LiberoKind.plain`); the shelves are factask's stepped ``shelf``
+  whose level regions are its ``shelf_level`` variables (:attr:`LiberoKind.levels`:
+  LIBERO's levels under boards become steps open from above, rising away from the
+  robot); the fridge and racks are fixed ``box``es whose top side is a support.
+  What moves on them and factask does not model (a fridge's hinged door, a slide
+  cabinet's sliding door, a faucet's handle)
   is :attr:`LiberoKind.articulation`: the importer refuses ``Open``, ``Close``,
   ``Turnon``, ``Turnoff`` of it naming it
   (:mod:`factask.compat.libero.articulated`).
@@ -140,7 +143,8 @@ def region_role(spec: LiberoKind, region: str) -> RegionRole | None:
     """The role of a fixture's or object's own region, by the general rule: the type's
     own listing (:attr:`LiberoKind.regions`) first, then the region's name:
     ``*contain_region`` is the inside of a receptacle, ``top_side`` / ``top_region``
-    the top of a support. Drawer regions are not roles (:attr:`LiberoKind.drawers`).
+    the top of a support. Drawer and shelf level regions are not roles
+    (:attr:`LiberoKind.drawers`, :attr:`LiberoKind.levels`).
 
     Args:
         spec: The stand-in of the region's target.
@@ -159,7 +163,8 @@ def region_role(spec: LiberoKind, region: str) -> RegionRole | None:
     facts = kind_spec(spec.kind)
     if region.endswith("contain_region") and facts.receptacle:
         return "inside"
-    if region in ("top_side", "top_region") and facts.support and not spec.drawers:
+    if region in ("top_side", "top_region") and facts.support and not spec.drawers \
+            and not spec.levels:
         return "top"
     return None
 

@@ -32,24 +32,22 @@ class UnknownLiberoType(LiberoUnsupported):
 
 class UnknownLiberoRegion(LiberoUnsupported):
     """A region of a fixture or object that no rule maps (not its top, inside, a
-    drawer, a covered shelf level, a door's inside or a side)."""
+    drawer, a shelf level, a door's inside or a side)."""
 
 
 #: What a fixture's or object's region is, for factask:
 #: ``top``: its top face: ``On`` it is ``on`` the stand-in;
 #: ``inside``: inside it (a basket's ``contain_region``, a caddy's compartment):
 #: ``inside`` the stand-in;
-#: ``covered``: a shelf level under the board above it: a top-down suction cup cannot
-#: reach it, refused;
 #: ``door``: behind a hinged or sliding door factask does not model (a fridge's
 #: shelves), refused;
 #: ``side``: a side face (a storage box's left side): no factask relation, refused;
 #: ``open_top``: the top of a stand-in open at the top (factask's microwave has no
 #: roof, so that top-down cups can put things in): nothing stands on it, refused.
-#: A cabinet's drawer regions are listed in :attr:`LiberoKind.drawers` instead.
-RegionRole = Literal["top", "inside", "covered", "door", "side", "open_top"]
-REGION_ROLES: tuple[RegionRole, ...] = ("top", "inside", "covered", "door", "side",
-                                        "open_top")
+#: A cabinet's drawer regions are listed in :attr:`LiberoKind.drawers` instead, a
+#: shelf's level regions in :attr:`LiberoKind.levels`.
+RegionRole = Literal["top", "inside", "door", "side", "open_top"]
+REGION_ROLES: tuple[RegionRole, ...] = ("top", "inside", "door", "side", "open_top")
 
 
 @dataclass(frozen=True)
@@ -65,6 +63,10 @@ class LiberoKind:
         note: What it is and why this stand-in.
         drawers: For a cabinet: the LIBERO regions that are its drawers, bottom
             first (each becomes a ``drawer`` variable on a slide joint).
+        levels: For a shelf: its LIBERO level regions and the level of factask's
+            stepped shelf each is, as ``(region name, level)`` pairs (level 0 the
+            lowest, at the shelf's front); each level becomes one ``shelf_level``
+            variable, whatever number of regions name it.
         regions: The type's own regions (LIBERO's asset sites) and their roles, as
             ``(region name, role)`` pairs; see :data:`RegionRole`.
         articulation: What moves on the real fixture that factask does not model
@@ -85,10 +87,27 @@ class LiberoKind:
     fixture: bool = False
     note: str = ""
     drawers: tuple[str, ...] = ()
+    levels: tuple[tuple[str, int], ...] = ()
     regions: tuple[tuple[str, RegionRole], ...] = ()
     articulation: str = ""
     category: str = ""
     plain: LiberoKind | None = None
+
+    @property
+    def level_count(self) -> int:
+        """How many levels a shelf's stand-in has (0: no shelf)."""
+        return max((k for _, k in self.levels), default=-1) + 1
+
+    def level_of(self, region: str) -> int | None:
+        """The level of a shelf's level region ``region``, or None.
+
+        Args:
+            region: A region's own name (``bottom_region``).
+
+        Returns:
+            The level, 0 the lowest, or None when ``region`` is no level region.
+        """
+        return dict(self.levels).get(region)
 
     def role_of(self, region: str) -> RegionRole | None:
         """The role of the type's own region ``region`` (``top_side``), or None when
@@ -188,7 +207,7 @@ def container(size: Size, color: str, note: str, inside: tuple[str, ...] = ("con
 
 def fixed_box(size: Size, color: str, note: str, regions: tuple[tuple[str, RegionRole], ...]
               = (("top_side", "top"),), articulation: str = "") -> LiberoKind:
-    """A fixture as a fixed ``box`` (a stove, a rack, a shelf, a microwave): things
+    """A fixture as a fixed ``box`` (a rack, a fridge, a plain microwave): things
     stand on its top; its other regions have the roles given.
 
     Args:
@@ -220,3 +239,25 @@ def cabinet(size: Size, color: str, note: str) -> LiberoKind:
     return LiberoKind("cabinet", size, color, fixed=True, fixture=True, note=note,
                       drawers=("bottom_region", "middle_region", "top_region"),
                       regions=(("top_side", "top"),), category="cabinet")
+
+
+def shelf(size: Size, color: str, note: str, levels: tuple[tuple[str, int], ...]
+          ) -> LiberoKind:
+    """A shelf of stacked boards as factask's stepped ``shelf``: its level regions
+    (``levels``: region name → level, 0 the lowest) are the steps of a staircase
+    rising away from the robot, each open from above (a top-down suction cup cannot
+    reach a level under the board above it, so the stacked shelf becomes a stepped
+    one: a documented adaptation, warned about on import).
+
+    Args:
+        size: Outer extents of the stepped stand-in (deeper than LIBERO's shelf, so
+            that each step holds a bowl), metres.
+        color: Palette colour.
+        note: What it is.
+        levels: Its level regions and their levels.
+
+    Returns:
+        The stand-in.
+    """
+    return LiberoKind("shelf", size, color, fixed=True, fixture=True, note=note,
+                      levels=levels, category="shelf")
