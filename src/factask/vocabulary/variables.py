@@ -251,6 +251,15 @@ class VariableSet(Protocol):
     def variable(self, name: str) -> StateVariable: ...
 
 
+def _one_object(v: StateVariable) -> list[Problem]:
+    """A piece of furniture or one of its parts stands for one object (its place in
+    its host, or its parts' places in it, are facts about that one object)."""
+    if v.count == 1:
+        return []
+    return [Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
+                    f"got count {v.count}", "give each its own variable")]
+
+
 def drawers_of(variables: Sequence[StateVariable], cabinet: str) -> list[StateVariable]:
     """The drawer variables that start in ``cabinet`` (:class:`InCabinet`), by level:
     their number is the cabinet's number of bays.
@@ -311,9 +320,8 @@ def cabinet_problems(variables: Sequence[StateVariable]) -> list[Problem]:
             out.append(Problem(v.name, "initial", "only a drawer or a door starts "
                                f"in_cabinet, not a {v.kind}", "start it on the table or "
                                "on/inside another variable"))
-        if v.kind in ("drawer", "cabinet") and v.count != 1:
-            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
-                               f"got count {v.count}", "give each its own variable"))
+        if v.kind in ("drawer", "cabinet"):
+            out.extend(_one_object(v))
         if v.kind == "drawer" and not v.is_fixed:
             out.append(Problem(v.name, "fixed", "a drawer slides in its cabinet; it cannot be "
                                "free", "leave fixed out"))
@@ -384,9 +392,8 @@ def switch_problems(variables: Sequence[StateVariable]) -> list[Problem]:
             out.append(Problem(v.name, "initial", f"only a switch starts mounted_on, not a "
                                f"{v.kind}", "start it on the table or on/inside another "
                                "variable, or make it kind switch"))
-        if (v.kind == "switch" or v.kind in SWITCH_HOSTS) and v.count != 1:
-            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
-                               f"got count {v.count}", "give each its own variable"))
+        if v.kind == "switch" or v.kind in SWITCH_HOSTS:
+            out.extend(_one_object(v))
         if v.kind == "switch" and not v.is_fixed:
             out.append(Problem(v.name, "fixed", "a switch moves only along its button's "
                                "slide; it cannot be free", "leave fixed out"))
@@ -423,9 +430,7 @@ def _door_problems(variables: Sequence[StateVariable]) -> list[Problem]:
     for v in variables:
         if v.kind not in ("door", "microwave"):
             continue
-        if v.count != 1:
-            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
-                               f"got count {v.count}", "give each its own variable"))
+        out.extend(_one_object(v))
         if v.kind == "microwave":
             doors = [d for d in variables if d.kind == "door" and isinstance(d.initial, InCabinet)
                      and d.initial.cabinet == v.name]
@@ -476,9 +481,7 @@ def shelf_problems(variables: Sequence[StateVariable]) -> list[Problem]:
     for v in variables:
         if v.kind not in ("shelf", "shelf_level"):
             continue
-        if v.count != 1:
-            out.append(Problem(v.name, "count", f"a {v.kind} variable stands for one object, "
-                               f"got count {v.count}", "give each its own variable"))
+        out.extend(_one_object(v))
         if not v.is_fixed:
             out.append(Problem(v.name, "fixed", f"a {v.kind} stands fixed on the table; it "
                                "cannot be free", "leave fixed out"))
