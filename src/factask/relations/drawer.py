@@ -157,7 +157,3 @@ class ArticulatedRelation(RelationBase):
     @abc.abstractmethod
     def _threshold_text(self) -> str:
         """The threshold in words, for the check's details."""
-
-
-#: The name this base had while drawers were the only articulated kind.
-DrawerRelation = ArticulatedRelation
